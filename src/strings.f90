@@ -1,0 +1,51 @@
+!> Small text helpers for messages and tables.
+module kcreep_strings
+  use, intrinsic :: iso_fortran_env, only: real64
+  implicit none
+  private
+  public :: itoa, rtoa, printable, lower
+
+contains
+
+  pure function itoa(i) result(s)
+    integer, intent(in) :: i
+    character(len=:), allocatable :: s
+    character(len=24) :: buf
+    write (buf, '(i0)') i
+    s = trim(buf)
+  end function itoa
+
+  pure function rtoa(x) result(s)
+    real(real64), intent(in) :: x
+    character(len=:), allocatable :: s
+    character(len=32) :: buf
+    write (buf, '(g0.6)') x
+    s = trim(adjustl(buf))
+  end function rtoa
+
+  !> A character as it can be shown in a one-line message (control bytes as \xNN).
+  pure function printable(c) result(s)
+    character(len=1), intent(in) :: c
+    character(len=:), allocatable :: s
+    character(len=16), parameter :: digits = '0123456789ABCDEF'
+    integer :: code
+    code = iachar(c)
+    if (code < 32 .or. code > 126) then
+      s = '\x'//digits(code / 16 + 1:code / 16 + 1)//digits(mod(code, 16) + 1:mod(code, 16) + 1)
+    else
+      s = c
+    end if
+  end function printable
+
+  pure function lower(text) result(s)
+    character(len=*), intent(in) :: text
+    character(len=len(text)) :: s
+    integer :: i, code
+    s = text
+    do i = 1, len(s)
+      code = iachar(s(i:i))
+      if (code >= iachar('A') .and. code <= iachar('Z')) s(i:i) = achar(code + 32)
+    end do
+  end function lower
+
+end module kcreep_strings
