@@ -8,7 +8,7 @@ module creep_run
   use patch_grid, only: patch_t
   use namelist_input, only: config_t
   use tang_assembly, only: operator_table_t, build_operator_table, rigid_creepage, n_load_cases
-  use dense_solver, only: dense_diagnostics_t, solve_dense
+  use dense_solver, only: dense_diagnostics_t, solve_dense, check_dense_memory
   use creep_coefficients, only: creep_matrix, normalised, traction_coherence
   use kalker_table, only: kalker_coefficients
   use table_output, only: run_record_t
@@ -43,6 +43,8 @@ contains
     allocate (warnings(0))
     call system_clock(t0, rate)
     n = patch%n
+    call check_dense_memory(n, status)
+    if (status%failed()) return
     call build_operator_table(patch, cfg%scheme, cfg%nu, cfg%g, table)
     call system_clock(t1)
     t_table = real(t1 - t0, real64) / rate

@@ -12,7 +12,7 @@ module dense_solver
   use tang_assembly, only: operator_table_t, assemble_dense, apply_operator
   implicit none
   private
-  public :: dense_diagnostics_t, solve_dense, dense_matrix_bytes, available_memory_bytes
+  public :: dense_diagnostics_t, solve_dense, check_dense_memory
 
   !> Backward errors above this are refined once (about 100 unit round-offs).
   real(real64), parameter :: refine_threshold = 100 * epsilon(1.0_real64)
@@ -53,6 +53,20 @@ contains
     close (unit)
   end function available_memory_bytes
 
+  !> Fail before allocating when the dense matrix cannot fit in the memory available.
+  subroutine check_dense_memory(n_cells, status)
+    integer, intent(in) :: n_cells
+    type(status_t), intent(inout) :: status
+    integer(int64) :: need, have
+    need = dense_matrix_bytes(2 * n_cells)
+    have = available_memory_bytes()
+    if (have > 0 .and. need > have) then
+      call fail(status, exit_bad_input, 'the dense matrix of '//itoa(2 * n_cells)//' unknowns needs '// &
+                rtoa(real(need, real64) / 2.0_real64**30)//' GiB, only '// &
+                rtoa(real(have, real64) / 2.0_real64**30)//' GiB are available (use a coarser grid)')
+    end if
+  end subroutine check_dense_memory
+
   !> Solve A x = b for the columns of rhs (x overwrites rhs).
   subroutine solve_dense(patch, table, rhs, diag, status)
     type(patch_t), intent(in) :: patch
@@ -63,19 +77,13 @@ contains
     real(real64), allocatable :: a(:, :), b(:, :), r(:, :), work(:)
     integer, allocatable :: ipiv(:), iwork(:)
     integer :: m, info, nrhs
-    integer(int64) :: need, have, t0, t1, rate
+    integer(int64) :: t0, t1, rate
     real(real64) :: anorm_1, anorm_inf
 
     m = 2 * patch%n
     nrhs = size(rhs, 2)
-    need = dense_matrix_bytes(m)
-    have = available_memory_bytes()
-    if (have > 0 .and. need > have) then
-      call fail(status, exit_bad_input, 'dense matrix of '//itoa(m)//' unknowns needs '// &
-                rtoa(real(need, real64) / 2.0_real64**30)//' GiB, only '// &
-                rtoa(real(have, real64) / 2.0_real64**30)//' GiB available (use a coarser grid)')
-      return
-    end if
+    call check_dense_memory(patch%n, status)
+    if (status%failed()) return
 
     call system_clock(t0, rate)
     allocate (a(m, m), ipiv(m), work(4 * m), iwork(m))

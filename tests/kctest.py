@@ -1,0 +1,94 @@
+"""Helpers for kcreep's scenario tests: run the program on a namelist in a
+scratch folder and read its coefficient table (standard library only)."""
+import math
+import os
+import subprocess
+import sys
+import tempfile
+
+KCREEP = None
+FAILURES = []
+CHECKS = [0]
+
+
+def setup():
+    """Take the kcreep binary from argv[1]; return the scratch folder."""
+    global KCREEP
+    if len(sys.argv) < 2:
+        sys.exit("usage: test_x.py PATH/TO/kcreep")
+    KCREEP = os.path.abspath(sys.argv[1])
+    return tempfile.mkdtemp(prefix="kcreep-test-")
+
+
+def namelist(patch="", material="", solver="", output=""):
+    return f"&patch {patch} /\n&material {material} /\n&solver {solver} /\n&output {output} /\n"
+
+
+def run(text, folder, name="case", expect_ok=True, files=None):
+    """Write text to folder/name.nml and run kcreep there.
+    Returns (returncode, stdout, stderr, table or None)."""
+    for fname, content in (files or {}).items():
+        with open(os.path.join(folder, fname), "w") as f:
+            f.write(content)
+    path = os.path.join(folder, name + ".nml")
+    with open(path, "w") as f:
+        f.write(text)
+    proc = subprocess.run([KCREEP, name + ".nml"], cwd=folder, capture_output=True, text=True)
+    table_path = os.path.join(folder, name + ".tab")
+    table = None
+    if proc.returncode == 0 and os.path.exists(table_path):
+        table = read_table(table_path)
+    if expect_ok and proc.returncode != 0:
+        raise RuntimeError(f"kcreep failed on {name}: {proc.stderr.strip()}")
+    return proc.returncode, proc.stdout, proc.stderr, table
+
+
+def read_table(path):
+    """Rows of a kcreep table as dicts (numbers as float where they parse)."""
+    columns, rows = None, []
+    with open(path) as f:
+        for line in f:
+            if line.startswith("#"):
+                columns = line[1:].split()
+                continue
+            values = line.split()
+            row = {}
+            for c, v in zip(columns, values):
+                try:
+                    row[c] = float(v)
+                except ValueError:
+                    row[c] = v
+            rows.append(row)
+    return rows
+
+
+def coefficients(text, folder, name="case"):
+    """The single table row of a successful run."""
+    return run(text, folder, name)[3][0]
+
+
+def check(condition, message):
+    CHECKS[0] += 1
+    status = "ok  " if condition else "FAIL"
+    print(f"{status} {message}")
+    if not condition:
+        FAILURES.append(message)
+
+
+def close(value, expected, rel, message):
+    err = abs(value - expected) / max(abs(expected), 1e-300)
+    check(err <= rel, f"{message}: {value:.8g} vs {expected:.8g} (rel. diff {err:.2e}, allowed {rel:.1e})")
+
+
+def small(value, scale, rel, message):
+    check(abs(value) <= rel * abs(scale), f"{message}: |{value:.3e}| <= {rel:.0e} * {abs(scale):.3e}")
+
+
+def finish():
+    passed = CHECKS[0] - len(FAILURES)
+    print(f"{passed} passed, {len(FAILURES)} failed")
+    sys.exit(1 if FAILURES else 0)
+
+
+def isnan(x):
+    return isinstance(x, float) and math.isnan(x)
