@@ -68,7 +68,7 @@ contains
         rel = '         -'
       end if
       write (lines(2 + i), '(a, 6x, a2, 1x, a12, 1x, es16.8, 1x, a10, 2x, a)') 'CONTACT', names(i), &
-        adjustr(printed(i)(1:12)), mine(i), rel(1:10), merge('agrees ', 'differs', ok(i))
+        adjustr(printed(i)(1:12)), mine(i), rel(1:10), trim(judgement(ok(i), c%nslip > 0))
       if (.not. ok(i)) bad = bad//' '//names(i)
     end do
     if (c%nslip > 0) then
@@ -82,5 +82,17 @@ contains
     if (.not. contact_like) lines(6) = trim(lines(6))// &
       ' (note: CONTACT''s conventions were switched off in &solver)'
   end function comparison_lines
+
+  pure function judgement(ok, slip) result(word)
+    logical, intent(in) :: ok, slip
+    character(len=12) :: word
+    if (slip) then
+      word = 'not judged'
+    else if (ok) then
+      word = 'agrees'
+    else
+      word = 'differs'
+    end if
+  end function judgement
 
 end module contact_compare

@@ -158,8 +158,8 @@ contains
     type(status_t), intent(inout) :: status
     character(len=32) :: tok(6)
     real(real64) :: v(6)
-    integer :: iv(4), line_no, ios
-    real(real64) :: xl, yl, scale
+    integer :: iv(4), line_no, ios, nt
+    real(real64) :: xl, yl
 
     call read_columns(text, first, last, 'POISS(1)', 0, [character(len=8) :: 'POISS(1)', 'POISS(2)', 'GG(1)', &
                       'GG(2)'], where//'MATERIAL CONSTANTS', tok, status)
@@ -209,7 +209,15 @@ contains
     grid_printed = .false.
     line_no = find_line(text, first, last, 'DISCRETISATION MX,MY, DX,DY:')
     if (line_no > 0) then
-      read (text%lines(line_no)(index(text%lines(line_no), ':') + 1:), *, iostat=ios) c%mx, c%my, c%dx, c%dy
+      call split(text%lines(line_no)(index(text%lines(line_no), ':') + 1:), tok, nt)
+      ios = merge(0, 1, nt == 4)
+      if (ios == 0) read (tok(1), *, iostat=ios) c%mx
+      if (ios == 0) read (tok(2), *, iostat=ios) c%my
+      if (ios == 0) call to_reals(tok(3:4), where//'DISCRETISATION DX, DY', v(1:2), status)
+      if (status%failed()) return
+      ! four printed digits: 0.3333 stands for 1/3 (see simplest_fraction)
+      c%dx = simplest_fraction(v(1), printed_half_unit(tok(3)))
+      c%dy = simplest_fraction(v(2), printed_half_unit(tok(4)))
       if (ios /= 0) then
         call fail(status, exit_bad_input, where//'line '//itoa(line_no)//': cannot read MX, MY, DX, DY from "'// &
                   trim(adjustl(text%lines(line_no)))//'"')
@@ -220,7 +228,12 @@ contains
         call fail(status, exit_bad_input, where//'DISCRETISATION printed without the POTENTIAL CONTACT line')
         return
       end if
-      read (text%lines(line_no)(index(text%lines(line_no), ':') + 1:), *, iostat=ios) xl, yl, scale
+      call split(text%lines(line_no)(index(text%lines(line_no), ':') + 1:), tok, nt)
+      ios = merge(0, 1, nt == 3)
+      if (ios == 0) call to_reals(tok(1:3), where//'POTENTIAL CONTACT XL, YL, SCALE', v(1:3), status)
+      if (status%failed()) return
+      xl = simplest_fraction(v(1), printed_half_unit(tok(1)))
+      yl = simplest_fraction(v(2), printed_half_unit(tok(2)))
       if (ios /= 0) then
         call fail(status, exit_bad_input, where//'line '//itoa(line_no)//': cannot read XL, YL from "'// &
                   trim(adjustl(text%lines(line_no)))//'"')
@@ -398,7 +411,9 @@ contains
       call split(text%lines(i), tok, nt)
       if (nt < 2) exit
       read (tok(1), *, iostat=ios) row
-      if (ios /= 0 .or. any(len_trim(tok(2:nt)) /= 1)) exit
+      ! a map row: its number, then one non-digit symbol per column (the
+      ! column-number lines below the map have digits instead)
+      if (ios /= 0 .or. any(len_trim(tok(2:nt)) /= 1) .or. any(scan(tok(2:nt), '0123456789') > 0)) exit
       if (rows_read == 0) then
         top = row
         first_symbol = index(text%lines(i), trim(tok(2)))
