@@ -9,6 +9,8 @@ module namelist_input
   use kcreep_strings, only: itoa, rtoa, lower
   use patch_grid, only: patch_t, ellipse_patch, mask_patch, read_mask_file, parse_mask_rows
   use tang_assembly, only: scheme_t, load_case_names, n_load_cases
+  use contact_reader, only: contact_case_t, read_contact_case, combined_material
+  use contact_compare, only: contact_spin_shift
   implicit none
   private
   public :: config_t, read_config, build_patch, max_inline_rows, max_row_length
@@ -26,6 +28,9 @@ module namelist_input
     character(len=:), allocatable :: mask_file
     character(len=max_row_length), allocatable :: mask_rows(:)   !< inline rows given
     real(real64) :: dx = 0, dy = 0, x0 = 0, y0 = 0
+    character(len=:), allocatable :: contact_file   !< shape 'contact': CONTACT .out file
+    integer :: contact_case = 0
+    type(contact_case_t) :: contact                 !< what was read from it
     ! &material
     real(real64) :: g = 1, nu = 0.25_real64
     ! &solver
@@ -49,7 +54,12 @@ contains
     character(len=4096) :: mask_file, table_file, traction_file
     character(len=64) :: load_cases
     character(len=max_row_length), allocatable :: mask_rows(:)
-    namelist /patch/ shape, semi_a, semi_b, mx, my, mask_file, mask_rows, dx, dy, x0, y0
+    character(len=4096) :: contact_file
+    integer :: contact_case
+    !> "not given": g, nu and spin_shift default differently for shape = 'contact'
+    real(real64), parameter :: unset = -huge(1.0_real64)
+    logical :: material_given
+    namelist /patch/ shape, semi_a, semi_b, mx, my, mask_file, mask_rows, dx, dy, x0, y0, contact_file, contact_case
     namelist /material/ g, nu
     namelist /solver/ scheme, alpha, spin_shift, load_cases
     namelist /output/ table_file, traction_file
@@ -70,11 +80,13 @@ contains
     dy = 0
     x0 = 0
     y0 = 0
-    g = 1
-    nu = 0.25_real64
-    scheme = 'collocation'
+    contact_file = ''
+    contact_case = 1
+    g = unset
+    nu = unset
+    scheme = ''
     alpha = 0.5_real64
-    spin_shift = 0
+    spin_shift = unset
     load_cases = 'xi eta phi'
     table_file = ''
     traction_file = ''
@@ -107,6 +119,14 @@ contains
     if (status%failed()) return
 
     cfg%shape = lower(trim(adjustl(shape)))
+    ! shape = 'contact' follows CONTACT's conventions unless &solver says otherwise
+    if (len_trim(scheme) == 0) scheme = merge('backward   ', 'collocation', cfg%shape == 'contact')
+    if (spin_shift == unset) spin_shift = merge(contact_spin_shift, 0.0_real64, cfg%shape == 'contact')
+    material_given = g /= unset .or. nu /= unset
+    if (g == unset) g = 1
+    if (nu == unset) nu = 0.25_real64
+    cfg%contact_file = trim(contact_file)
+    cfg%contact_case = contact_case
     cfg%semi_a = semi_a
     cfg%semi_b = semi_b
     cfg%mx = mx
@@ -128,6 +148,7 @@ contains
     cfg%traction_file = trim(traction_file)
 
     call validate(cfg, mask_rows, nrows, load_cases, status)
+    if (cfg%shape == 'contact' .and. .not. status%failed()) call load_contact_case(cfg, material_given, status)
 
   contains
 
@@ -237,9 +258,18 @@ contains
       end if
       if (.not. (abs(cfg%x0) <= huge(1.0_real64) .and. abs(cfg%y0) <= huge(1.0_real64))) &
         call fail(status, exit_bad_input, where//'&patch x0, y0 must be finite')
+    case ('contact')
+      if (len(cfg%contact_file) == 0) call fail(status, exit_bad_input, where// &
+          '&patch shape = ''contact'' needs contact_file (a CONTACT .out file)')
+      if (cfg%contact_case < 1) call fail(status, exit_bad_input, where//'&patch contact_case = '// &
+          itoa(cfg%contact_case)//' (must be >= 1)')
+      if (len(cfg%mask_file) > 0 .or. nrows > 0 .or. cfg%mx /= 0 .or. cfg%my /= 0 .or. cfg%dx /= 0 .or. &
+          cfg%dy /= 0 .or. cfg%x0 /= 0 .or. cfg%y0 /= 0) call fail(status, exit_bad_input, where// &
+          '&patch shape = ''contact'' takes its grid and mask from contact_file (leave out mask_file, '// &
+          'mask_rows, mx, my, dx, dy, x0, y0)')
     case default
       call fail(status, exit_bad_input, where//'&patch shape = '''//cfg%shape// &
-                ''' (allowed: ''ellipse'', ''mask'')')
+                ''' (allowed: ''ellipse'', ''mask'', ''contact'')')
     end select
 
     if (.not. positive_finite(cfg%g)) call fail(status, exit_bad_input, where// &
@@ -321,8 +351,30 @@ contains
         if (status%failed()) return
         call mask_patch(inside, cfg%dx, cfg%dy, cfg%x0, cfg%y0, where, patch, status)
       end if
+    case ('contact')
+      ! CONTACT's grid: corner (XL, YL), so the first cell centre is half a cell in
+      call mask_patch(cfg%contact%inside, cfg%contact%dx, cfg%contact%dy, cfg%contact%xl + cfg%contact%dx / 2, &
+                      cfg%contact%yl + cfg%contact%dy / 2, 'contact_file '''//cfg%contact_file//'''', patch, status)
+      patch%kind = 'contact'
     end select
   end subroutine build_patch
+
+  !> shape = 'contact': grid, mask and material of case contact_case of contact_file.
+  !> A material in &material is refused rather than silently overridden: the
+  !> comparison with CONTACT is only meaningful with CONTACT's own material.
+  subroutine load_contact_case(cfg, material_given, status)
+    type(config_t), intent(inout) :: cfg
+    logical, intent(in) :: material_given
+    type(status_t), intent(inout) :: status
+    if (material_given) then
+      call fail(status, exit_bad_input, 'input '''//cfg%input_path//''': &material g, nu are not allowed '// &
+                'with &patch shape = ''contact'' (the material comes from contact_file''s GG and POISS)')
+      return
+    end if
+    call read_contact_case(cfg%contact_file, cfg%contact_case, cfg%contact, status)
+    if (status%failed()) return
+    call combined_material(cfg%contact%gg, cfg%contact%poiss, cfg%g, cfg%nu)
+  end subroutine load_contact_case
 
   pure logical function positive_finite(x)
     real(real64), intent(in) :: x

@@ -13,6 +13,7 @@ program kcreep
   use patch_grid, only: patch_t
   use namelist_input, only: config_t, read_config, build_patch
   use creep_run, only: run_case
+  use contact_compare, only: comparison_lines, contact_spin_shift
   use table_output, only: run_record_t, table_lines, write_text_file, &
                           check_output_path, traction_lines
   implicit none
@@ -110,6 +111,7 @@ contains
         write (output_unit, '(2x, a, es12.5)') names(i)//' = ', record%cn(i)
       end if
     end do
+    if (patch%kind == 'contact') call print_contact_comparison()
     write (output_unit, '(2x, a, es9.2, a, es9.2)') 'rcond ', record%rcond, ', backward error ', record%backward_error
     write (output_unit, '(2x, a, 4f9.3)') 'time assemble factor solve total [s]:', record%t_assemble, &
       record%t_factor, record%t_solve, record%t_total
@@ -119,5 +121,16 @@ contains
       write (error_unit, '(a)') 'kcreep: warning: '//trim(warnings(i))
     end do
   end subroutine print_summary
+
+  !> shape = 'contact': kcreep's forces for CONTACT's creepages beside CONTACT's.
+  subroutine print_contact_comparison()
+    character(len=300), allocatable :: lines(:)
+    integer :: i
+    lines = comparison_lines(cfg%contact, record%f, cfg%scheme%name == 'backward' .and. &
+                             cfg%scheme%spin_shift == contact_spin_shift)
+    do i = 1, size(lines)
+      write (output_unit, '(2x, a)') trim(lines(i))
+    end do
+  end subroutine print_contact_comparison
 
 end program kcreep

@@ -1,0 +1,72 @@
+#!/usr/bin/env bash
+# Compare kcreep with Kalker's CONTACT on CONTACT's own contact areas.
+#   scripts/compare_contact.sh FILE.out [FILE.out ...]
+# For every case of every file: run kcreep with &patch shape = 'contact' (grid,
+# mask and material of that case; CONTACT's scheme: backward difference over
+# one cell, spin evaluated at x + DX/6), compute FX, FY, MZ for the case's
+# creepages and print them beside CONTACT's with the relative difference and
+# a one-line verdict. Verdict rule: kcreep agrees when its value rounded to
+# the digits CONTACT printed equals CONTACT's value (|difference| <= half a
+# unit in CONTACT's last printed digit). Cases with slip (NSLIP > 0) are not
+# judged: kcreep's linear full-adhesion forces are only an upper bound there.
+# Exit status: 0 all judged cases agree, 1 some differ, 2 a file/case could
+# not be read or run (its error is printed).
+#   KCREEP=path/to/kcreep   the binary (default: build/kcreep of this checkout)
+set -uo pipefail
+here=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
+kcreep=${KCREEP:-$here/build/kcreep}
+if (($# == 0)); then
+  echo "usage: $0 FILE.out [FILE.out ...]" >&2
+  exit 2
+fi
+if [[ ! -x $kcreep ]]; then
+  echo "compare_contact: error: kcreep binary '$kcreep' not found (build first, or set KCREEP)" >&2
+  exit 2
+fi
+work=$(mktemp -d "${TMPDIR:-/tmp}/compare_contact.XXXXXX")
+trap 'rm -rf "$work"' EXIT
+
+worst=0
+status=0
+for out in "$@"; do
+  if [[ ! -r $out ]]; then
+    echo "compare_contact: error: cannot read '$out'" >&2
+    status=2
+    continue
+  fi
+  path=$(cd "$(dirname "$out")" && pwd)/$(basename "$out")
+  n_cases=$(grep -c '^ *Case  *[0-9][0-9]* *$' "$path" || true)
+  echo "== $(basename "$out"): $n_cases case(s)"
+  if ((n_cases == 0)); then
+    echo "compare_contact: error: '$out' has no 'Case k' header (not a CONTACT output?)" >&2
+    status=2
+    continue
+  fi
+  for ((k = 1; k <= n_cases; k++)); do
+    nml=$work/case.nml
+    # namelist strings: double any single quote of the path
+    printf "&patch shape = 'contact', contact_file = '%s', contact_case = %d /\n&output table_file = '%s' /\n" \
+      "${path//\'/\'\'}" "$k" "$work/case.tab" >"$nml"
+    if ! result=$("$kcreep" "$nml" 2>"$work/err"); then
+      echo "  case $k: kcreep failed: $(head -n 1 "$work/err")"
+      status=2
+      continue
+    fi
+    # kcreep's comparison block: the lines that start with 'CONTACT'
+    block=$(sed -n 's/^  CONTACT/CONTACT/p' <<<"$result")
+    sed -n 's/^CONTACT case/  case/p' <<<"$block"
+    sed -n 's/^CONTACT    force/    force/p; s/^CONTACT      \([FM][XYZ]\)/    \1/p' <<<"$block"
+    verdict=$(sed -n 's/^CONTACT verdict: //p' <<<"$block")
+    echo "    verdict: $verdict"
+    case $verdict in
+      DIFFERS*) ((status == 0)) && status=1 ;;
+    esac
+    # largest relative difference over the judged (no-slip) cases
+    if [[ $verdict != slip* ]]; then
+      worst=$(awk -v w="$worst" '$1 ~ /^(FX|FY|MZ)$/ && $4 != "-" { r = $4 < 0 ? -$4 : $4; if (r > w) w = r }
+                                 END { printf "%.3e", w }' <<<"$(sed -n 's/^CONTACT      //p' <<<"$block")")
+    fi
+  done
+done
+echo "largest |relative difference| over the full-adhesion cases: $worst"
+exit $status
