@@ -151,6 +151,14 @@ try:
     kc.check(any(l.startswith("# case 6 ") and "nu = 0.7" in l for l in comments),
              "its message in the gathered comments, numbered by its place in the list")
 
+    # --- --retry-failed runs again the chunk with the error row (a bad input stays bad)
+    retry = run([run_cases, "sweep.list", "slurm.tab", "--chunk", "2", "--wait", "--retry-failed"], env=env,
+                cwd=folder, timeout=150)
+    kc.check(retry.returncode == 5 and "submitted 1 array task(s)" in retry.stdout
+             and os.path.exists(os.path.join(workdir, "chunks", "00003.tab.failed")),
+             f"--retry-failed reruns the one chunk with an error row ({retry.returncode})")
+    compare(local_rows, kc.read_table(os.path.join(folder, "slurm.tab")), "after --retry-failed")
+
     # --- a third time: everything is there, nothing is submitted
     third = run([run_cases, "sweep.list", "slurm.tab", "--chunk", "2"], env=env, cwd=folder)
     kc.check("done already" in third.stdout and third.returncode == 5, f"third run gathers only: {third.stdout.strip()}")

@@ -25,6 +25,9 @@
 #   --job-name NAME     [kcreep]
 #   --sbatch-arg ARG    one more argument for the array's sbatch (repeat it;
 #                       e.g. --sbatch-arg=--account=proj --sbatch-arg=--hold)
+#   --retry-failed      run again the chunks with failed cases (rows with
+#                       verdict error:..., e.g. a node short of memory); their
+#                       old tables are kept as NNNNN.tab.failed
 #   --wait              wait for the gather job; exit with its status
 #
 # Restart: run the same command again. Chunks whose table exists are not
@@ -43,7 +46,7 @@ die() { echo "run_cases_slurm: error: $*" >&2; exit "${2:-2}"; }
 usage() { sed -n '2,/^set -euo/p' "${BASH_SOURCE[0]}" | sed -e '$d' -e 's/^# \{0,1\}//'; exit "${1:-2}"; }
 
 partition= cpus=1 mem_mb= time_limit=01:00:00 chunk= max_running= workdir= wait=0
-kcreep=${KCREEP:-$repo/build/kcreep} job_name=kcreep
+kcreep=${KCREEP:-$repo/build/kcreep} job_name=kcreep retry_failed=0
 extra=()
 positional=()
 while (($#)); do
@@ -69,6 +72,7 @@ while (($#)); do
     --sbatch-arg=*) extra+=("${1#*=}") ;;
     --sbatch-arg) extra+=("${2:?--sbatch-arg needs a value}"); shift ;;
     --wait) wait=1 ;;
+    --retry-failed) retry_failed=1 ;;
     -h | --help) usage 0 ;;
     -*) die "unknown option $1 (see --help)" ;;
     *) positional+=("$1") ;;
@@ -125,7 +129,11 @@ fi
 # chunks still to run
 pending=()
 for ((i = 1; i <= n_chunks; i++)); do
-  [[ -f $workdir/chunks/$(printf '%05d' "$i").tab ]] || pending+=("$i")
+  table=$workdir/chunks/$(printf '%05d' "$i").tab
+  if ((retry_failed)) && [[ -f $table ]] && grep -v '^#' "$table" | awk '$NF ~ /^error:/ {found = 1} END {exit !found}'; then
+    mv "$table" "$table.failed"
+  fi
+  [[ -f $table ]] || pending+=("$i")
 done
 if ((${#pending[@]} == 0)); then
   echo "run_cases_slurm: all $n_chunks chunk(s) done already: gathering here"
