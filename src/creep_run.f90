@@ -14,7 +14,7 @@ module creep_run
   use table_output, only: run_record_t
   implicit none
   private
-  public :: run_case, coherence_limit, rcond_limit, backward_error_limit
+  public :: run_case, case_name, coherence_limit, rcond_limit, backward_error_limit
 
   !> Below this, the traction of a pure xi (eta) load changes sign over much of
   !> the patch: no physical full-adhesion solution does that.

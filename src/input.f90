@@ -6,7 +6,7 @@
 module namelist_input
   use, intrinsic :: iso_fortran_env, only: real64, iostat_end
   use kcreep_status, only: status_t, fail, exit_bad_input
-  use kcreep_strings, only: itoa, rtoa, lower
+  use kcreep_strings, only: itoa, rtoa, lower, resolve_path
   use patch_grid, only: patch_t, ellipse_patch, mask_patch, read_mask_file, parse_mask_rows
   use tang_assembly, only: scheme_t, load_case_names, n_load_cases
   use contact_reader, only: contact_case_t, read_contact_case, combined_material
@@ -42,10 +42,15 @@ module namelist_input
 
 contains
 
-  subroutine read_config(path, cfg, status)
+  !> Read and validate the namelist at path. With base_folder, relative file
+  !> names inside it (mask_file, contact_file, table_file, traction_file) are
+  !> taken relative to that folder (the batch's convention), else relative to
+  !> the working folder.
+  subroutine read_config(path, cfg, status, base_folder)
     character(len=*), intent(in) :: path
     type(config_t), intent(out) :: cfg
     type(status_t), intent(inout) :: status
+    character(len=*), intent(in), optional :: base_folder
 
     ! namelist variables, with their defaults
     character(len=32) :: shape, scheme
@@ -65,7 +70,7 @@ contains
     namelist /output/ table_file, traction_file
 
     integer :: unit, ios, nrows
-    logical :: present(size(group_names))
+    logical :: group_present(size(group_names))
     character(len=512) :: msg
 
     shape = 'ellipse'
@@ -97,24 +102,24 @@ contains
       call fail(status, exit_bad_input, 'input '''//path//''': cannot open ('//trim(msg)//')')
       return
     end if
-    call scan_groups(unit, path, present, status)
+    call scan_groups(unit, path, group_present, status)
     if (status%failed()) then
       close (unit)
       return
     end if
 
     rewind (unit)
-    if (present(1)) read (unit, nml=patch, iostat=ios, iomsg=msg)
-    call check_read('patch', present(1))
+    if (group_present(1)) read (unit, nml=patch, iostat=ios, iomsg=msg)
+    call check_read('patch', group_present(1))
     rewind (unit)
-    if (present(2)) read (unit, nml=material, iostat=ios, iomsg=msg)
-    call check_read('material', present(2))
+    if (group_present(2)) read (unit, nml=material, iostat=ios, iomsg=msg)
+    call check_read('material', group_present(2))
     rewind (unit)
-    if (present(3)) read (unit, nml=solver, iostat=ios, iomsg=msg)
-    call check_read('solver', present(3))
+    if (group_present(3)) read (unit, nml=solver, iostat=ios, iomsg=msg)
+    call check_read('solver', group_present(3))
     rewind (unit)
-    if (present(4)) read (unit, nml=output, iostat=ios, iomsg=msg)
-    call check_read('output', present(4))
+    if (group_present(4)) read (unit, nml=output, iostat=ios, iomsg=msg)
+    call check_read('output', group_present(4))
     close (unit)
     if (status%failed()) return
 
@@ -146,6 +151,12 @@ contains
     cfg%table_file = trim(table_file)
     if (len(cfg%table_file) == 0) cfg%table_file = default_table_name(path)
     cfg%traction_file = trim(traction_file)
+    if (present(base_folder)) then
+      cfg%mask_file = resolve_path(cfg%mask_file, base_folder)
+      cfg%contact_file = resolve_path(cfg%contact_file, base_folder)
+      cfg%table_file = resolve_path(cfg%table_file, base_folder)
+      cfg%traction_file = resolve_path(cfg%traction_file, base_folder)
+    end if
 
     call validate(cfg, mask_rows, nrows, load_cases, status)
     if (cfg%shape == 'contact' .and. .not. status%failed()) call load_contact_case(cfg, material_given, status)
@@ -168,15 +179,15 @@ contains
 
   !> Which known groups the file holds; any other '&name' is an error (a
   !> misspelt group would otherwise be skipped in silence).
-  subroutine scan_groups(unit, path, present, status)
+  subroutine scan_groups(unit, path, found, status)
     integer, intent(in) :: unit
     character(len=*), intent(in) :: path
-    logical, intent(out) :: present(:)
+    logical, intent(out) :: found(:)
     type(status_t), intent(inout) :: status
     character(len=256) :: line, word
     integer :: ios, k, line_no, first, last
 
-    present = .false.
+    found = .false.
     line_no = 0
     do
       read (unit, '(a)', iostat=ios) line
@@ -195,7 +206,7 @@ contains
                   ': unknown namelist group &'//trim(word)//' (known: &patch, &material, &solver, &output)')
         return
       end if
-      present(k) = .true.
+      found(k) = .true.
     end do
     if (.not. is_iostat_end(ios)) then
       call fail(status, exit_bad_input, 'input '''//path//''': cannot be read as text')

@@ -1,21 +1,24 @@
 !> kcreep: Kalker's creep coefficients of any contact patch.
 !>
 !>   kcreep INPUT.nml
+!>   kcreep --batch LIST [OUT_TABLE]      (batch_driver: many cases, one table)
+!>   kcreep --estimate-memory INPUT.nml...
 !>
 !> Reads the namelist, solves the full-adhesion steady-rolling problem on the
 !> patch cells, writes the coefficient table (and optionally the tractions)
 !> and prints a short summary. Every error ends here: one line on standard
-!> error and a non-zero exit status (2 input, 3 numerical, 4 output).
+!> error and a non-zero exit status (2 input, 3 numerical, 4 output, 5 some
+!> cases of a batch failed).
 program kcreep
-  use, intrinsic :: iso_fortran_env, only: real64, error_unit, output_unit
+  use, intrinsic :: iso_fortran_env, only: real64, int64, error_unit, output_unit
   use kcreep_status, only: status_t, fail, exit_bad_input
   use kcreep_strings, only: itoa
   use patch_grid, only: patch_t
-  use namelist_input, only: config_t, read_config, build_patch
-  use creep_run, only: run_case
+  use namelist_input, only: config_t
+  use case_driver, only: solve_input
+  use batch_driver, only: run_batch, estimate_memory, default_batch_table, text_t, exit_cases_failed
   use contact_compare, only: comparison_lines, contact_spin_shift
-  use table_output, only: run_record_t, table_lines, write_text_file, &
-                          check_output_path, traction_lines
+  use table_output, only: run_record_t, table_lines, write_text_file, traction_lines
   implicit none
 
   character(len=*), parameter :: version = '0.1.0'
@@ -25,15 +28,20 @@ program kcreep
   type(status_t) :: status
   real(real64), allocatable :: traction(:, :)
   character(len=400), allocatable :: warnings(:)
-  character(len=:), allocatable :: input_path
+  character(len=:), allocatable :: input_path, mode
+  type(text_t), allocatable :: args(:)
 
-  call parse_arguments(input_path, status)
-  if (.not. status%failed()) call read_config(input_path, cfg, status)
-  if (.not. status%failed()) call build_patch(cfg, patch, status)
-  if (.not. status%failed()) call check_output_path(cfg%table_file, 'table_file', status)
-  if (.not. status%failed() .and. len(cfg%traction_file) > 0) &
-    call check_output_path(cfg%traction_file, 'traction_file', status)
-  if (.not. status%failed()) call run_case(cfg, patch, record, traction, warnings, status)
+  call parse_arguments(mode, args, status)
+  if (.not. status%failed()) then
+    select case (mode)
+    case ('batch')
+      call batch_mode()
+    case ('estimate')
+      call estimate_mode()
+    end select
+  end if
+  if (.not. status%failed()) input_path = args(1)%s
+  if (.not. status%failed()) call solve_input(input_path, '', .true., cfg, patch, record, traction, warnings, status)
   if (status%failed()) call stop_with(status)
 
   call write_text_file(cfg%table_file, table_lines([record], warnings), 'table_file', status)
@@ -45,32 +53,86 @@ program kcreep
 
 contains
 
-  subroutine parse_arguments(path, status)
-    character(len=:), allocatable, intent(out) :: path
+  !> mode 'single' (args: the input), 'batch' (list [, table]) or 'estimate' (inputs).
+  subroutine parse_arguments(mode, args, status)
+    character(len=:), allocatable, intent(out) :: mode
+    type(text_t), allocatable, intent(out) :: args(:)
     type(status_t), intent(inout) :: status
-    integer :: length
-    character(len=:), allocatable :: arg
+    integer :: k, n
+    character(len=:), allocatable :: first, arg
 
-    path = ''
-    if (command_argument_count() /= 1) then
-      call fail(status, exit_bad_input, 'usage: kcreep INPUT.nml  (kcreep --help for more)')
-      return
-    end if
-    call get_command_argument(1, length=length)
-    allocate (character(len=length) :: arg)
-    call get_command_argument(1, arg)
-    select case (arg)
+    n = command_argument_count()
+    allocate (args(0))
+    mode = 'single'
+    first = ''
+    if (n >= 1) first = argument(1)
+    select case (first)
     case ('-h', '--help')
       write (output_unit, '(a)') 'kcreep '//version//': creep coefficients of any contact patch', &
         'usage: kcreep INPUT.nml', &
+        '       kcreep --batch LIST [OUT_TABLE]   (one namelist path per line; table <LIST name>.tab)', &
+        '       kcreep --estimate-memory INPUT.nml...   (bytes each case needs)', &
         'The namelist groups &patch, &material, &solver and &output are described in README.md.'
       stop
     case ('-V', '--version')
       write (output_unit, '(a)') 'kcreep '//version
       stop
+    case ('--batch')
+      mode = 'batch'
+      if (n < 2 .or. n > 3) call fail(status, exit_bad_input, 'usage: kcreep --batch LIST [OUT_TABLE]')
+    case ('--estimate-memory')
+      mode = 'estimate'
+      if (n < 2) call fail(status, exit_bad_input, 'usage: kcreep --estimate-memory INPUT.nml...')
+    case default
+      if (n /= 1) call fail(status, exit_bad_input, 'usage: kcreep INPUT.nml  (kcreep --help for more)')
     end select
-    path = arg
+    if (status%failed()) return
+    do k = merge(1, 2, mode == 'single'), n
+      arg = argument(k)
+      args = [args, text_t(arg)]
+    end do
   end subroutine parse_arguments
+
+  !> Command-line argument i, whole.
+  function argument(i) result(arg)
+    integer, intent(in) :: i
+    character(len=:), allocatable :: arg
+    integer :: length
+    call get_command_argument(i, length=length)
+    allocate (character(len=length) :: arg)
+    call get_command_argument(i, arg)
+  end function argument
+
+  !> kcreep --batch LIST [OUT_TABLE]; exits here.
+  subroutine batch_mode()
+    character(len=:), allocatable :: out_path
+    integer :: n_failed
+    if (size(args) == 2) then
+      out_path = args(2)%s
+    else
+      out_path = default_batch_table(args(1)%s)
+    end if
+    call run_batch(args(1)%s, out_path, n_failed, status)
+    if (.not. status%failed() .and. n_failed > 0) call fail(status, exit_cases_failed, &
+        itoa(n_failed)//' case(s) of '''//args(1)%s//''' failed: see the rows with verdict error:... in '''// &
+        out_path//'''')
+    if (status%failed()) call stop_with(status)
+    write (output_unit, '(a)') 'kcreep: batch table '//out_path
+    stop
+  end subroutine batch_mode
+
+  !> kcreep --estimate-memory INPUT.nml...: one number of bytes per input; exits here.
+  subroutine estimate_mode()
+    integer(int64), allocatable :: bytes(:)
+    integer :: k
+    allocate (bytes(size(args)))
+    call estimate_memory(args, bytes, status)
+    if (status%failed()) call stop_with(status)
+    do k = 1, size(args)
+      write (output_unit, '(i0)') bytes(k)
+    end do
+    stop
+  end subroutine estimate_mode
 
   !> The one place where errors are reported: one line, then exit with the code.
   subroutine stop_with(status)

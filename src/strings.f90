@@ -3,7 +3,7 @@ module kcreep_strings
   use, intrinsic :: iso_fortran_env, only: real64
   implicit none
   private
-  public :: itoa, rtoa, printable, lower
+  public :: itoa, rtoa, printable, lower, folder_of, resolve_path
 
 contains
 
@@ -47,5 +47,35 @@ contains
       if (code >= iachar('A') .and. code <= iachar('Z')) s(i:i) = achar(code + 32)
     end do
   end function lower
+
+  !> The folder part of a path, without the trailing slash ('' for a bare name).
+  pure function folder_of(path) result(folder)
+    character(len=*), intent(in) :: path
+    character(len=:), allocatable :: folder
+    integer :: slash
+    slash = index(path, '/', back=.true.)
+    if (slash == 1) then
+      folder = '/'
+    else if (slash > 1) then
+      folder = path(1:slash - 1)
+    else
+      folder = ''
+    end if
+  end function folder_of
+
+  !> path taken relative to folder unless it is absolute (or empty, or folder is empty).
+  pure function resolve_path(path, folder) result(resolved)
+    character(len=*), intent(in) :: path, folder
+    character(len=:), allocatable :: resolved
+    if (len(path) == 0 .or. len(folder) == 0) then
+      resolved = path
+    else if (path(1:1) == '/') then
+      resolved = path
+    else if (folder(len(folder):len(folder)) == '/') then
+      resolved = folder//path
+    else
+      resolved = folder//'/'//path
+    end if
+  end function resolve_path
 
 end module kcreep_strings

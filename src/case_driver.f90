@@ -1,0 +1,66 @@
+!> One case from namelist file to solved record: the path shared by the
+!> single-case program and the batch driver, so both validate and solve a
+!> namelist in exactly the same way.
+module case_driver
+  use, intrinsic :: iso_fortran_env, only: real64, int64
+  use kcreep_status, only: status_t
+  use patch_grid, only: patch_t
+  use namelist_input, only: config_t, read_config, build_patch
+  use creep_run, only: run_case
+  use table_output, only: run_record_t, check_output_path
+  implicit none
+  private
+  public :: solve_input, load_input, case_memory_bytes
+
+contains
+
+  !> Read and check the namelist at input_path and build its patch. When
+  !> base_folder is not empty, relative file names inside the namelist
+  !> (mask_file, contact_file, table_file, traction_file) are taken relative to it, as if
+  !> kcreep ran in that folder (the batch's convention); when it is empty
+  !> they stay relative to the working folder (the single-case convention).
+  subroutine load_input(input_path, base_folder, cfg, patch, status)
+    character(len=*), intent(in) :: input_path, base_folder
+    type(config_t), intent(out) :: cfg
+    type(patch_t), intent(out) :: patch
+    type(status_t), intent(inout) :: status
+
+    call read_config(input_path, cfg, status, base_folder)
+    if (status%failed()) return
+    call build_patch(cfg, patch, status)
+  end subroutine load_input
+
+  !> load_input, check that the outputs can be created, then solve. With
+  !> check_table false the namelist's table_file is not checked (the batch
+  !> writes its own table); the traction file, when asked for, always is.
+  subroutine solve_input(input_path, base_folder, check_table, cfg, patch, record, traction, warnings, status)
+    character(len=*), intent(in) :: input_path, base_folder
+    logical, intent(in) :: check_table
+    type(config_t), intent(out) :: cfg
+    type(patch_t), intent(out) :: patch
+    type(run_record_t), intent(out) :: record
+    real(real64), allocatable, intent(out) :: traction(:, :)
+    character(len=400), allocatable, intent(out) :: warnings(:)
+    type(status_t), intent(inout) :: status
+
+    call load_input(input_path, base_folder, cfg, patch, status)
+    if (check_table .and. .not. status%failed()) call check_output_path(cfg%table_file, 'table_file', status)
+    if (.not. status%failed() .and. len(cfg%traction_file) > 0) &
+      call check_output_path(cfg%traction_file, 'traction_file', status)
+    if (.not. status%failed()) call run_case(cfg, patch, record, traction, warnings, status)
+  end subroutine solve_input
+
+  !> Bytes a case needs at its peak: the dense matrix 8 (2n)^2 of the LU,
+  !> about 20 vectors of length 2n (pivots, work, right-hand sides, residuals,
+  !> tractions) and the operator table with its influence coefficients
+  !> (about 40 reals per grid cell). The program itself (code, OpenBLAS
+  !> buffers) is not included: a few tens of MiB, see README.
+  pure integer(int64) function case_memory_bytes(patch) result(bytes)
+    type(patch_t), intent(in) :: patch
+    integer(int64) :: m, cells
+    m = 2_int64 * patch%n
+    cells = int(patch%mx, int64) * patch%my
+    bytes = 8 * m * m + 160 * m + 320 * cells
+  end function case_memory_bytes
+
+end module case_driver

@@ -1,0 +1,169 @@
+"""kcreep --batch: one table for many cases, in list order; a failing case
+gets an error row and the batch goes on; the rows equal single-case runs;
+a batch killed in the middle resumes from OUT.partial without redoing or
+losing finished rows; --estimate-memory."""
+import math
+import os
+import signal
+import subprocess
+import time
+import kctest as kc
+import tablecmp
+
+folder = kc.setup()
+sub = os.path.join(folder, "sub")
+os.makedirs(sub)
+
+# Same binary, same machine, same case: measured max difference 0 between single
+# and batch runs and between resumed and uninterrupted batches; 1e-12 leaves room
+# for a threaded BLAS summing in another order (tablecmp says how it is measured).
+TOL = 1e-12
+
+
+def write(path, text):
+    with open(path, "w") as f:
+        f.write(text)
+
+
+def same_numbers(a, b, what):
+    worst, column = tablecmp.row_difference(a, b)
+    kc.check(worst <= TOL, f"{what}: coefficients agree (max difference {worst:.1e} in {column or '-'} <= {TOL:.0e})")
+
+
+def batch(list_name, table=None, cwd=folder, env=None):
+    args = [kc.KCREEP, "--batch", list_name] + ([table] if table else [])
+    return subprocess.run(args, cwd=cwd, capture_output=True, text=True, env=env)
+
+
+# --- a mixed list: good cases, a bad input, a missing file, a mask relative to its namelist
+cases = {
+    "e10": "&patch semi_a=1, semi_b=0.6, mx=10, my=10 /\n",
+    "e16b": "&patch semi_a=0.5, semi_b=1, mx=16, my=16 /\n&solver scheme='backward' /\n",
+    "bad": "&patch shape='circle' /\n",
+    "m": "&patch shape='mask', mask_file='m.mask' /\n",
+    "elong": "&patch semi_a=5, semi_b=1, mx=12, my=12 /\n",   # flagged: elongated cells
+}
+for name, text in cases.items():
+    write(os.path.join(sub, name + ".nml"), text)
+write(os.path.join(sub, "m.mask"), "4 3 0.25 0.25 -0.375 -0.25\n.##.\n####\n.##.\n")
+write(os.path.join(folder, "cases.list"),
+      "# sweep\nsub/e10.nml\n\n  sub/bad.nml  \nsub/e16b.nml\nsub/missing.nml\n" + os.path.join(sub, "m.nml") +
+      "\nsub/elong.nml\n")
+proc = batch("cases.list")
+table_path = os.path.join(folder, "cases.tab")
+kc.check(proc.returncode == 5, f"exit status 5 when cases failed (got {proc.returncode})")
+rows = kc.read_table(table_path) if os.path.exists(table_path) else []
+names = [r["case"] for r in rows]
+kc.check(names == ["e10", "bad", "e16b", "missing", "m", "elong"], f"one row per case in list order: {names}")
+errs = proc.stderr.strip().splitlines()
+kc.check(any(l.startswith("kcreep: case 2 'sub/bad.nml': error: ") and "shape = 'circle'" in l for l in errs),
+         "the bad case's message on stderr, prefixed with the case")
+kc.check(any(l.startswith("kcreep: case 4 'sub/missing.nml': error: ") for l in errs), "missing namelist reported")
+kc.check(any(l.startswith("kcreep: case 6 'sub/elong.nml': warning: ") for l in errs), "warning of case 6 prefixed")
+kc.check(errs[-1].startswith("kcreep: error: 2 case(s)"), f"last line says how many failed: {errs[-1]!r}")
+comments = [l for l in open(table_path) if l.startswith("#")]
+kc.check(any("case 2 'sub/bad.nml': error:" in l for l in comments), "error message in the table comments")
+kc.check(comments[-1].split()[1:] == list(rows[0].keys()), "last comment line names the columns")
+if len(rows) == 6:
+    kc.check(rows[1]["verdict"] == "error:bad-input" and rows[3]["verdict"] == "error:bad-input",
+             f"error rows say error:bad-input ({rows[1]['verdict']}, {rows[3]['verdict']})")
+    kc.check(all(math.isnan(rows[1][c]) for c in ["f11", "f22", "f23", "c11", "t_total"]), "error row has NaN")
+    kc.check(rows[0]["verdict"] == "ok" and rows[2]["verdict"] == "ok", "good cases ok")
+    kc.check(rows[5]["verdict"] != "ok", f"elongated cells flagged in the batch too ({rows[5]['verdict']})")
+    # each good row equals the single-case run of the same namelist, run in its folder
+    for k, name in [(0, "e10"), (2, "e16b"), (4, "m"), (5, "elong")]:
+        single = subprocess.run([kc.KCREEP, name + ".nml"], cwd=sub, capture_output=True, text=True)
+        kc.check(single.returncode == 0, f"single run of {name}")
+        ref = kc.read_table(os.path.join(sub, name + ".tab"))[0]
+        kc.check(ref["verdict"] == rows[k]["verdict"], f"{name}: same verdict {ref['verdict']}")
+        same_numbers(ref, rows[k], f"{name}: batch row vs single run")
+kc.check(not os.path.exists(table_path + ".partial"), "no partial table left after a finished batch")
+
+# --- a list without failures exits 0; the default table name and an explicit one
+write(os.path.join(folder, "good.list"), "sub/e10.nml\nsub/e16b.nml\n")
+proc = batch("good.list", "out.tab")
+kc.check(proc.returncode == 0 and os.path.exists(os.path.join(folder, "out.tab")), f"all good: exit 0 ({proc.stderr})")
+
+# --- errors of the batch itself: one line, status 2, no table
+for name, text, fragment in [("empty.list", "# nothing\n\n", "no cases"), ("nowhere.list", None, "cannot open")]:
+    if text is not None:
+        write(os.path.join(folder, name), text)
+    proc = batch(name, "x.tab")
+    lines = proc.stderr.strip().splitlines()
+    kc.check(proc.returncode == 2 and len(lines) == 1 and fragment in lines[0],
+             f"{name}: status 2 and one line ({proc.returncode}, {proc.stderr.strip()!r})")
+    kc.check(not os.path.exists(os.path.join(folder, "x.tab")), f"{name}: no table written")
+proc = batch("good.list", "no/such/folder/x.tab")
+kc.check(proc.returncode == 4 and "batch table" in proc.stderr, f"unwritable table: status 4 ({proc.stderr.strip()!r})")
+
+# --- kill a batch in the middle, resume, compare with an uninterrupted run
+sweep = []
+for k, m in enumerate([10, 12, 40, 40, 40]):     # the 40 x 40 cases take ~0.5 s each here
+    name = f"s{k}_{m}"
+    write(os.path.join(sub, name + ".nml"), f"&patch semi_a=1, semi_b={0.5 + 0.1 * k}, mx={m}, my={m} /\n")
+    sweep.append("sub/" + name + ".nml")
+write(os.path.join(folder, "sweep.list"), "\n".join(sweep) + "\n")
+ref_proc = batch("sweep.list", "reference.tab")
+kc.check(ref_proc.returncode == 0, "uninterrupted sweep")
+reference = kc.read_table(os.path.join(folder, "reference.tab"))
+
+partial = os.path.join(folder, "resumed.tab.partial")
+victim = subprocess.Popen([kc.KCREEP, "--batch", "sweep.list", "resumed.tab"], cwd=folder,
+                          stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
+deadline = time.time() + 60
+done_before_kill = 0
+while time.time() < deadline and victim.poll() is None:
+    if os.path.exists(partial):
+        done_before_kill = sum(1 for l in open(partial) if l.strip() and not l.startswith("#"))
+        if done_before_kill >= 2:
+            break
+    time.sleep(0.005)
+victim.send_signal(signal.SIGKILL)
+victim.wait()
+kept_partial = open(partial).read() if os.path.exists(partial) else ""
+kc.check(2 <= done_before_kill < len(sweep) and not os.path.exists(os.path.join(folder, "resumed.tab")),
+         f"killed in the middle: {done_before_kill} of {len(sweep)} rows in the partial table, no final table")
+proc = batch("sweep.list", "resumed.tab")
+kc.check(proc.returncode == 0, f"resumed batch finishes ({proc.stderr.strip()})")
+kc.check(f"{done_before_kill} of {len(sweep)} cases already done" in proc.stdout,
+         f"resume skips the finished cases: {proc.stdout.splitlines()[:1]}")
+ran = [l for l in proc.stdout.splitlines() if l.startswith("kcreep: ") and "/5 " in l]
+kc.check(len(ran) == len(sweep) - done_before_kill, f"only the remaining cases ran ({len(ran)})")
+resumed = kc.read_table(os.path.join(folder, "resumed.tab"))
+kc.check([r["case"] for r in resumed] == [r["case"] for r in reference], "resumed table: every case once, in order")
+for a, b in zip(reference, resumed):
+    same_numbers(a, b, f"{a['case']}: resumed vs uninterrupted")
+
+# a torn last line (killed in the middle of a write) is dropped and that case run again
+torn = os.path.join(folder, "torn.tab.partial")
+text = kept_partial.rstrip("\n")
+cut = text.rfind("\n")
+write(torn, text[:cut + 1] + text[cut + 1:cut + 40])      # the last row loses its end
+proc = batch("sweep.list", "torn.tab")
+kc.check(proc.returncode == 0 and f"{done_before_kill - 1} of {len(sweep)} cases already done" in proc.stdout,
+         f"torn last row dropped and its case run again: {proc.stdout.splitlines()[:1]}")
+torn_rows = kc.read_table(os.path.join(folder, "torn.tab"))
+kc.check([r["case"] for r in torn_rows] == [r["case"] for r in reference], "torn: every case once, in order")
+for a, b in zip(reference, torn_rows):
+    same_numbers(a, b, f"{a['case']}: after a torn row vs uninterrupted")
+
+# a partial table of another list is not resumed
+write(os.path.join(folder, "other.tab.partial"), kept_partial)
+proc = batch("good.list", "other.tab")
+kc.check(proc.returncode == 2 and "another list" in proc.stderr and len(proc.stderr.strip().splitlines()) == 1,
+         f"partial of another list refused: {proc.stderr.strip()!r}")
+
+# --- --estimate-memory: the dense matrix 8 (2n)^2 plus a little
+est = subprocess.run([kc.KCREEP, "--estimate-memory", "sub/s2_40.nml", "sub/e10.nml", "sub/m.nml"], cwd=folder,
+                     capture_output=True, text=True)
+values = [int(v) for v in est.stdout.split()]
+n40 = reference[2]["n"]
+dense = 8 * (2 * n40) ** 2
+kc.check(est.returncode == 0 and len(values) == 3, f"one estimate per file: {est.stdout.split()}")
+# measured (GNU time, OPENBLAS_NUM_THREADS=1): 40 x 40 circle estimate 52.0e6 B, peak RSS 62.4e6 B;
+# 80 x 80 estimate 811e6 B, peak RSS 818e6 B: the program itself adds ~10 MB
+kc.check(dense <= values[0] <= 1.05 * dense, f"40 x 40: estimate {values[0]} within 5 % above 8(2n)^2 = {dense}")
+kc.check(values[2] >= 8 * (2 * 10) ** 2, "mask case relative to its namelist folder: estimated")
+proc = subprocess.run([kc.KCREEP, "--estimate-memory", "sub/bad.nml"], cwd=folder, capture_output=True, text=True)
+kc.check(proc.returncode == 2 and "shape = 'circle'" in proc.stderr, "estimate of a bad input: status 2")
+kc.finish()
