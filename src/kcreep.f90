@@ -13,6 +13,7 @@ program kcreep
   use patch_grid, only: patch_t
   use namelist_input, only: config_t, read_config, build_patch
   use creep_run, only: run_case
+  use mesh_extrapolation, only: run_extrapolated
   use table_output, only: run_record_t, table_lines, write_text_file, &
                           check_output_path, traction_lines
   implicit none
@@ -32,7 +33,13 @@ program kcreep
   if (.not. status%failed()) call check_output_path(cfg%table_file, 'table_file', status)
   if (.not. status%failed() .and. len(cfg%traction_file) > 0) &
     call check_output_path(cfg%traction_file, 'traction_file', status)
-  if (.not. status%failed()) call run_case(cfg, patch, record, traction, warnings, status)
+  if (.not. status%failed()) then
+    if (cfg%extrapolate) then
+      call run_extrapolated(cfg, patch, record, traction, warnings, status)
+    else
+      call run_case(cfg, patch, record, traction, warnings, status)
+    end if
+  end if
   if (status%failed()) call stop_with(status)
 
   call write_text_file(cfg%table_file, table_lines([record], warnings), 'table_file', status)
@@ -110,6 +117,14 @@ contains
         write (output_unit, '(2x, a, es12.5)') names(i)//' = ', record%cn(i)
       end if
     end do
+    if (record%extrapolated) then
+      write (output_unit, '(2x, a, i0, a, i0, a)') 'extrapolated (', cfg%extrapolate_levels, &
+        ' levels, ratio ', cfg%refine_ratio, '; the rows above are the finest level):'
+      do i = 1, 3
+        write (output_unit, '(4x, a, f9.5, a, es8.1, a, f5.2, a)') names(i)//' -> ', record%ext(i), &
+          ' +- ', record%ext_error(i), '   (order ', record%ext_order(i), ')'
+      end do
+    end if
     write (output_unit, '(2x, a, es9.2, a, es9.2)') 'rcond ', record%rcond, ', backward error ', record%backward_error
     write (output_unit, '(2x, a, 4f9.3)') 'time assemble factor solve total [s]:', record%t_assemble, &
       record%t_factor, record%t_solve, record%t_total
