@@ -71,7 +71,16 @@ fi
 
 state=$(mktemp -d "${TMPDIR:-/tmp}/run_cases.XXXXXX")
 trap 'rm -rf "$state"' EXIT
-trap 'echo "run_cases: interrupted; run again to resume" >&2; kill $(jobs -p) 2>/dev/null; exit 130' INT TERM
+interrupted() {  # stop the running cases (their kcreep children by id), keep what is done
+  local job child
+  for job in $(jobs -p); do
+    for child in $(pgrep -P "$job" 2>/dev/null); do kill "$child" 2>/dev/null; done
+    kill "$job" 2>/dev/null
+  done
+  echo "run_cases: interrupted; run again to resume (finished points are kept)" >&2
+  exit 130
+}
+trap interrupted INT TERM HUP
 
 table_of() { local nml=$1; echo "${nml%.*}.tab"; }
 
@@ -79,7 +88,8 @@ run_one() {  # k nml: run in the namelist's folder, leave k.rc and k.err in $sta
   local k=$1 nml=$2 dir base rc
   dir=$(dirname "$nml")
   base=$(basename "$nml")
-  (cd "$dir" && "$kcreep" "$base" >"${base%.*}.log" 2>"$state/$k.err")
+  # runs in its own background subshell: cd is local, kcreep is its direct child
+  cd "$dir" && "$kcreep" "$base" >"${base%.*}.log" 2>"$state/$k.err"
   rc=$?
   echo "$rc" >"$state/$k.rc"
 }

@@ -18,7 +18,7 @@ set -uo pipefail
 source "$(cd "$(dirname "${BASH_SOURCE[0]}")" && pwd)/study_lib.sh"
 
 ratios="0.2 1 5"
-alphas="-0.9 -0.5 -0.25 0 0.1 0.2 0.3 0.4 0.5 0.6 0.7 0.75 0.8 0.9"
+alphas="-0.9 -0.5 0 0.2 0.4 0.5 0.6 0.7 0.8 0.9"
 grid=80 nu=0.25 square=1 out=$PWD/studies/sweep_alpha jobs=() slurm=() docs=0
 while (($#)); do
   case $1 in

@@ -22,7 +22,7 @@ set -uo pipefail
 source "$(cd "$(dirname "${BASH_SOURCE[0]}")" && pwd)/study_lib.sh"
 
 ratios="0.2 1 5"
-meshes="10 15 20 30 40 50 60 70 80"
+meshes="10 15 20 30 40 60 80"
 alpha=0.5 nu=0.25 square=1 out=$PWD/studies/sweep_n jobs=() slurm=() docs=0
 while (($#)); do
   case $1 in
