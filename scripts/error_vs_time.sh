@@ -23,7 +23,7 @@
 set -uo pipefail
 source "$(cd "$(dirname "${BASH_SOURCE[0]}")" && pwd)/study_lib.sh"
 
-ratio=1 meshes="10 14 20 28 40 56 80" alpha=0.5 nu=0.25 repeats=3
+ratio=1 meshes="10 14 20 28 40 60 80" alpha=0.5 nu=0.25 repeats=3
 out=$PWD/studies/error_vs_time jobs=(--jobs 1) slurm=() docs=0
 while (($#)); do
   case $1 in
@@ -63,7 +63,7 @@ status=$?
 
 python3 "$study_here/error_vs_time.py" "$out/runs.tab" >"$out/error_vs_time.dat" || study_die "error_vs_time.py failed"
 cat "$out/error_vs_time.dat"
-for scheme in collocation backward; do
+for scheme in collocation backward collocation+extrapolate backward+extrapolate; do
   awk -v s="$scheme" '!/^#/ && $1 == s' "$out/error_vs_time.dat" >"$out/plot_$scheme.dat"
 done
 if have_gnuplot; then
@@ -72,28 +72,34 @@ set terminal pngcairo size 860,600 font ',11'
 set output '$out/error_vs_time.png'
 set title "Relative error against run time (a/b = $ratio, nu = $nu; reference: Richardson limit)"
 set xlabel 'wall time of one run [s] (median of $repeats)'
-set ylabel '|C - C_ref| / C_ref'
+set ylabel '|C / C_{ref} - 1|'
 set logscale xy
 set format y '10^{%T}'
 set grid
-set key outside right
+set key bottom left font ',9' box opaque
 plot '$out/plot_collocation.dat' using 4:8 with linespoints lw 2 pt 5 lc 1 title 'collocation C11', \
      '$out/plot_collocation.dat' using 4:9 with linespoints lw 2 pt 7 lc 2 title 'collocation C22', \
      '$out/plot_collocation.dat' using 4:10 with linespoints lw 2 pt 9 lc 3 title 'collocation C23', \
      '$out/plot_backward.dat' using 4:8 with linespoints lw 2 dt 2 pt 4 lc 1 title 'backward C11', \
      '$out/plot_backward.dat' using 4:9 with linespoints lw 2 dt 2 pt 6 lc 2 title 'backward C22', \
-     '$out/plot_backward.dat' using 4:10 with linespoints lw 2 dt 2 pt 8 lc 3 title 'backward C23'
+     '$out/plot_backward.dat' using 4:10 with linespoints lw 2 dt 2 pt 8 lc 3 title 'backward C23', \
+     '$out/plot_collocation+extrapolate.dat' using 4:8 with points pt 1 ps 2.5 lc 1 title 'extrapolate C11 (+ coll., x backw.)', \
+     '$out/plot_collocation+extrapolate.dat' using 4:9 with points pt 1 ps 2.5 lc 2 title 'extrapolated C22', \
+     '$out/plot_collocation+extrapolate.dat' using 4:10 with points pt 1 ps 2.5 lc 3 title 'extrapolated C23', \
+     '$out/plot_backward+extrapolate.dat' using 4:8 with points pt 2 ps 2.5 lc 1 notitle, \
+     '$out/plot_backward+extrapolate.dat' using 4:9 with points pt 2 ps 2.5 lc 2 notitle, \
+     '$out/plot_backward+extrapolate.dat' using 4:10 with points pt 2 ps 2.5 lc 3 notitle
 EOF
   gnuplot <<EOF
 set terminal pngcairo size 860,600 font ',11'
 set output '$out/error_vs_mesh.png'
 set title "Relative error against mesh size (a/b = $ratio, nu = $nu)"
 set xlabel 'h = 1/M (M x M grid)'
-set ylabel '|C - C_ref| / C_ref'
+set ylabel '|C / C_{ref} - 1|'
 set logscale xy
 set format y '10^{%T}'
 set grid
-set key outside right
+set key bottom left font ',9' box opaque
 plot '$out/plot_collocation.dat' using (1./\$2):8 with linespoints lw 2 pt 5 lc 1 title 'collocation C11', \
      '$out/plot_collocation.dat' using (1./\$2):9 with linespoints lw 2 pt 7 lc 2 title 'collocation C22', \
      '$out/plot_collocation.dat' using (1./\$2):10 with linespoints lw 2 pt 9 lc 3 title 'collocation C23', \
