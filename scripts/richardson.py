@@ -12,6 +12,9 @@ the same refinement ratio (h1/h2 and h2/h3 both >= --min-ratio and within
 f(h) = f0 + K h^p is fitted through the three points: p is the observed
 order, f0 the extrapolated limit. When the two differences have opposite
 signs the sequence is not in its asymptotic range: p and f0 are NaN.
+Ellipse series appear twice: as computed, and as '<series>@area' with the
+coefficients normalised by the staircase patch's own area (c^2 = area/pi),
+which removes the irregular change of the staircase area with the mesh.
 
 Output: one line per series, triple and coefficient (whitespace columns,
 '#' header), read by the study scripts and docs/make_numbers.py.
@@ -32,6 +35,23 @@ def read_table(path):
                 continue
             rows.append(dict(zip(columns, line.split())))
     return rows
+
+
+def area_factor(row):
+    """(exact ellipse area) / (staircase area) of an ellipse row: the grid spans
+    [-a, a] x [-b, b], so a cell has area 4ab/(mx my), and ab = c^2."""
+    return math.pi * float(row["mx"]) * float(row["my"]) / (4 * float(row["n"]))
+
+
+def area_normalised(row):
+    """The row with C11, C22 (C23) normalised by the staircase's own c^2 (c^3),
+    c = sqrt(area/pi), as for a mask: what kcreep's extrapolate does on ellipses."""
+    q = area_factor(row)
+    out = dict(row)
+    out["c11"] = str(float(row["c11"]) * q)
+    out["c22"] = str(float(row["c22"]) * q)
+    out["c23"] = str(float(row["c23"]) * q**1.5)
+    return out
 
 
 def observed_order(h, f):
@@ -77,6 +97,8 @@ def main():
             continue
         h = 1 / math.sqrt(float(row["mx"]) * float(row["my"]))
         series.setdefault(key, []).append((h, int(m), row))
+        if row.get("klt11", "NaN").lower() != "nan":
+            series.setdefault(key + "@area", []).append((h, int(m), area_normalised(row)))
 
     print("# Richardson extrapolation f(h) = f0 + K h^p through three meshes, h = 1/sqrt(mx my)")
     print("# p: observed order (nan: differences change sign, not asymptotic); f0: limit;")

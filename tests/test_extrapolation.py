@@ -2,17 +2,22 @@
 Richardson formula applied to them, and the two schemes' limits agree
 within their error estimates.
 
-Measured (unit circle, nu = 0.25, base 10 x 10, 3 levels 10/20/40):
-collocation C11 -> 4.1885 +- 0.086, C23 -> 1.5084 +- 0.047;
-backward C11 -> 4.1599 +- 0.083, C23 -> 1.4789 +- 0.027 (first order
-assumed for backward C23: its three values do not show an order).
-The limits differ by less than the sum of the estimates; the finest level
-alone differs by 0.08 (C11), which the estimates must also cover."""
+Measured (unit circle, nu = 0.25, base 10 x 10, 3 levels 10/20/40, each
+level normalised by its staircase area): collocation C11 -> 4.1278 +- 0.0076,
+C22 -> 3.6763 +- 0.021, C23 -> 1.4672 +- 0.016; backward C11 -> 4.1231 +-
+0.016, C22 -> 3.6741 +- 0.0086, C23 -> 1.4666 +- 0.0013. The limits differ
+by less than the sum of the estimates. Reference: the 20/40/80 limits of
+both schemes (scripts/sweep_n.sh, docs/data/richardson_sweep_n.dat, @area
+rows) agree on C11 = 4.0965, C22 = 3.661, C23 = 1.4665 to 0.07 %; the
+10/20/40 limits are 0.7 % (C11) off it while the 40 x 40 level is 3.5 %
+(collocation) and 1.8 % (backward, raw) off: the check asks for at least a
+factor 2. (The estimate does not cover that 0.7 %: docs/convergence.md.)"""
 import math
 import os
 
 import kctest as kc
 
+REFERENCE = {"11": 4.0965, "22": 3.661, "23": 1.4665}
 folder = kc.setup()
 circle = "semi_a=1, semi_b=1, mx=10, my=10"
 rows = {}
@@ -29,7 +34,9 @@ direct = {m: kc.coefficients(kc.namelist(f"semi_a=1, semi_b=1, mx={m}, my={m}", 
 ext = rows["collocation"]
 for coef in ("c11", "c22", "c23"):
     kc.close(ext[coef], direct[40][coef], 1e-12, f"finest level {coef} = direct 40 x 40 run")
-    f = [direct[m][coef] for m in (10, 20, 40)]
+    # ellipse levels are normalised by the staircase area: C * (pi ab / (n dx dy))^(1 or 3/2)
+    power = 1.5 if coef == "c23" else 1.0
+    f = [direct[m][coef] * (math.pi * m * m / (4 * direct[m]["n"]))**power for m in (10, 20, 40)]
     p = math.log2((f[1] - f[0]) / (f[2] - f[1]))
     if not 0.5 <= p <= 3:
         p = 1.0
@@ -44,8 +51,11 @@ for coef in ("11", "22", "23"):
     bound = a["exterr" + coef] + b["exterr" + coef]
     kc.check(gap <= bound, f"C{coef}: collocation {a['ext' + coef]:.4f} and backward {b['ext' + coef]:.4f} "
              f"differ by {gap:.4f} <= sum of estimates {bound:.4f}")
-    kc.check(a["exterr" + coef] >= abs(a["ext" + coef] - a["c" + coef]) / 2,
-             f"C{coef}: the collocation estimate is not tiny next to its own correction")
+    for scheme in ("collocation", "backward"):
+        r = rows[scheme]
+        kc.check(abs(r["ext" + coef] - REFERENCE[coef]) < abs(r["c" + coef] - REFERENCE[coef]) / 2,
+                 f"C{coef} {scheme}: the limit {r['ext' + coef]:.4f} is at least twice as close to the 20/40/80 "
+                 f"reference {REFERENCE[coef]} as the finest level {r['c' + coef]:.4f}")
 
 # without extrapolate the columns are NaN
 plain = direct[10]
