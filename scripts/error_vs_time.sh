@@ -23,7 +23,7 @@
 set -uo pipefail
 source "$(cd "$(dirname "${BASH_SOURCE[0]}")" && pwd)/study_lib.sh"
 
-ratio=1 meshes="10 14 20 28 40 60 80" alpha=0.5 nu=0.25 repeats=3
+ratio=1 meshes="10 15 20 30 40 60 80" alpha=0.5 nu=0.25 repeats=3
 out=$PWD/studies/error_vs_time jobs=(--jobs 1) slurm=() docs=0
 while (($#)); do
   case $1 in

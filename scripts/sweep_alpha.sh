@@ -67,11 +67,12 @@ columns "$out/sweep_alpha.tab" case mx my alpha c11 c22 c23 klt11 klt22 klt23 ve
 if have_gnuplot; then
   for coef in 11 22 23; do
     col=$((coef == 11 ? 2 : coef == 22 ? 3 : 4))
-    plots=() i=0
+    plots=() zplots=() i=0
     for f in "$out"/plot_*.dat; do
       t=$(basename "$f" .dat); t=${t#plot_r}; t=${t/_/, }
       i=$((i + 1))
       plots+=("'$f' using 1:$col with linespoints lw 2 pt $((i + 4)) title 'a/b = $t'")
+      zplots+=("'$f' using (\$1 > 0 ? \$1 : 1/0):$col with linespoints lw 2 pt $((i + 4)) title 'a/b = $t'")
     done
     gnuplot <<EOF
 set terminal pngcairo size 800,560 font ',11'
@@ -96,7 +97,7 @@ set grid
 set key bottom left
 set xrange [0.05:0.95]
 set yrange [0.85:1.15]
-plot 1 with lines lc 'black' dt 2 notitle, $(IFS=,; echo "${plots[*]}")
+plot 1 with lines lc 'black' dt 2 notitle, $(IFS=,; echo "${zplots[*]}")
 EOF
   done
   echo "sweep_alpha: plots $out/sweep_alpha_f{11,22,23}{,_zoom}.png"
