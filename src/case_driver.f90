@@ -7,6 +7,7 @@ module case_driver
   use patch_grid, only: patch_t
   use namelist_input, only: config_t, read_config, build_patch
   use creep_run, only: run_case
+  use mesh_extrapolation, only: run_extrapolated
   use table_output, only: run_record_t, check_output_path
   implicit none
   private
@@ -47,7 +48,12 @@ contains
     if (check_table .and. .not. status%failed()) call check_output_path(cfg%table_file, 'table_file', status)
     if (.not. status%failed() .and. len(cfg%traction_file) > 0) &
       call check_output_path(cfg%traction_file, 'traction_file', status)
-    if (.not. status%failed()) call run_case(cfg, patch, record, traction, warnings, status)
+    if (status%failed()) return
+    if (cfg%extrapolate) then
+      call run_extrapolated(cfg, patch, record, traction, warnings, status)
+    else
+      call run_case(cfg, patch, record, traction, warnings, status)
+    end if
   end subroutine solve_input
 
   !> Bytes a case needs at its peak: the dense matrix 8 (2n)^2 of the LU,

@@ -36,6 +36,8 @@ module namelist_input
     ! &solver
     type(scheme_t) :: scheme
     logical :: requested(n_load_cases) = .true.
+    logical :: extrapolate = .false.            !< Richardson in the mesh size (mesh_extrapolation)
+    integer :: extrapolate_levels = 3, refine_ratio = 2
     ! &output
     character(len=:), allocatable :: table_file, traction_file
   end type config_t
@@ -55,7 +57,8 @@ contains
     ! namelist variables, with their defaults
     character(len=32) :: shape, scheme
     real(real64) :: semi_a, semi_b, dx, dy, x0, y0, g, nu, alpha, spin_shift
-    integer :: mx, my
+    integer :: mx, my, extrapolate_levels, refine_ratio
+    logical :: extrapolate
     character(len=4096) :: mask_file, table_file, traction_file
     character(len=64) :: load_cases
     character(len=max_row_length), allocatable :: mask_rows(:)
@@ -66,7 +69,7 @@ contains
     logical :: material_given
     namelist /patch/ shape, semi_a, semi_b, mx, my, mask_file, mask_rows, dx, dy, x0, y0, contact_file, contact_case
     namelist /material/ g, nu
-    namelist /solver/ scheme, alpha, spin_shift, load_cases
+    namelist /solver/ scheme, alpha, spin_shift, load_cases, extrapolate, extrapolate_levels, refine_ratio
     namelist /output/ table_file, traction_file
 
     integer :: unit, ios, nrows
@@ -93,6 +96,9 @@ contains
     alpha = 0.5_real64
     spin_shift = unset
     load_cases = 'xi eta phi'
+    extrapolate = .false.
+    extrapolate_levels = 3
+    refine_ratio = 2
     table_file = ''
     traction_file = ''
 
@@ -148,6 +154,9 @@ contains
     cfg%scheme%name = lower(trim(adjustl(scheme)))
     cfg%scheme%alpha = alpha
     cfg%scheme%spin_shift = spin_shift
+    cfg%extrapolate = extrapolate
+    cfg%extrapolate_levels = extrapolate_levels
+    cfg%refine_ratio = refine_ratio
     cfg%table_file = trim(table_file)
     if (len(cfg%table_file) == 0) cfg%table_file = default_table_name(path)
     cfg%traction_file = trim(traction_file)
@@ -298,6 +307,12 @@ contains
         '&solver alpha = '//rtoa(cfg%scheme%alpha)//' (allowed: -1 < alpha < 1, the open interval)')
     if (.not. (abs(cfg%scheme%spin_shift) <= 1)) call fail(status, exit_bad_input, where// &
         '&solver spin_shift = '//rtoa(cfg%scheme%spin_shift)//' (allowed: -1 <= spin_shift <= 1 cell)')
+    if (cfg%extrapolate .and. (cfg%extrapolate_levels < 2 .or. cfg%extrapolate_levels > 3)) &
+      call fail(status, exit_bad_input, where//'&solver extrapolate_levels = '//itoa(cfg%extrapolate_levels)// &
+                ' (allowed: 2 or 3)')
+    if (cfg%extrapolate .and. (cfg%refine_ratio < 2 .or. cfg%refine_ratio > 4)) &
+      call fail(status, exit_bad_input, where//'&solver refine_ratio = '//itoa(cfg%refine_ratio)// &
+                ' (allowed: 2, 3 or 4; every level multiplies the cells per direction by it)')
     call parse_load_cases(load_cases, cfg%requested, where, status)
   end subroutine validate
 

@@ -174,6 +174,14 @@ contains
       end if
     end do
     if (patch%kind == 'contact') call print_contact_comparison()
+    if (record%extrapolated) then
+      write (output_unit, '(2x, a, i0, a, i0, a)') 'extrapolated (', cfg%extrapolate_levels, &
+        ' levels, ratio ', cfg%refine_ratio, '; the rows above are the finest level):'
+      do i = 1, 3
+        write (output_unit, '(4x, a, f9.5, a, es8.1, a, f5.2, a)') names(i)//' -> ', record%ext(i), &
+          ' +- ', record%ext_error(i), '   (order ', record%ext_order(i), ')'
+      end do
+    end if
     write (output_unit, '(2x, a, es9.2, a, es9.2)') 'rcond ', record%rcond, ', backward error ', record%backward_error
     write (output_unit, '(2x, a, 4f9.3)') 'time assemble factor solve total [s]:', record%t_assemble, &
       record%t_factor, record%t_solve, record%t_total

@@ -25,12 +25,16 @@ module table_output
     real(real64) :: klt(3) = 0               !< Kalker's C11, C22, C23 (NaN unless ellipse)
     real(real64) :: t_assemble = 0, t_factor = 0, t_solve = 0, t_total = 0
     real(real64) :: rcond = 0, backward_error = 0
+    ! &solver extrapolate: Richardson limits of C11, C22, C23, error estimates, orders used
+    logical :: extrapolated = .false.
+    real(real64) :: ext(3) = 0, ext_error(3) = 0, ext_order(3) = 0
   end type run_record_t
 
   integer, parameter :: line_length = 1024
   character(len=*), parameter :: table_columns = &
     'case scheme mx my n alpha nu g c f11 f12 f13 f21 f22 f23 f31 f32 f33 c11 c22 c23 '// &
-    'klt11 klt22 klt23 t_assemble t_factor t_solve t_total rcond berr verdict'
+    'klt11 klt22 klt23 t_assemble t_factor t_solve t_total rcond berr verdict '// &
+    'ext11 ext22 ext23 exterr11 exterr22 exterr23 extp11 extp22 extp23'
 
   interface
     integer(c_int) function c_rename(old, new) bind(c, name='rename')
@@ -73,12 +77,17 @@ contains
     type(run_record_t), intent(in) :: r
     character(len=:), allocatable :: line
     character(len=1024) :: buf
+    real(real64) :: ext(9)
     write (buf, '(a, 1x, a, 3(1x, i0), 4(1x, es23.15e3), 9(1x, es23.15e3), 6(1x, es23.15e3), &
                 & 4(1x, es10.3e2), 2(1x, es10.3e3), 1x, a)') &
       r%case_name, r%scheme, r%mx, r%my, r%n, r%alpha, r%nu, r%g, r%c, &
       transpose(r%f), r%cn, r%klt, r%t_assemble, r%t_factor, r%t_solve, r%t_total, &
       r%rcond, r%backward_error, r%verdict
+    ext = ieee_nan()
+    if (r%extrapolated) ext = [r%ext, r%ext_error, r%ext_order]
     line = trim(buf)
+    write (buf, '(6(1x, es23.15e3), 3(1x, f6.3))') ext
+    line = line//trim(buf)
   end function table_row
 
   !> Lines of the traction file: per cell, px and py of each load case for a unit creepage.

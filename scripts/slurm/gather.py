@@ -107,7 +107,8 @@ def main():
         print(f"gather: {out} not written; resubmit the same command to run the missing cases", file=sys.stderr)
         return 1
 
-    failed = sum(1 for r in rows if r.rsplit(None, 1)[-1].startswith("error:"))
+    verdict = columns[1:].split().index("verdict")   # columns may follow it
+    failed = sum(1 for r in rows if r.split()[verdict].startswith("error:"))
     lines = header + [f"# gathered from {n_chunks} SLURM array task(s): {len(cases)} cases, {failed} failed "
                       "(verdict error:...)"] + per_case_comments + [columns] + rows
     tmp = f"{out}.gather-tmp-{os.getpid()}"

@@ -130,7 +130,8 @@ fi
 pending=()
 for ((i = 1; i <= n_chunks; i++)); do
   table=$workdir/chunks/$(printf '%05d' "$i").tab
-  if ((retry_failed)) && [[ -f $table ]] && grep -v '^#' "$table" | awk '$NF ~ /^error:/ {found = 1} END {exit !found}'; then
+  if ((retry_failed)) && [[ -f $table ]] && awk '/^#/ {for (i = 2; i <= NF; i++) if ($i == "verdict") col = i - 1; next}
+      col && $col ~ /^error:/ {found = 1} END {exit !found}' "$table"; then
     mv "$table" "$table.failed"
   fi
   [[ -f $table ]] || pending+=("$i")

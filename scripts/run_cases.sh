@@ -1,0 +1,178 @@
+#!/usr/bin/env bash
+# Run kcreep on a list of cases and merge their tables.
+#
+#   scripts/run_cases.sh [--jobs N] LIST OUT_TABLE
+#   scripts/run_cases.sh --slurm [options for the SLURM back-end] LIST OUT_TABLE
+#
+# LIST: one namelist path per line (blank lines and '#' lines skipped;
+# relative paths are relative to LIST's folder). Each case runs in its own
+# folder, so its default table <name>.tab lands next to the namelist.
+# Cases run in parallel, N at a time (default: the number of cores; each
+# kcreep gets one BLAS thread then). A case whose .tab exists and is newer
+# than its .nml is skipped, so running again resumes an interrupted study.
+# A failed case is reported and the others go on; the summary counts them.
+# Finally all rows are merged into OUT_TABLE (header of the first table,
+# rows in LIST order). Exit status: 0 all done, 1 some cases failed,
+# 2 bad usage.
+#
+# Environment: KCREEP (the binary; default build/kcreep of this repository).
+# --slurm hands the same job to scripts/slurm/run_cases_slurm.sh.
+set -uo pipefail
+here=$(cd "$(dirname "${BASH_SOURCE[0]}")" && pwd)
+repo=$(cd "$here/.." && pwd)
+
+usage() { sed -n '2,20p' "${BASH_SOURCE[0]}" | sed 's/^# \{0,1\}//'; exit "${1:-2}"; }
+die() { echo "run_cases: error: $*" >&2; exit 2; }
+
+jobs=$(nproc 2>/dev/null || echo 1)
+if [[ ${1:-} == --slurm ]]; then
+  shift
+  backend=$here/slurm/run_cases_slurm.sh
+  [[ -x $backend ]] || die "--slurm: the SLURM back-end $backend is not there (or not executable)"
+  (($# >= 2)) || die "--slurm needs LIST OUT_TABLE as its last two arguments"
+  list=${*: -2:1}
+  out=${*: -1:1}
+  exec "$backend" "$list" "$out" "${@:1:$#-2}"
+fi
+while (($#)); do
+  case $1 in
+    -j | --jobs) [[ ${2:-} =~ ^[1-9][0-9]*$ ]] || die "--jobs needs a positive integer (got '${2:-}')"; jobs=$2; shift 2 ;;
+    -h | --help) usage 0 ;;
+    --slurm) die "--slurm must come first: run_cases.sh --slurm [options] LIST OUT_TABLE" ;;
+    -*) die "unknown option '$1' (see --help)" ;;
+    *) break ;;
+  esac
+done
+(($# == 2)) || usage 2
+list=$1
+out=$2
+[[ -r $list ]] || die "case list '$list' cannot be read"
+kcreep=${KCREEP:-$repo/build/kcreep}
+[[ -x $kcreep ]] || die "kcreep binary '$kcreep' not found: build it (scripts/setup.sh) or set KCREEP"
+out_dir=$(dirname "$out")
+[[ -d $out_dir && -w $out_dir ]] || die "output folder '$out_dir' does not exist or is not writable"
+
+list_dir=$(cd "$(dirname "$list")" && pwd)
+cases=()
+while IFS= read -r line || [[ -n $line ]]; do
+  line=${line%%#*}
+  line=$(echo "$line" | xargs)
+  [[ -z $line ]] && continue
+  [[ $line == /* ]] || line=$list_dir/$line
+  cases+=("$line")
+done <"$list"
+n=${#cases[@]}
+((n > 0)) || die "case list '$list' names no cases"
+
+# One BLAS thread per case when several cases share the cores.
+if ((jobs > 1)); then
+  export OPENBLAS_NUM_THREADS=${OPENBLAS_NUM_THREADS:-1} OMP_NUM_THREADS=${OMP_NUM_THREADS:-1}
+fi
+
+state=$(mktemp -d "${TMPDIR:-/tmp}/run_cases.XXXXXX")
+trap 'rm -rf "$state"' EXIT
+interrupted() {  # stop the running cases (their kcreep children by id), keep what is done
+  local job child
+  for job in $(jobs -p); do
+    for child in $(pgrep -P "$job" 2>/dev/null); do kill "$child" 2>/dev/null; done
+    kill "$job" 2>/dev/null
+  done
+  echo "run_cases: interrupted; run again to resume (finished points are kept)" >&2
+  exit 130
+}
+trap interrupted INT TERM HUP
+
+table_of() { local nml=$1; echo "${nml%.*}.tab"; }
+
+run_one() {  # k nml: run in the namelist's folder, leave k.rc and k.err in $state
+  local k=$1 nml=$2 dir base rc
+  dir=$(dirname "$nml")
+  base=$(basename "$nml")
+  # runs in its own background subshell: cd is local, kcreep is its direct child
+  cd "$dir" && "$kcreep" "$base" >"${base%.*}.log" 2>"$state/$k.err"
+  rc=$?
+  echo "$rc" >"$state/$k.rc"
+}
+
+start=$(date +%s)
+finished=0 skipped=0 failed=0 running=0
+progress() {
+  local now elapsed remaining ran
+  now=$(date +%s)
+  elapsed=$((now - start))
+  ran=$((finished - skipped))
+  if ((ran > 0)); then
+    remaining=$(((elapsed * (n - finished) + ran - 1) / ran))
+  else
+    remaining='?'
+  fi
+  printf 'run_cases: point %d of %d, elapsed %ds, estimated remaining %ss\n' "$finished" "$n" "$elapsed" "$remaining"
+}
+collect() {  # account for every case that has finished since the last call
+  local k rc
+  for ((k = 0; k < n; k++)); do
+    [[ -e $state/$k.rc && ! -e $state/$k.seen ]] || continue
+    touch "$state/$k.seen"
+    rc=$(<"$state/$k.rc")
+    finished=$((finished + 1))
+    running=$((running - 1))
+    if [[ $rc != 0 ]]; then
+      failed=$((failed + 1))
+      echo "run_cases: FAILED (exit $rc): ${cases[k]}: $(tail -n 1 "$state/$k.err" 2>/dev/null)" >&2
+    fi
+    progress
+  done
+}
+
+for ((k = 0; k < n; k++)); do
+  nml=${cases[k]}
+  if [[ ! -r $nml ]]; then
+    echo "run_cases: FAILED: ${nml}: namelist not found" >&2
+    echo 2 >"$state/$k.rc"; touch "$state/$k.seen"
+    finished=$((finished + 1)); failed=$((failed + 1))
+    continue
+  fi
+  tab=$(table_of "$nml")
+  if [[ -s $tab && $tab -nt $nml ]]; then
+    echo 0 >"$state/$k.rc"; touch "$state/$k.seen"
+    finished=$((finished + 1)); skipped=$((skipped + 1))
+    continue
+  fi
+  while ((running >= jobs)); do
+    wait -n 2>/dev/null
+    collect
+  done
+  run_one "$k" "$nml" &
+  running=$((running + 1))
+done
+while ((running > 0)); do
+  wait -n 2>/dev/null || true
+  collect
+  if ((running > 0)) && ! jobs -r | grep -q .; then collect; break; fi
+done
+wait
+
+# Merge: the header of the first table, then the rows in list order.
+tmp_out=$out.run_cases-tmp.$$
+header_done=0 merged=0
+{
+  for ((k = 0; k < n; k++)); do
+    [[ $(<"$state/$k.rc") == 0 ]] || continue
+    tab=$(table_of "${cases[k]}")
+    [[ -r $tab ]] || continue
+    if ((header_done == 0)); then
+      grep '^#' "$tab" | grep -v '^# WARNING'
+      header_done=1
+    fi
+    grep -v '^#' "$tab"
+    merged=$((merged + 1))
+  done
+} >"$tmp_out"
+if ((header_done)); then
+  mv "$tmp_out" "$out"
+else
+  rm -f "$tmp_out"
+fi
+elapsed=$(($(date +%s) - start))
+echo "run_cases: done: $n points, $((n - failed)) ok ($skipped already done), $failed failed, ${elapsed}s; table $out ($merged rows)"
+((failed == 0))

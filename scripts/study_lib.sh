@@ -1,0 +1,51 @@
+# Shared pieces of the study scripts (sourced, not run).
+# shellcheck shell=bash
+
+study_here=$(cd "$(dirname "${BASH_SOURCE[0]}")" && pwd)
+study_repo=$(cd "$study_here/.." && pwd)
+export KCREEP=${KCREEP:-$study_repo/build/kcreep}
+
+study_die() { echo "$(basename "$0"): error: $*" >&2; exit 2; }
+
+# ellipse_nml FILE RATIO MX MY NU SCHEME ALPHA [SPIN_SHIFT]
+# An ellipse with a/b = RATIO and c = sqrt(a b) = 1 (so f = C).
+ellipse_nml() {
+  local file=$1 ratio=$2 mx=$3 my=$4 nu=$5 scheme=$6 alpha=$7 shift=${8:-0}
+  local a b
+  a=$(awk -v r="$ratio" 'BEGIN { printf "%.15g", sqrt(r) }')
+  b=$(awk -v r="$ratio" 'BEGIN { printf "%.15g", 1 / sqrt(r) }')
+  mkdir -p "$(dirname "$file")"
+  local solver="scheme = '$scheme'"
+  if [[ $scheme == collocation ]]; then solver+=", alpha = $alpha"; else solver+=", spin_shift = $shift"; fi
+  cat >"$file.new" <<EOF
+&patch shape = 'ellipse', semi_a = $a, semi_b = $b, mx = $mx, my = $my /
+&material nu = $nu /
+&solver $solver /
+EOF
+  # keep the old file (and its timestamp) when nothing changed, so a rerun resumes
+  if [[ -f $file ]] && cmp -s "$file" "$file.new"; then rm -f "$file.new"; else mv "$file.new" "$file"; fi
+}
+
+# square_grid N RATIO -> "mx my": about N*N grid cells, cells as square as possible
+square_grid() {
+  awk -v n="$1" -v r="$2" 'BEGIN { mx = int(n * sqrt(r) + 0.5); my = int(n / sqrt(r) + 0.5);
+    if (mx < 1) mx = 1; if (my < 1) my = 1; print mx, my }'
+}
+
+# columns TABLE NAME... : the named columns of a kcreep table, blank-separated
+columns() {
+  local table=$1; shift
+  awk -v want="$*" '
+    /^#/ { header = $0; next }
+    { if (!mapped) { n = split(substr(header, 2), h, " "); for (i = 1; i <= n; i++) col[h[i]] = i;
+                     m = split(want, w, " "); for (j = 1; j <= m; j++) if (!(w[j] in col)) {
+                       print "columns: no column " w[j] > "/dev/stderr"; exit 2 }
+                     mapped = 1 }
+      line = ""; for (j = 1; j <= m; j++) line = line (j > 1 ? " " : "") $(col[w[j]]); print line }' "$table"
+}
+
+have_gnuplot() {
+  if command -v gnuplot >/dev/null; then return 0; fi
+  echo "$(basename "$0"): gnuplot not found: tables written, plots skipped (scripts/setup.sh installs gnuplot-nox)" >&2
+  return 1
+}

@@ -1,0 +1,110 @@
+#!/usr/bin/env bash
+# The paper's figure 2: f11*/KLT, f22*/KLT, f23*/KLT of the collocation
+# scheme against the collocation point alpha, for three ellipse ratios.
+#
+#   scripts/sweep_alpha.sh [options]
+#     --ratios "0.2 1 5"   ellipse ratios a/b (c = sqrt(a b) = 1)
+#     --alphas "..."       collocation points, in (-1, 1)
+#     --grid 80            the paper's grid: mx = my = 80 (its N = 6400)
+#     --no-square          skip the near-square-cell grids (about grid^2
+#                          cells, dx ~ dy) run beside the paper's grid
+#     --nu 0.25            Poisson's ratio
+#     --out DIR            output folder [./studies/sweep_alpha]
+#     --jobs N             cases in parallel [number of cores]
+#     --slurm "OPTS"       run through the SLURM back-end with these options
+#     --docs               also copy the plots and the table into docs/
+# Writes DIR/sweep_alpha.tab (all rows) and DIR/sweep_alpha_*.png.
+set -uo pipefail
+source "$(cd "$(dirname "${BASH_SOURCE[0]}")" && pwd)/study_lib.sh"
+
+ratios="0.2 1 5"
+alphas="-0.9 -0.5 0 0.2 0.4 0.5 0.6 0.7 0.8 0.9"
+grid=80 nu=0.25 square=1 out=$PWD/studies/sweep_alpha jobs=() slurm=() docs=0
+while (($#)); do
+  case $1 in
+    --ratios) ratios=$2; shift 2 ;;
+    --alphas) alphas=$2; shift 2 ;;
+    --grid) grid=$2; shift 2 ;;
+    --no-square) square=0; shift ;;
+    --nu) nu=$2; shift 2 ;;
+    --out) out=$2; shift 2 ;;
+    --jobs) jobs=(--jobs "$2"); shift 2 ;;
+    --slurm) read -r -a slurm <<<"--slurm $2"; shift 2 ;;
+    --docs) docs=1; shift ;;
+    -h | --help) sed -n '2,18p' "$0" | sed 's/^# \{0,1\}//'; exit 0 ;;
+    *) study_die "unknown option '$1' (see --help)" ;;
+  esac
+done
+mkdir -p "$out" || study_die "cannot create '$out'"
+out=$(cd "$out" && pwd)
+
+list=$out/cases.list
+: >"$list"
+for r in $ratios; do
+  grids="paper:$grid:$grid"
+  if ((square)) && [[ $(awk -v r="$r" 'BEGIN { print (r != 1) }') == 1 ]]; then
+    read -r smx smy < <(square_grid "$grid" "$r")
+    grids+=" square:$smx:$smy"
+  fi
+  for g in $grids; do
+    IFS=: read -r kind mx my <<<"$g"
+    for al in $alphas; do
+      name=r${r}_${kind}_a${al}
+      ellipse_nml "$out/cases/$name/$name.nml" "$r" "$mx" "$my" "$nu" collocation "$al"
+      echo "cases/$name/$name.nml" >>"$list"
+    done
+  done
+done
+echo "sweep_alpha: $(wc -l <"$list") points in $out"
+"$study_here/run_cases.sh" "${slurm[@]}" "${jobs[@]}" "$list" "$out/sweep_alpha.tab"
+status=$?
+[[ -s $out/sweep_alpha.tab ]] || study_die "no table was produced"
+
+# Plot data: per ratio and grid kind, alpha and the three ratios to Kalker.
+columns "$out/sweep_alpha.tab" case mx my alpha c11 c22 c23 klt11 klt22 klt23 verdict |
+  awk -v out="$out" '{ split($1, p, "_"); f = out "/plot_" p[1] "_" p[2] ".dat"
+       print $4, $5 / $8, $6 / $9, $7 / $10, $2, $3, $11 > f }'
+if have_gnuplot; then
+  for coef in 11 22 23; do
+    col=$((coef == 11 ? 2 : coef == 22 ? 3 : 4))
+    plots=() zplots=() i=0
+    for f in "$out"/plot_*.dat; do
+      t=$(basename "$f" .dat); t=${t#plot_r}; t=${t/_/, }
+      i=$((i + 1))
+      plots+=("'$f' using 1:$col with linespoints lw 2 pt $((i + 4)) title 'a/b = $t'")
+      zplots+=("'$f' using (\$1 > 0 ? \$1 : 1/0):$col with linespoints lw 2 pt $((i + 4)) title 'a/b = $t'")
+    done
+    gnuplot <<EOF
+set terminal pngcairo size 800,560 font ',11'
+set output '$out/sweep_alpha_f$coef.png'
+set title "Collocation: f$coef / Kalker against alpha (nu = $nu, ${grid}x${grid} paper grid; square: near-square cells)"
+set xlabel 'alpha (collocation point x_i + alpha dx/2; + = leading edge)'
+set ylabel 'f$coef / f$coef(Kalker)'
+set grid
+set key bottom right
+set yrange [-1.5:1.5]
+set xrange [-1:1]
+plot 1 with lines lc 'black' dt 2 notitle, $(IFS=,; echo "${plots[*]}")
+EOF
+    # the useful window alpha > 0, where the solution is physical
+    gnuplot <<EOF
+set terminal pngcairo size 800,560 font ',11'
+set output '$out/sweep_alpha_f${coef}_zoom.png'
+set title "Collocation, alpha > 0: f$coef / Kalker (nu = $nu)"
+set xlabel 'alpha'
+set ylabel 'f$coef / f$coef(Kalker)'
+set grid
+set key bottom left
+set xrange [0.05:0.95]
+set yrange [0.85:1.15]
+plot 1 with lines lc 'black' dt 2 notitle, $(IFS=,; echo "${zplots[*]}")
+EOF
+  done
+  echo "sweep_alpha: plots $out/sweep_alpha_f{11,22,23}{,_zoom}.png"
+  if ((docs)); then
+    mkdir -p "$study_repo/docs/figures" "$study_repo/docs/data"
+    cp "$out"/sweep_alpha_*.png "$study_repo/docs/figures/"
+    cp "$out/sweep_alpha.tab" "$study_repo/docs/data/sweep_alpha.dat"
+  fi
+fi
+exit $status

@@ -1,0 +1,113 @@
+#!/usr/bin/env bash
+# The paper's figures 3 and 4: the coefficients against the mesh size, for
+# the collocation scheme (alpha = 0.5) and the backward scheme, three ellipse
+# ratios, the paper's mx = my grids and near-square-cell grids; then
+# Richardson extrapolation on every mesh triple (h, h/2, h/4) in the list.
+#
+#   scripts/sweep_n.sh [options]
+#     --ratios "0.2 1 5"     ellipse ratios a/b (c = sqrt(a b) = 1)
+#     --meshes "10 ... 80"   grid sizes M: the paper's grid is M x M; the
+#                            near-square grid has about M*M cells, dx ~ dy
+#     --alpha 0.5            collocation point
+#     --no-square            only the paper's M x M grids
+#     --nu 0.25              Poisson's ratio
+#     --out DIR              output folder [./studies/sweep_n]
+#     --jobs N               cases in parallel [number of cores]
+#     --slurm "OPTS"         run through the SLURM back-end with these options
+#     --docs                 also copy plots and tables into docs/
+# Going further: --meshes "10 15 20 30 40 60 80 120 160" (160 x 160 needs
+# about 10 GB and minutes per point with the dense solver).
+# Writes DIR/sweep_n.tab, DIR/richardson.dat and DIR/sweep_n_*.png.
+set -uo pipefail
+source "$(cd "$(dirname "${BASH_SOURCE[0]}")" && pwd)/study_lib.sh"
+
+ratios="0.2 1 5"
+meshes="10 15 20 30 40 60 80"
+alpha=0.5 nu=0.25 square=1 out=$PWD/studies/sweep_n jobs=() slurm=() docs=0
+while (($#)); do
+  case $1 in
+    --ratios) ratios=$2; shift 2 ;;
+    --meshes) meshes=$2; shift 2 ;;
+    --alpha) alpha=$2; shift 2 ;;
+    --no-square) square=0; shift ;;
+    --nu) nu=$2; shift 2 ;;
+    --out) out=$2; shift 2 ;;
+    --jobs) jobs=(--jobs "$2"); shift 2 ;;
+    --slurm) read -r -a slurm <<<"--slurm $2"; shift 2 ;;
+    --docs) docs=1; shift ;;
+    -h | --help) sed -n '2,21p' "$0" | sed 's/^# \{0,1\}//'; exit 0 ;;
+    *) study_die "unknown option '$1' (see --help)" ;;
+  esac
+done
+mkdir -p "$out" || study_die "cannot create '$out'"
+out=$(cd "$out" && pwd)
+
+list=$out/cases.list
+: >"$list"
+# largest meshes first: the long points start early and the pool stays full
+for m in $(tr ' ' '\n' <<<"$meshes" | sort -rn); do
+  for r in $ratios; do
+    grids="paper:$m:$m"
+    if ((square)) && [[ $(awk -v r="$r" 'BEGIN { print (r != 1) }') == 1 ]]; then
+      read -r smx smy < <(square_grid "$m" "$r")
+      grids+=" square:$smx:$smy"
+    fi
+    for g in $grids; do
+      IFS=: read -r kind mx my <<<"$g"
+      for scheme in collocation backward; do
+        name=r${r}_${kind}_${scheme}_m$m
+        ellipse_nml "$out/cases/$name/$name.nml" "$r" "$mx" "$my" "$nu" "$scheme" "$alpha"
+        echo "cases/$name/$name.nml" >>"$list"
+      done
+    done
+  done
+done
+echo "sweep_n: $(wc -l <"$list") points in $out"
+"$study_here/run_cases.sh" "${slurm[@]}" "${jobs[@]}" "$list" "$out/sweep_n.tab"
+status=$?
+[[ -s $out/sweep_n.tab ]] || study_die "no table was produced"
+
+python3 "$study_here/richardson.py" --series-key 'r{ratio}_{grid}_{scheme}' "$out/sweep_n.tab" \
+  >"$out/richardson.dat" || study_die "richardson.py failed"
+cat "$out/richardson.dat"
+
+# Plot data: one file per series, rows sorted by mesh M.
+rm -f "$out"/plot_*.dat
+columns "$out/sweep_n.tab" case mx my n c11 c22 c23 klt11 klt22 klt23 t_total verdict |
+  awk -v out="$out" '{ split($1, p, "_"); m = substr(p[4], 2); f = out "/plot_" p[1] "_" p[2] "_" p[3] ".dat"
+       print m, $5 / $8, $6 / $9, $7 / $10, $2, $3, $4, $11, $12 > f }'
+for f in "$out"/plot_*.dat; do sort -n -o "$f" "$f"; done
+if have_gnuplot; then
+  for coef in 11 22 23; do
+    col=$((coef == 11 ? 2 : coef == 22 ? 3 : 4))
+    for scheme in collocation backward; do
+      plots=() i=0
+      for f in "$out"/plot_*_"$scheme".dat; do
+        t=$(basename "$f" .dat); t=${t#plot_r}; t=${t%_*}; t=${t/_/, }
+        i=$((i + 1))
+        plots+=("'$f' using (\$1*\$1):$col with linespoints lw 2 pt $((i + 4)) title 'a/b = $t'")
+      done
+      label=$scheme
+      [[ $scheme == collocation ]] && label="collocation, alpha = $alpha"
+      gnuplot <<EOF
+set terminal pngcairo size 800,560 font ',11'
+set output '$out/sweep_n_${scheme}_f$coef.png'
+set title "$label: f$coef / Kalker against N = M x M grid cells (nu = $nu)"
+set xlabel 'N (cells of the bounding grid)'
+set ylabel 'f$coef / f$coef(Kalker)'
+set logscale x
+set grid
+set key top right
+plot 1 with lines lc 'black' dt 2 notitle, 0.99 with lines lc 'gray' dt 3 notitle, 1.01 with lines lc 'gray' dt 3 notitle, $(IFS=,; echo "${plots[*]}")
+EOF
+    done
+  done
+  echo "sweep_n: plots $out/sweep_n_{collocation,backward}_f{11,22,23}.png"
+  if ((docs)); then
+    mkdir -p "$study_repo/docs/figures" "$study_repo/docs/data"
+    cp "$out"/sweep_n_*.png "$study_repo/docs/figures/"
+    cp "$out/sweep_n.tab" "$study_repo/docs/data/sweep_n.dat"
+    cp "$out/richardson.dat" "$study_repo/docs/data/richardson_sweep_n.dat"
+  fi
+fi
+exit $status
