@@ -9,6 +9,7 @@ module namelist_input
   use kcreep_strings, only: itoa, rtoa, lower
   use patch_grid, only: patch_t, ellipse_patch, mask_patch, read_mask_file, parse_mask_rows
   use tang_assembly, only: scheme_t, load_case_names, n_load_cases
+  use input_limits, only: check_grid_size, length_in_range, offset_in_range, modulus_in_range
   implicit none
   private
   public :: config_t, read_config, build_patch, max_inline_rows, max_row_length
@@ -202,14 +203,15 @@ contains
     where = 'input '''//cfg%input_path//''': '
     select case (cfg%shape)
     case ('ellipse')
-      if (.not. positive_finite(cfg%semi_a)) call fail(status, exit_bad_input, where// &
-          '&patch semi_a = '//rtoa(cfg%semi_a)//' (must be > 0 and finite)')
-      if (.not. positive_finite(cfg%semi_b)) call fail(status, exit_bad_input, where// &
-          '&patch semi_b = '//rtoa(cfg%semi_b)//' (must be > 0 and finite)')
+      if (.not. length_in_range(cfg%semi_a)) call fail(status, exit_bad_input, where// &
+          '&patch semi_a = '//rtoa(cfg%semi_a)//' (must be > 0, between 1e-30 and 1e30)')
+      if (.not. length_in_range(cfg%semi_b)) call fail(status, exit_bad_input, where// &
+          '&patch semi_b = '//rtoa(cfg%semi_b)//' (must be > 0, between 1e-30 and 1e30)')
       if (cfg%mx == 0) cfg%mx = default_cells
       if (cfg%my == 0) cfg%my = default_cells
       if (cfg%mx < 1) call fail(status, exit_bad_input, where//'&patch mx = '//itoa(cfg%mx)//' (must be >= 1)')
       if (cfg%my < 1) call fail(status, exit_bad_input, where//'&patch my = '//itoa(cfg%my)//' (must be >= 1)')
+      call check_grid_size(cfg%mx, cfg%my, where//'&patch mx, my: ', status)
       if (len(cfg%mask_file) > 0 .or. nrows > 0) call fail(status, exit_bad_input, where// &
           '&patch shape = ''ellipse'' takes no mask_file or mask_rows (use shape = ''mask'')')
     case ('mask')
@@ -223,10 +225,10 @@ contains
             '&patch mask_rows: a row is longer than '//itoa(len(mask_rows) - 1)//' cells (use mask_file)')
         if (nrows == size(mask_rows)) call fail(status, exit_bad_input, where// &
             '&patch mask_rows: more than '//itoa(size(mask_rows) - 1)//' rows (use mask_file)')
-        if (.not. positive_finite(cfg%dx)) call fail(status, exit_bad_input, where// &
-            '&patch dx = '//rtoa(cfg%dx)//' (an inline mask needs a cell size > 0)')
-        if (.not. positive_finite(cfg%dy)) call fail(status, exit_bad_input, where// &
-            '&patch dy = '//rtoa(cfg%dy)//' (an inline mask needs a cell size > 0)')
+        if (.not. length_in_range(cfg%dx)) call fail(status, exit_bad_input, where// &
+            '&patch dx = '//rtoa(cfg%dx)//' (an inline mask needs a cell size > 0, between 1e-30 and 1e30)')
+        if (.not. length_in_range(cfg%dy)) call fail(status, exit_bad_input, where// &
+            '&patch dy = '//rtoa(cfg%dy)//' (an inline mask needs a cell size > 0, between 1e-30 and 1e30)')
         if (cfg%mx /= 0 .and. cfg%mx /= len_trim(mask_rows(1))) call fail(status, exit_bad_input, where// &
             '&patch mx = '//itoa(cfg%mx)//' but mask row 1 has '//itoa(len_trim(mask_rows(1)))//' cells')
         if (cfg%my /= 0 .and. cfg%my /= nrows) call fail(status, exit_bad_input, where// &
@@ -235,15 +237,16 @@ contains
         if (cfg%dx < 0 .or. cfg%dy < 0) call fail(status, exit_bad_input, where// &
             '&patch dx, dy = '//rtoa(cfg%dx)//', '//rtoa(cfg%dy)//' (cell sizes must be > 0; the mask file header gives them)')
       end if
-      if (.not. (abs(cfg%x0) <= huge(1.0_real64) .and. abs(cfg%y0) <= huge(1.0_real64))) &
-        call fail(status, exit_bad_input, where//'&patch x0, y0 must be finite')
+      if (.not. (offset_in_range(cfg%x0) .and. offset_in_range(cfg%y0))) &
+        call fail(status, exit_bad_input, where//'&patch x0, y0 = '//rtoa(cfg%x0)//', '//rtoa(cfg%y0)// &
+                  ' (allowed: 0 or 1e-30 <= |x0|, |y0| <= 1e30)')
     case default
       call fail(status, exit_bad_input, where//'&patch shape = '''//cfg%shape// &
                 ''' (allowed: ''ellipse'', ''mask'')')
     end select
 
-    if (.not. positive_finite(cfg%g)) call fail(status, exit_bad_input, where// &
-        '&material g = '//rtoa(cfg%g)//' (must be > 0 and finite)')
+    if (.not. modulus_in_range(cfg%g)) call fail(status, exit_bad_input, where// &
+        '&material g = '//rtoa(cfg%g)//' (must be > 0, between 1e-100 and 1e100)')
     if (.not. (cfg%nu >= 0 .and. cfg%nu <= 0.5_real64)) call fail(status, exit_bad_input, where// &
         '&material nu = '//rtoa(cfg%nu)//' (allowed: 0 <= nu <= 0.5)')
 
@@ -323,11 +326,6 @@ contains
       end if
     end select
   end subroutine build_patch
-
-  pure logical function positive_finite(x)
-    real(real64), intent(in) :: x
-    positive_finite = x > 0 .and. x <= huge(x)
-  end function positive_finite
 
   !> '<input name without folder and extension>.tab' in the working folder.
   pure function default_table_name(path) result(name)

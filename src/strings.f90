@@ -3,7 +3,7 @@ module kcreep_strings
   use, intrinsic :: iso_fortran_env, only: real64
   implicit none
   private
-  public :: itoa, rtoa, printable, lower
+  public :: itoa, rtoa, printable, lower, one_line
 
 contains
 
@@ -36,6 +36,23 @@ contains
       s = c
     end if
   end function printable
+
+  !> text with every control byte shown as \xNN, so that a message stays one
+  !> line whatever bytes a bad input put into it.
+  pure function one_line(text) result(s)
+    character(len=*), intent(in) :: text
+    character(len=:), allocatable :: s
+    integer :: i, code
+    s = ''
+    do i = 1, len(text)
+      code = iachar(text(i:i))
+      if (code < 32 .or. code == 127) then
+        s = s//printable(text(i:i))
+      else
+        s = s//text(i:i)
+      end if
+    end do
+  end function one_line
 
   pure function lower(text) result(s)
     character(len=*), intent(in) :: text
