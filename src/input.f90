@@ -9,6 +9,8 @@ module namelist_input
   use kcreep_strings, only: itoa, rtoa, lower
   use patch_grid, only: patch_t, ellipse_patch, mask_patch, read_mask_file, parse_mask_rows
   use tang_assembly, only: scheme_t, load_case_names, n_load_cases
+  use file_checks, only: read_input_file
+  use namelist_scan, only: scan_namelist_text
   use input_limits, only: check_grid_size, length_in_range, offset_in_range, modulus_in_range
   implicit none
   private
@@ -58,6 +60,7 @@ contains
     integer :: unit, ios, nrows
     logical :: present(size(group_names))
     character(len=512) :: msg
+    character(len=:), allocatable :: text
 
     shape = 'ellipse'
     semi_a = 1
@@ -81,14 +84,14 @@ contains
     traction_file = ''
 
     cfg%input_path = path
+    ! the whole file first: a folder, a binary file, text outside the groups,
+    ! unknown or repeated groups are errors the namelist read would not report
+    call read_input_file(path, 'input '''//path//'''', text, status)
+    if (.not. status%failed()) call scan_namelist_text(text, 'input '''//path//'''', group_names, present, status)
+    if (status%failed()) return
     open (newunit=unit, file=path, status='old', action='read', iostat=ios, iomsg=msg)
     if (ios /= 0) then
       call fail(status, exit_bad_input, 'input '''//path//''': cannot open ('//trim(msg)//')')
-      return
-    end if
-    call scan_groups(unit, path, present, status)
-    if (status%failed()) then
-      close (unit)
       return
     end if
 
@@ -145,42 +148,6 @@ contains
     end subroutine check_read
 
   end subroutine read_config
-
-  !> Which known groups the file holds; any other '&name' is an error (a
-  !> misspelt group would otherwise be skipped in silence).
-  subroutine scan_groups(unit, path, present, status)
-    integer, intent(in) :: unit
-    character(len=*), intent(in) :: path
-    logical, intent(out) :: present(:)
-    type(status_t), intent(inout) :: status
-    character(len=256) :: line, word
-    integer :: ios, k, line_no, first, last
-
-    present = .false.
-    line_no = 0
-    do
-      read (unit, '(a)', iostat=ios) line
-      if (ios /= 0) exit
-      line_no = line_no + 1
-      line = adjustl(line)
-      if (line(1:1) /= '&') cycle
-      first = 2
-      last = scan(line(first:), ' /,'//achar(9)) + first - 2
-      if (last < first) last = len_trim(line)
-      word = lower(line(first:last))
-      if (trim(word) == 'end') cycle
-      k = findloc(group_names, trim(word), dim=1)
-      if (k == 0) then
-        call fail(status, exit_bad_input, 'input '''//path//''', line '//itoa(line_no)// &
-                  ': unknown namelist group &'//trim(word)//' (known: &patch, &material, &solver, &output)')
-        return
-      end if
-      present(k) = .true.
-    end do
-    if (.not. is_iostat_end(ios)) then
-      call fail(status, exit_bad_input, 'input '''//path//''': cannot be read as text')
-    end if
-  end subroutine scan_groups
 
   !> Number of inline mask rows given: up to the last non-blank one.
   pure integer function count_rows(rows) result(nrows)

@@ -13,8 +13,8 @@ program kcreep
   use patch_grid, only: patch_t
   use namelist_input, only: config_t, read_config, build_patch
   use creep_run, only: run_case
-  use table_output, only: run_record_t, table_lines, write_text_file, &
-                          check_output_path, traction_lines
+  use table_output, only: run_record_t, table_lines, write_temporary, commit_temporary, &
+                          discard_temporary, check_output_path, traction_lines
   implicit none
 
   character(len=*), parameter :: version = '0.1.0'
@@ -35,10 +35,19 @@ program kcreep
   if (.not. status%failed()) call run_case(cfg, patch, record, traction, warnings, status)
   if (status%failed()) call stop_with(status)
 
-  call write_text_file(cfg%table_file, table_lines([record], warnings), 'table_file', status)
+  ! every output complete in its temporary file before any is renamed into
+  ! place: a failure (a full disk) leaves all the previous files as they were
+  call write_temporary(cfg%table_file, table_lines([record], warnings), 'table_file', status)
   if (.not. status%failed() .and. len(cfg%traction_file) > 0) &
-    call write_text_file(cfg%traction_file, traction_lines(patch, traction, cfg%requested), 'traction_file', status)
-  if (status%failed()) call stop_with(status)
+    call write_temporary(cfg%traction_file, traction_lines(patch, traction, cfg%requested), 'traction_file', status)
+  if (.not. status%failed()) call commit_temporary(cfg%table_file, 'table_file', status)
+  if (.not. status%failed() .and. len(cfg%traction_file) > 0) &
+    call commit_temporary(cfg%traction_file, 'traction_file', status)
+  if (status%failed()) then
+    call discard_temporary(cfg%table_file)
+    if (len(cfg%traction_file) > 0) call discard_temporary(cfg%traction_file)
+    call stop_with(status)
+  end if
 
   call print_summary()
 

@@ -9,6 +9,7 @@ module patch_grid
   use, intrinsic :: iso_fortran_env, only: real64
   use kcreep_status, only: status_t, fail, exit_bad_input
   use kcreep_strings, only: itoa, rtoa, printable
+  use file_checks, only: read_input_file
   use input_limits, only: check_grid_size, length_in_range, offset_in_range
   implicit none
   private
@@ -136,10 +137,14 @@ contains
     integer :: unit, ios, mx, my, nrows
     real(real64) :: dx, dy, x0, y0
     character(len=:), allocatable :: line
-    character(len=:), allocatable :: rows(:)
+    character(len=:), allocatable :: rows(:), text
     logical, allocatable :: inside(:, :)
     character(len=512) :: msg
 
+    ! a folder, an unreadable or a huge file is refused before parsing
+    call read_input_file(path, 'mask_file '''//trim(path)//'''', text, status)
+    if (status%failed()) return
+    deallocate (text)
     open (newunit=unit, file=path, status='old', action='read', iostat=ios, iomsg=msg)
     if (ios /= 0) then
       call fail(status, exit_bad_input, 'mask_file '''//trim(path)//''': cannot open ('//trim(msg)//')')
