@@ -56,7 +56,7 @@ contains
       col = col + 1
       call rigid_creepage(patch, cfg%scheme, j, rhs(:, col))
     end do
-    call solve_dense(patch, table, rhs, diag, status)
+    call solve_dense(patch, table, rhs, diag, status, cfg%refine)
     if (status%failed()) return
 
     allocate (traction(2 * n, n_load_cases))
@@ -86,6 +86,9 @@ contains
     end if
     record%rcond = diag%rcond
     record%backward_error = diag%backward_error
+    record%backward_error_initial = diag%backward_error_initial
+    record%relative_residual = diag%relative_residual
+    record%refine = cfg%refine//merge(' (refined)    ', ' (not refined)', diag%refined)
     record%t_assemble = t_table + diag%t_assemble
     record%t_factor = diag%t_factor
     record%t_solve = diag%t_solve

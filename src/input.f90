@@ -34,6 +34,7 @@ module namelist_input
     ! &solver
     type(scheme_t) :: scheme
     logical :: requested(n_load_cases) = .true.
+    character(len=:), allocatable :: refine     !< see dense_solver refine_modes
     ! &output
     character(len=:), allocatable :: table_file, traction_file
   end type config_t
@@ -54,7 +55,8 @@ contains
     character(len=max_row_length), allocatable :: mask_rows(:)
     namelist /patch/ shape, semi_a, semi_b, mx, my, mask_file, mask_rows, dx, dy, x0, y0
     namelist /material/ g, nu
-    namelist /solver/ scheme, alpha, spin_shift, load_cases
+    character(len=32) :: refine
+    namelist /solver/ scheme, alpha, spin_shift, load_cases, refine
     namelist /output/ table_file, traction_file
 
     integer :: unit, ios, nrows
@@ -80,6 +82,7 @@ contains
     alpha = 0.5_real64
     spin_shift = 0
     load_cases = 'xi eta phi'
+    refine = 'auto'
     table_file = ''
     traction_file = ''
 
@@ -127,6 +130,7 @@ contains
     cfg%scheme%name = lower(trim(adjustl(scheme)))
     cfg%scheme%alpha = alpha
     cfg%scheme%spin_shift = spin_shift
+    cfg%refine = lower(trim(adjustl(refine)))
     cfg%table_file = trim(table_file)
     if (len(cfg%table_file) == 0) cfg%table_file = default_table_name(path)
     cfg%traction_file = trim(traction_file)
@@ -227,6 +231,9 @@ contains
         '&solver alpha = '//rtoa(cfg%scheme%alpha)//' (allowed: -1 < alpha < 1, the open interval)')
     if (.not. (abs(cfg%scheme%spin_shift) <= 1)) call fail(status, exit_bad_input, where// &
         '&solver spin_shift = '//rtoa(cfg%scheme%spin_shift)//' (allowed: -1 <= spin_shift <= 1 cell)')
+    if (findloc([character(len=8) :: 'auto', 'always', 'never', 'lapack'], cfg%refine, dim=1) == 0) &
+      call fail(status, exit_bad_input, where//'&solver refine = '''//cfg%refine// &
+                ''' (allowed: ''auto'', ''always'', ''never'', ''lapack'')')
     call parse_load_cases(load_cases, cfg%requested, where, status)
   end subroutine validate
 

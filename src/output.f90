@@ -25,6 +25,8 @@ module table_output
     real(real64) :: klt(3) = 0               !< Kalker's C11, C22, C23 (NaN unless ellipse)
     real(real64) :: t_assemble = 0, t_factor = 0, t_solve = 0, t_total = 0
     real(real64) :: rcond = 0, backward_error = 0
+    real(real64) :: backward_error_initial = 0, relative_residual = 0   !< before refinement
+    character(len=:), allocatable :: refine                              !< mode and whether it refined
   end type run_record_t
 
   integer, parameter :: line_length = 1024
