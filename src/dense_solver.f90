@@ -214,9 +214,16 @@ contains
   pure real(real64) function backward_error(r, b, x, anorm) result(eta)
     real(real64), intent(in) :: r(:, :), b(:, :), x(:, :), anorm
     integer :: j
+    real(real64) :: scale
     eta = 0
     do j = 1, size(r, 2)
-      eta = max(eta, maxval(abs(r(:, j))) / (anorm * maxval(abs(x(:, j))) + maxval(abs(b(:, j)))))
+      scale = anorm * maxval(abs(x(:, j))) + maxval(abs(b(:, j)))
+      ! b = 0 (e.g. spin about the only cell's centre) gives x = 0 and r = 0: no error
+      if (scale > 0) then
+        eta = max(eta, maxval(abs(r(:, j))) / scale)
+      else if (maxval(abs(r(:, j))) > 0) then
+        eta = huge(eta)
+      end if
     end do
   end function backward_error
 
