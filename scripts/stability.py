@@ -29,7 +29,7 @@ import sys
 import tempfile
 import time
 
-BERR_STABLE = 1e-13   # measured: every ok case has berr <= 3e-16 (see docs/stability.md)
+BERR_STABLE = 1e-12   # = kcreep's inaccurate limit; measured: every case has berr <= 8.4e-16
 UNITS_REL = 1e-12     # measured: unit changes move c11, c22, c23 by <= 4e-15
 KALKER_REL = 0.25     # discretisation error on these grids stays below ~12 % where kcreep says ok
 
@@ -87,7 +87,7 @@ def cases(quick):
         out.append(("alpha", f"alpha={alpha:g}", nml(ellipse(1, 1, 30, 30), "nu=0.25", f"alpha={alpha}"), "kalker"))
     # very coarse and very fine grids
     coarse = [("1 cell", ["#"]), ("2 cells", ["##"]), ("3 cells", ["###"]), ("2 x 2", ["##", "##"]),
-              ("single row 1 x 20", ["#" * 20]), ("single column 20 x 1", ["#"] * 20)]
+              ("single row (20 x 1 cells)", ["#" * 20]), ("single column (1 x 20 cells)", ["#"] * 20)]
     for label, rows in (coarse[:3] + coarse[4:5] if quick else coarse):
         for scheme in ("collocation", "backward"):
             out.append(("coarse grid", f"{label} {scheme}", nml(inline(rows), "nu=0.25", f"scheme='{scheme}'"), None))
@@ -223,8 +223,8 @@ def main():
         if args.refine_compare:
             stiff = [c for c in cases(args.quick) if c[1] in (
                 "alpha=0.999", "alpha=1e-06", "nu=0.5 collocation", "checkerboard collocation", "a/b=50 collocation",
-                "a/b=0.02 collocation", "stripes across x collocation", "single row 1 x 20 collocation",
-                "circle 100 x 100")]
+                "a/b=0.02 collocation", "stripes across x collocation", "single row (20 x 1 cells) collocation",
+                "circle 60 x 60")]
             for case in stiff:
                 line = {"name": case[1]}
                 for mode in ("never", "auto", "always", "lapack"):

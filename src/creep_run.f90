@@ -4,7 +4,7 @@ module creep_run
   use, intrinsic :: iso_fortran_env, only: real64, int64
   use, intrinsic :: ieee_arithmetic, only: ieee_value, ieee_quiet_nan
   use kcreep_status, only: status_t
-  use kcreep_strings, only: rtoa
+  use kcreep_strings, only: rtoa, itoa
   use patch_grid, only: patch_t
   use namelist_input, only: config_t
   use tang_assembly, only: operator_table_t, build_operator_table, rigid_creepage, n_load_cases
@@ -14,7 +14,7 @@ module creep_run
   use table_output, only: run_record_t
   implicit none
   private
-  public :: run_case, coherence_limit, rcond_limit, backward_error_limit, alpha_edge_limit
+  public :: run_case, coherence_limit, rcond_limit, backward_error_limit, alpha_edge_limit, coarse_cells
 
   !> Below this, the traction of a pure xi (eta) load changes sign over much of
   !> the patch: no physical full-adhesion solution does that.
@@ -32,8 +32,15 @@ module creep_run
   !> +4.3/+1.6 % at alpha 0.5, -4.8/-3.6 % at 0.9, -8.1/-5.6 % at 0.95,
   !> -14.7/-9.6 % at 0.99, -22.3/-14.5 % at 0.999.
   real(real64), parameter :: alpha_edge_limit = 0.95_real64
+  !> A patch fewer cells across than this (in x or y) is flagged 'coarse': the
+  !> discretisation error is tens of percent although the solve is perfect.
+  !> Measured on the unit circle, nu = 0.25 (C11 / C23 vs Kalker):
+  !> collocation 4: +11/+39 %, 6: +26/+56 %, 8: +13/+31 %, 10: +10/+25 %, 20: +5/+12 %;
+  !> backward    4: +1/-24 %,  6: +18/+5 %,  8: +6/-5 %,   10: +5/-4 %,   20: +2/-3 %.
+  integer, parameter :: coarse_cells = 10
   !> Backward error above this after refinement: the solve itself is suspect.
-  real(real64), parameter :: backward_error_limit = 1e-10_real64
+  !> Measured: at most 8.4e-16 over the whole stability suite (docs/stability.md).
+  real(real64), parameter :: backward_error_limit = 1e-12_real64
 
 contains
 
@@ -147,6 +154,11 @@ contains
       call flag('alpha-edge', 'alpha = '//rtoa(cfg%scheme%alpha)//' puts the collocation point at the cell edge, '// &
                 'where the influence derivative is log-singular: the coefficients drift low (C11 -8 % at '// &
                 'alpha 0.95, -22 % at 0.999 on a 30 x 30 circle); use 0.5 <= alpha <= 0.9')
+    end if
+    if (min(maxval(patch%ix) - minval(patch%ix), maxval(patch%iy) - minval(patch%iy)) + 1 < coarse_cells) then
+      call flag('coarse', 'the patch is '//itoa(maxval(patch%ix) - minval(patch%ix) + 1)//' x '// &
+                itoa(maxval(patch%iy) - minval(patch%iy) + 1)//' cells across: with fewer than '// &
+                itoa(coarse_cells)//' cells in x or y the discretisation error is 10 to 50 % (C23 worst); refine the grid')
     end if
     if (.not. diag%rcond >= rcond_limit) then
       call flag('ill-conditioned', 'LAPACK rcond = '//rtoa(diag%rcond)// &

@@ -88,7 +88,7 @@ contains
       end do
       if (k == 0) then
         call fail(status, exit_bad_input, label//', line '//itoa(line)//': unknown namelist group &'// &
-                  word//' (known: &patch, &material, &solver, &output)')
+                  shorten(word)//' (known: &patch, &material, &solver, &output)')
         return
       end if
       if (present(k)) then

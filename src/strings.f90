@@ -42,14 +42,23 @@ contains
   pure function one_line(text) result(s)
     character(len=*), intent(in) :: text
     character(len=:), allocatable :: s
-    integer :: i, code
-    s = ''
+    integer :: i, j, code, length
+    ! sized first: appending byte by byte is quadratic on long bad input
+    length = 0
+    do i = 1, len(text)
+      code = iachar(text(i:i))
+      length = length + merge(4, 1, code < 32 .or. code == 127)
+    end do
+    allocate (character(len=length) :: s)
+    j = 0
     do i = 1, len(text)
       code = iachar(text(i:i))
       if (code < 32 .or. code == 127) then
-        s = s//printable(text(i:i))
+        s(j + 1:j + 4) = printable(text(i:i))
+        j = j + 4
       else
-        s = s//text(i:i)
+        s(j + 1:j + 1) = text(i:i)
+        j = j + 1
       end if
     end do
   end function one_line
