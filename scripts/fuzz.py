@@ -250,6 +250,7 @@ def main():
     elapsed = time.monotonic() - start
     summary = {"seed": seed, "seconds": round(elapsed, 1), "counts": dict(stats),
                "distinct_error_messages": len(messages), "top_errors": messages.most_common(12),
+               "kcreep_errors": sorted(m for m in messages if m.startswith("kcreep: ")),
                "findings": findings[:50]}
     print(f"fuzz: seed {seed}, {stats['inputs']} inputs in {elapsed:.0f} s: {stats['valid']} valid, "
           f"{stats['full runs']} full kcreep runs, {len(messages)} distinct error messages, "

@@ -21,7 +21,7 @@ module creep_run
   real(real64), parameter :: coherence_limit = 0.5_real64
   !> rcond below this: fewer than about 8 digits of the solution are certain
   !> (forward error <~ berr/rcond with berr ~ 1e-16). Measured (docs/stability.md):
-  !> every case of the stability suite has rcond >= 2e-4 except collocation with
+  !> every case of the stability suite has rcond >= 1e-4 except collocation with
   !> alpha -> 0, where rcond levels off at 1.9e-6 (flagged degenerate anyway);
   !> so 1e-8 is four decades below anything a sane input reaches.
   real(real64), parameter :: rcond_limit = 1e-8_real64
