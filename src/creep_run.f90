@@ -4,7 +4,7 @@ module creep_run
   use, intrinsic :: iso_fortran_env, only: real64, int64
   use, intrinsic :: ieee_arithmetic, only: ieee_value, ieee_quiet_nan
   use kcreep_status, only: status_t
-  use kcreep_strings, only: rtoa
+  use kcreep_strings, only: rtoa, itoa
   use patch_grid, only: patch_t
   use namelist_input, only: config_t
   use tang_assembly, only: operator_table_t, build_operator_table, rigid_creepage, n_load_cases
@@ -14,15 +14,33 @@ module creep_run
   use table_output, only: run_record_t
   implicit none
   private
-  public :: run_case, case_name, coherence_limit, rcond_limit, backward_error_limit
+  public :: run_case, case_name, coherence_limit, rcond_limit, backward_error_limit, alpha_edge_limit, coarse_cells
 
   !> Below this, the traction of a pure xi (eta) load changes sign over much of
   !> the patch: no physical full-adhesion solution does that.
   real(real64), parameter :: coherence_limit = 0.5_real64
-  !> rcond below this: fewer than about 4 digits of the solution are certain.
-  real(real64), parameter :: rcond_limit = 1e-12_real64
+  !> rcond below this: fewer than about 8 digits of the solution are certain
+  !> (forward error <~ berr/rcond with berr ~ 1e-16). Measured (docs/stability.md):
+  !> every case of the stability suite has rcond >= 1e-4 except collocation with
+  !> alpha -> 0, where rcond levels off at 1.9e-6 (flagged degenerate anyway);
+  !> so 1e-8 is four decades below anything a sane input reaches.
+  real(real64), parameter :: rcond_limit = 1e-8_real64
+  !> Collocation this close to the cell edge (|alpha| >= 0.95): the x-derivative
+  !> of the influence coefficients is log-singular at the edge and the
+  !> coefficients drift low although rcond and berr stay perfect. Measured on
+  !> the unit circle, nu = 0.25, 30 x 30 / 60 x 60 cells: C11 vs Kalker
+  !> +4.3/+1.6 % at alpha 0.5, -4.8/-3.6 % at 0.9, -8.1/-5.6 % at 0.95,
+  !> -14.7/-9.6 % at 0.99, -22.3/-14.5 % at 0.999.
+  real(real64), parameter :: alpha_edge_limit = 0.95_real64
+  !> A patch fewer cells across than this (in x or y) is flagged 'coarse': the
+  !> discretisation error is tens of percent although the solve is perfect.
+  !> Measured on the unit circle, nu = 0.25 (C11 / C23 vs Kalker):
+  !> collocation 4: +11/+39 %, 6: +26/+56 %, 8: +13/+31 %, 10: +10/+25 %, 20: +5/+12 %;
+  !> backward    4: +1/-24 %,  6: +18/+5 %,  8: +6/-5 %,   10: +5/-4 %,   20: +2/-3 %.
+  integer, parameter :: coarse_cells = 10
   !> Backward error above this after refinement: the solve itself is suspect.
-  real(real64), parameter :: backward_error_limit = 1e-10_real64
+  !> Measured: at most 8.4e-16 over the whole stability suite (docs/stability.md).
+  real(real64), parameter :: backward_error_limit = 1e-12_real64
 
 contains
 
@@ -56,7 +74,7 @@ contains
       col = col + 1
       call rigid_creepage(patch, cfg%scheme, j, rhs(:, col))
     end do
-    call solve_dense(patch, table, rhs, diag, status)
+    call solve_dense(patch, table, rhs, diag, status, cfg%refine)
     if (status%failed()) return
 
     allocate (traction(2 * n, n_load_cases))
@@ -86,6 +104,9 @@ contains
     end if
     record%rcond = diag%rcond
     record%backward_error = diag%backward_error
+    record%backward_error_initial = diag%backward_error_initial
+    record%relative_residual = diag%relative_residual
+    record%refine = cfg%refine//merge(' (refined)    ', ' (not refined)', diag%refined)
     record%t_assemble = t_table + diag%t_assemble
     record%t_factor = diag%t_factor
     record%t_solve = diag%t_solve
@@ -129,11 +150,21 @@ contains
       call flag('nonphysical', 'f11 or f22 is not positive: the traction does not oppose the creepage'// &
                 trim(hint()))
     end if
-    if (diag%rcond < rcond_limit) then
+    if (cfg%scheme%name == 'collocation' .and. abs(cfg%scheme%alpha) >= alpha_edge_limit) then
+      call flag('alpha-edge', 'alpha = '//rtoa(cfg%scheme%alpha)//' puts the collocation point at the cell edge, '// &
+                'where the influence derivative is log-singular: the coefficients drift low (C11 -8 % at '// &
+                'alpha 0.95, -22 % at 0.999 on a 30 x 30 circle); use 0.5 <= alpha <= 0.9')
+    end if
+    if (min(maxval(patch%ix) - minval(patch%ix), maxval(patch%iy) - minval(patch%iy)) + 1 < coarse_cells) then
+      call flag('coarse', 'the patch is '//itoa(maxval(patch%ix) - minval(patch%ix) + 1)//' x '// &
+                itoa(maxval(patch%iy) - minval(patch%iy) + 1)//' cells across: with fewer than '// &
+                itoa(coarse_cells)//' cells in x or y the discretisation error is 10 to 50 % (C23 worst); refine the grid')
+    end if
+    if (.not. diag%rcond >= rcond_limit) then
       call flag('ill-conditioned', 'LAPACK rcond = '//rtoa(diag%rcond)// &
                 ': the system is nearly singular, trust only the leading digits')
     end if
-    if (diag%backward_error > backward_error_limit) then
+    if (.not. diag%backward_error <= backward_error_limit) then   ! NaN too
       call flag('inaccurate', 'backward error '//rtoa(diag%backward_error)// &
                 ' after refinement: the solve did not reach round-off')
     end if

@@ -7,20 +7,27 @@ module dense_solver
   use, intrinsic :: iso_fortran_env, only: real64, int64
   use kcreep_status, only: status_t, fail, exit_numerical, exit_bad_input
   use kcreep_strings, only: itoa, rtoa
-  use lapack_interfaces, only: dgetrf, dgetrs, dgecon, dlange
+  use lapack_interfaces, only: dgetrf, dgetrs, dgecon, dlange, dgesvx
   use patch_grid, only: patch_t
   use tang_assembly, only: operator_table_t, assemble_dense, apply_operator
   implicit none
   private
-  public :: dense_diagnostics_t, solve_dense, check_dense_memory
+  public :: dense_diagnostics_t, solve_dense, check_dense_memory, refine_modes
 
   !> Backward errors above this are refined once (about 100 unit round-offs).
   real(real64), parameter :: refine_threshold = 100 * epsilon(1.0_real64)
+  !> &solver refine: 'auto' one step of refinement when the backward error is
+  !> above refine_threshold; 'always' one step whatever it is; 'never' none;
+  !> 'lapack' LAPACK's expert driver dgesvx with equilibration (FACT = 'E'),
+  !> whose dgerfs refines until the componentwise backward error stalls
+  !> (twice the memory: the matrix and its factors).
+  character(len=*), parameter :: refine_modes(4) = [character(len=6) :: 'auto', 'always', 'never', 'lapack']
 
   type :: dense_diagnostics_t
     real(real64) :: rcond = 0                !< LAPACK dgecon, 1-norm
     real(real64) :: backward_error = 0       !< max over load cases, after refinement
     real(real64) :: backward_error_initial = 0
+    real(real64) :: relative_residual = 0     !< max_j |b_j - A x_j| / |b_j| before refinement, inf-norms
     logical :: refined = .false.
     real(real64) :: t_assemble = 0, t_factor = 0, t_solve = 0
   end type dense_diagnostics_t
@@ -68,12 +75,14 @@ contains
   end subroutine check_dense_memory
 
   !> Solve A x = b for the columns of rhs (x overwrites rhs).
-  subroutine solve_dense(patch, table, rhs, diag, status)
+  subroutine solve_dense(patch, table, rhs, diag, status, refine)
     type(patch_t), intent(in) :: patch
     type(operator_table_t), intent(in) :: table
     real(real64), intent(inout) :: rhs(:, :)      !< (2n, ncases): in b, out x
     type(dense_diagnostics_t), intent(out) :: diag
     type(status_t), intent(inout) :: status
+    character(len=*), intent(in), optional :: refine   !< one of refine_modes; 'auto' when absent
+    character(len=:), allocatable :: mode
     real(real64), allocatable :: a(:, :), b(:, :), r(:, :), work(:)
     integer, allocatable :: ipiv(:), iwork(:)
     integer :: m, info, nrhs
@@ -82,8 +91,14 @@ contains
 
     m = 2 * patch%n
     nrhs = size(rhs, 2)
+    mode = 'auto'
+    if (present(refine)) mode = trim(refine)
     call check_dense_memory(patch%n, status)
     if (status%failed()) return
+    if (mode == 'lapack') then
+      call solve_expert(patch, table, rhs, diag, status)
+      return
+    end if
 
     call system_clock(t0, rate)
     allocate (a(m, m), ipiv(m), work(4 * m), iwork(m))
@@ -110,8 +125,9 @@ contains
     allocate (r(m, nrhs))
     call residual(patch, table, b, rhs, r)
     diag%backward_error_initial = backward_error(r, b, rhs, anorm_inf)
+    diag%relative_residual = relative_residual(r, b)
     diag%backward_error = diag%backward_error_initial
-    if (diag%backward_error > refine_threshold) then
+    if ((mode == 'auto' .and. diag%backward_error > refine_threshold) .or. mode == 'always') then
       call dgetrs('N', m, nrhs, a, m, ipiv, r, m, info)
       rhs = rhs + r
       call residual(patch, table, b, rhs, r)
@@ -121,6 +137,65 @@ contains
     call system_clock(t1)
     diag%t_solve = real(t1 - t0, real64) / rate
   end subroutine solve_dense
+
+  !> LAPACK's expert driver: equilibration, LU, condition estimate and
+  !> iterative refinement (dgerfs) in one call. rcond is that of the
+  !> equilibrated matrix; the backward errors are recomputed here, normwise,
+  !> so that they compare with the other modes.
+  subroutine solve_expert(patch, table, rhs, diag, status)
+    type(patch_t), intent(in) :: patch
+    type(operator_table_t), intent(in) :: table
+    real(real64), intent(inout) :: rhs(:, :)
+    type(dense_diagnostics_t), intent(inout) :: diag
+    type(status_t), intent(inout) :: status
+    real(real64), allocatable :: a(:, :), af(:, :), b(:, :), x(:, :), r(:, :), rs(:), cs(:), &
+                                 ferr(:), berr(:), work(:)
+    integer, allocatable :: ipiv(:), iwork(:)
+    integer :: m, nrhs, info
+    integer(int64) :: t0, t1, rate
+    character(len=1) :: equed
+    real(real64) :: anorm_inf, rcond
+
+    m = 2 * patch%n
+    nrhs = size(rhs, 2)
+    call check_dense_memory(ceiling(sqrt(2.0_real64) * patch%n), status)   ! two matrices: 2 (2n)^2 doubles
+    if (status%failed()) return
+    call system_clock(t0, rate)
+    allocate (a(m, m), af(m, m), ipiv(m), rs(m), cs(m), ferr(nrhs), berr(nrhs), work(4 * m), iwork(m))
+    allocate (x(m, nrhs), r(m, nrhs))
+    call assemble_dense(patch, table, a)
+    call system_clock(t1)
+    diag%t_assemble = real(t1 - t0, real64) / rate
+    t0 = t1
+    anorm_inf = dlange('I', m, m, a, m, work)
+    b = rhs
+    call dgesvx('E', 'N', m, nrhs, a, m, af, m, ipiv, equed, rs, cs, rhs, m, x, m, rcond, ferr, berr, &
+                work, iwork, info)
+    if (info > 0 .and. info <= m) then
+      call fail(status, exit_numerical, 'the influence matrix is exactly singular (LU pivot '// &
+                itoa(info)//' is zero); the collocation point or the patch is degenerate')
+      return
+    end if
+    call system_clock(t1)
+    diag%t_factor = real(t1 - t0, real64) / rate
+    diag%rcond = rcond
+    diag%refined = .true.
+    rhs = x
+    call residual(patch, table, b, rhs, r)
+    diag%backward_error = backward_error(r, b, rhs, anorm_inf)
+    diag%backward_error_initial = diag%backward_error
+    diag%relative_residual = relative_residual(r, b)
+  end subroutine solve_expert
+
+  !> max_j |r_j| / |b_j|, infinity norms.
+  pure real(real64) function relative_residual(r, b) result(rho)
+    real(real64), intent(in) :: r(:, :), b(:, :)
+    integer :: j
+    rho = 0
+    do j = 1, size(r, 2)
+      if (maxval(abs(b(:, j))) > 0) rho = max(rho, maxval(abs(r(:, j))) / maxval(abs(b(:, j))))
+    end do
+  end function relative_residual
 
   !> r = b - A x, column by column, with A applied from the offset table.
   subroutine residual(patch, table, b, x, r)
@@ -139,9 +214,16 @@ contains
   pure real(real64) function backward_error(r, b, x, anorm) result(eta)
     real(real64), intent(in) :: r(:, :), b(:, :), x(:, :), anorm
     integer :: j
+    real(real64) :: scale
     eta = 0
     do j = 1, size(r, 2)
-      eta = max(eta, maxval(abs(r(:, j))) / (anorm * maxval(abs(x(:, j))) + maxval(abs(b(:, j)))))
+      scale = anorm * maxval(abs(x(:, j))) + maxval(abs(b(:, j)))
+      ! b = 0 (e.g. spin about the only cell's centre) gives x = 0 and r = 0: no error
+      if (scale > 0) then
+        eta = max(eta, maxval(abs(r(:, j))) / scale)
+      else if (maxval(abs(r(:, j))) > 0) then
+        eta = huge(eta)
+      end if
     end do
   end function backward_error
 

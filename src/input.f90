@@ -11,6 +11,9 @@ module namelist_input
   use tang_assembly, only: scheme_t, load_case_names, n_load_cases
   use contact_reader, only: contact_case_t, read_contact_case, combined_material
   use contact_compare, only: contact_spin_shift
+  use file_checks, only: read_input_file
+  use namelist_scan, only: scan_namelist_text
+  use input_limits, only: check_grid_size, length_in_range, offset_in_range, modulus_in_range
   implicit none
   private
   public :: config_t, read_config, build_patch, max_inline_rows, max_row_length
@@ -38,6 +41,7 @@ module namelist_input
     logical :: requested(n_load_cases) = .true.
     logical :: extrapolate = .false.            !< Richardson in the mesh size (mesh_extrapolation)
     integer :: extrapolate_levels = 3, refine_ratio = 2
+    character(len=:), allocatable :: refine     !< see dense_solver refine_modes
     ! &output
     character(len=:), allocatable :: table_file, traction_file
   end type config_t
@@ -69,12 +73,14 @@ contains
     logical :: material_given
     namelist /patch/ shape, semi_a, semi_b, mx, my, mask_file, mask_rows, dx, dy, x0, y0, contact_file, contact_case
     namelist /material/ g, nu
-    namelist /solver/ scheme, alpha, spin_shift, load_cases, extrapolate, extrapolate_levels, refine_ratio
+    character(len=32) :: refine
+    namelist /solver/ scheme, alpha, spin_shift, load_cases, extrapolate, extrapolate_levels, refine_ratio, refine
     namelist /output/ table_file, traction_file
 
     integer :: unit, ios, nrows
     logical :: group_present(size(group_names))
     character(len=512) :: msg
+    character(len=:), allocatable :: text
 
     shape = 'ellipse'
     semi_a = 1
@@ -99,18 +105,19 @@ contains
     extrapolate = .false.
     extrapolate_levels = 3
     refine_ratio = 2
+    refine = 'auto'
     table_file = ''
     traction_file = ''
 
     cfg%input_path = path
+    ! the whole file first: a folder, a binary file, text outside the groups,
+    ! unknown or repeated groups are errors the namelist read would not report
+    call read_input_file(path, 'input '''//path//'''', text, status)
+    if (.not. status%failed()) call scan_namelist_text(text, 'input '''//path//'''', group_names, group_present, status)
+    if (status%failed()) return
     open (newunit=unit, file=path, status='old', action='read', iostat=ios, iomsg=msg)
     if (ios /= 0) then
       call fail(status, exit_bad_input, 'input '''//path//''': cannot open ('//trim(msg)//')')
-      return
-    end if
-    call scan_groups(unit, path, group_present, status)
-    if (status%failed()) then
-      close (unit)
       return
     end if
 
@@ -157,6 +164,7 @@ contains
     cfg%extrapolate = extrapolate
     cfg%extrapolate_levels = extrapolate_levels
     cfg%refine_ratio = refine_ratio
+    cfg%refine = lower(trim(adjustl(refine)))
     cfg%table_file = trim(table_file)
     if (len(cfg%table_file) == 0) cfg%table_file = default_table_name(path)
     cfg%traction_file = trim(traction_file)
@@ -186,42 +194,6 @@ contains
 
   end subroutine read_config
 
-  !> Which known groups the file holds; any other '&name' is an error (a
-  !> misspelt group would otherwise be skipped in silence).
-  subroutine scan_groups(unit, path, found, status)
-    integer, intent(in) :: unit
-    character(len=*), intent(in) :: path
-    logical, intent(out) :: found(:)
-    type(status_t), intent(inout) :: status
-    character(len=256) :: line, word
-    integer :: ios, k, line_no, first, last
-
-    found = .false.
-    line_no = 0
-    do
-      read (unit, '(a)', iostat=ios) line
-      if (ios /= 0) exit
-      line_no = line_no + 1
-      line = adjustl(line)
-      if (line(1:1) /= '&') cycle
-      first = 2
-      last = scan(line(first:), ' /,'//achar(9)) + first - 2
-      if (last < first) last = len_trim(line)
-      word = lower(line(first:last))
-      if (trim(word) == 'end') cycle
-      k = findloc(group_names, trim(word), dim=1)
-      if (k == 0) then
-        call fail(status, exit_bad_input, 'input '''//path//''', line '//itoa(line_no)// &
-                  ': unknown namelist group &'//trim(word)//' (known: &patch, &material, &solver, &output)')
-        return
-      end if
-      found(k) = .true.
-    end do
-    if (.not. is_iostat_end(ios)) then
-      call fail(status, exit_bad_input, 'input '''//path//''': cannot be read as text')
-    end if
-  end subroutine scan_groups
-
   !> Number of inline mask rows given: up to the last non-blank one.
   pure integer function count_rows(rows) result(nrows)
     character(len=*), intent(in) :: rows(:)
@@ -243,14 +215,15 @@ contains
     where = 'input '''//cfg%input_path//''': '
     select case (cfg%shape)
     case ('ellipse')
-      if (.not. positive_finite(cfg%semi_a)) call fail(status, exit_bad_input, where// &
-          '&patch semi_a = '//rtoa(cfg%semi_a)//' (must be > 0 and finite)')
-      if (.not. positive_finite(cfg%semi_b)) call fail(status, exit_bad_input, where// &
-          '&patch semi_b = '//rtoa(cfg%semi_b)//' (must be > 0 and finite)')
+      if (.not. length_in_range(cfg%semi_a)) call fail(status, exit_bad_input, where// &
+          '&patch semi_a = '//rtoa(cfg%semi_a)//' (must be > 0, between 1e-30 and 1e30)')
+      if (.not. length_in_range(cfg%semi_b)) call fail(status, exit_bad_input, where// &
+          '&patch semi_b = '//rtoa(cfg%semi_b)//' (must be > 0, between 1e-30 and 1e30)')
       if (cfg%mx == 0) cfg%mx = default_cells
       if (cfg%my == 0) cfg%my = default_cells
       if (cfg%mx < 1) call fail(status, exit_bad_input, where//'&patch mx = '//itoa(cfg%mx)//' (must be >= 1)')
       if (cfg%my < 1) call fail(status, exit_bad_input, where//'&patch my = '//itoa(cfg%my)//' (must be >= 1)')
+      call check_grid_size(cfg%mx, cfg%my, where//'&patch mx, my: ', status)
       if (len(cfg%mask_file) > 0 .or. nrows > 0) call fail(status, exit_bad_input, where// &
           '&patch shape = ''ellipse'' takes no mask_file or mask_rows (use shape = ''mask'')')
     case ('mask')
@@ -264,10 +237,10 @@ contains
             '&patch mask_rows: a row is longer than '//itoa(len(mask_rows) - 1)//' cells (use mask_file)')
         if (nrows == size(mask_rows)) call fail(status, exit_bad_input, where// &
             '&patch mask_rows: more than '//itoa(size(mask_rows) - 1)//' rows (use mask_file)')
-        if (.not. positive_finite(cfg%dx)) call fail(status, exit_bad_input, where// &
-            '&patch dx = '//rtoa(cfg%dx)//' (an inline mask needs a cell size > 0)')
-        if (.not. positive_finite(cfg%dy)) call fail(status, exit_bad_input, where// &
-            '&patch dy = '//rtoa(cfg%dy)//' (an inline mask needs a cell size > 0)')
+        if (.not. length_in_range(cfg%dx)) call fail(status, exit_bad_input, where// &
+            '&patch dx = '//rtoa(cfg%dx)//' (an inline mask needs a cell size > 0, between 1e-30 and 1e30)')
+        if (.not. length_in_range(cfg%dy)) call fail(status, exit_bad_input, where// &
+            '&patch dy = '//rtoa(cfg%dy)//' (an inline mask needs a cell size > 0, between 1e-30 and 1e30)')
         if (cfg%mx /= 0 .and. cfg%mx /= len_trim(mask_rows(1))) call fail(status, exit_bad_input, where// &
             '&patch mx = '//itoa(cfg%mx)//' but mask row 1 has '//itoa(len_trim(mask_rows(1)))//' cells')
         if (cfg%my /= 0 .and. cfg%my /= nrows) call fail(status, exit_bad_input, where// &
@@ -276,8 +249,9 @@ contains
         if (cfg%dx < 0 .or. cfg%dy < 0) call fail(status, exit_bad_input, where// &
             '&patch dx, dy = '//rtoa(cfg%dx)//', '//rtoa(cfg%dy)//' (cell sizes must be > 0; the mask file header gives them)')
       end if
-      if (.not. (abs(cfg%x0) <= huge(1.0_real64) .and. abs(cfg%y0) <= huge(1.0_real64))) &
-        call fail(status, exit_bad_input, where//'&patch x0, y0 must be finite')
+      if (.not. (offset_in_range(cfg%x0) .and. offset_in_range(cfg%y0))) &
+        call fail(status, exit_bad_input, where//'&patch x0, y0 = '//rtoa(cfg%x0)//', '//rtoa(cfg%y0)// &
+                  ' (allowed: 0 or 1e-30 <= |x0|, |y0| <= 1e30)')
     case ('contact')
       if (len(cfg%contact_file) == 0) call fail(status, exit_bad_input, where// &
           '&patch shape = ''contact'' needs contact_file (a CONTACT .out file)')
@@ -292,8 +266,8 @@ contains
                 ''' (allowed: ''ellipse'', ''mask'', ''contact'')')
     end select
 
-    if (.not. positive_finite(cfg%g)) call fail(status, exit_bad_input, where// &
-        '&material g = '//rtoa(cfg%g)//' (must be > 0 and finite)')
+    if (.not. modulus_in_range(cfg%g)) call fail(status, exit_bad_input, where// &
+        '&material g = '//rtoa(cfg%g)//' (must be > 0, between 1e-100 and 1e100)')
     if (.not. (cfg%nu >= 0 .and. cfg%nu <= 0.5_real64)) call fail(status, exit_bad_input, where// &
         '&material nu = '//rtoa(cfg%nu)//' (allowed: 0 <= nu <= 0.5)')
 
@@ -313,6 +287,9 @@ contains
     if (cfg%extrapolate .and. (cfg%refine_ratio < 2 .or. cfg%refine_ratio > 4)) &
       call fail(status, exit_bad_input, where//'&solver refine_ratio = '//itoa(cfg%refine_ratio)// &
                 ' (allowed: 2, 3 or 4; every level multiplies the cells per direction by it)')
+    if (findloc([character(len=8) :: 'auto', 'always', 'never', 'lapack'], cfg%refine, dim=1) == 0) &
+      call fail(status, exit_bad_input, where//'&solver refine = '''//cfg%refine// &
+                ''' (allowed: ''auto'', ''always'', ''never'', ''lapack'')')
     call parse_load_cases(load_cases, cfg%requested, where, status)
   end subroutine validate
 
@@ -401,11 +378,6 @@ contains
     if (status%failed()) return
     call combined_material(cfg%contact%gg, cfg%contact%poiss, cfg%g, cfg%nu)
   end subroutine load_contact_case
-
-  pure logical function positive_finite(x)
-    real(real64), intent(in) :: x
-    positive_finite = x > 0 .and. x <= huge(x)
-  end function positive_finite
 
   !> '<input name without folder and extension>.tab' in the working folder.
   pure function default_table_name(path) result(name)

@@ -18,7 +18,8 @@ program kcreep
   use case_driver, only: solve_input
   use batch_driver, only: run_batch, estimate_memory, default_batch_table, text_t, exit_cases_failed
   use contact_compare, only: comparison_lines, contact_spin_shift
-  use table_output, only: run_record_t, table_lines, write_text_file, traction_lines
+  use table_output, only: run_record_t, table_lines, write_temporary, commit_temporary, &
+                          discard_temporary, traction_lines
   implicit none
 
   character(len=*), parameter :: version = '0.1.0'
@@ -44,10 +45,19 @@ program kcreep
   if (.not. status%failed()) call solve_input(input_path, '', .true., cfg, patch, record, traction, warnings, status)
   if (status%failed()) call stop_with(status)
 
-  call write_text_file(cfg%table_file, table_lines([record], warnings), 'table_file', status)
+  ! every output complete in its temporary file before any is renamed into
+  ! place: a failure (a full disk) leaves all the previous files as they were
+  call write_temporary(cfg%table_file, table_lines([record], warnings), 'table_file', status)
   if (.not. status%failed() .and. len(cfg%traction_file) > 0) &
-    call write_text_file(cfg%traction_file, traction_lines(patch, traction, cfg%requested), 'traction_file', status)
-  if (status%failed()) call stop_with(status)
+    call write_temporary(cfg%traction_file, traction_lines(patch, traction, cfg%requested), 'traction_file', status)
+  if (.not. status%failed()) call commit_temporary(cfg%table_file, 'table_file', status)
+  if (.not. status%failed() .and. len(cfg%traction_file) > 0) &
+    call commit_temporary(cfg%traction_file, 'traction_file', status)
+  if (status%failed()) then
+    call discard_temporary(cfg%table_file)
+    if (len(cfg%traction_file) > 0) call discard_temporary(cfg%traction_file)
+    call stop_with(status)
+  end if
 
   call print_summary()
 
@@ -183,6 +193,8 @@ contains
       end do
     end if
     write (output_unit, '(2x, a, es9.2, a, es9.2)') 'rcond ', record%rcond, ', backward error ', record%backward_error
+    write (output_unit, '(2x, a, es9.2, a, es9.2, a)') 'solve: relative residual ', record%relative_residual, &
+      ', backward error before refinement ', record%backward_error_initial, ', refine = '//trim(record%refine)
     write (output_unit, '(2x, a, 4f9.3)') 'time assemble factor solve total [s]:', record%t_assemble, &
       record%t_factor, record%t_solve, record%t_total
     write (output_unit, '(2x, a)') 'verdict: '//record%verdict//'   table: '//cfg%table_file

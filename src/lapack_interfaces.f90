@@ -30,6 +30,19 @@ module lapack_interfaces
       integer, intent(inout) :: iwork(*)
       integer, intent(out) :: info
     end subroutine dgecon
+    subroutine dgesvx(fact, trans, n, nrhs, a, lda, af, ldaf, ipiv, equed, r, c, b, ldb, x, ldx, &
+                      rcond, ferr, berr, work, iwork, info)
+      import :: real64
+      character(len=1), intent(in) :: fact, trans
+      character(len=1), intent(inout) :: equed
+      integer, intent(in) :: n, nrhs, lda, ldaf, ldb, ldx
+      real(real64), intent(inout) :: a(lda, *), af(ldaf, *), r(*), c(*), b(ldb, *)
+      integer, intent(inout) :: ipiv(*)
+      real(real64), intent(out) :: x(ldx, *), rcond, ferr(*), berr(*)
+      real(real64), intent(inout) :: work(*)
+      integer, intent(inout) :: iwork(*)
+      integer, intent(out) :: info
+    end subroutine dgesvx
     real(real64) function dlange(norm, m, n, a, lda, work)
       import :: real64
       character(len=1), intent(in) :: norm

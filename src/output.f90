@@ -4,7 +4,7 @@
 !> renamed into place only when complete, so an existing file is either
 !> replaced whole or left untouched.
 module table_output
-  use, intrinsic :: iso_fortran_env, only: real64
+  use, intrinsic :: iso_fortran_env, only: real64, int64
   use, intrinsic :: iso_c_binding, only: c_int, c_char, c_null_char
   use kcreep_status, only: status_t, fail, exit_io
   use kcreep_strings, only: itoa
@@ -13,7 +13,7 @@ module table_output
   implicit none
   private
   public :: run_record_t, table_lines, table_row, write_text_file, check_output_path, &
-            traction_lines, table_columns
+            traction_lines, table_columns, write_temporary, commit_temporary, discard_temporary
 
   !> One row of the coefficient table.
   type :: run_record_t
@@ -28,6 +28,8 @@ module table_output
     ! &solver extrapolate: Richardson limits of C11, C22, C23, error estimates, orders used
     logical :: extrapolated = .false.
     real(real64) :: ext(3) = 0, ext_error(3) = 0, ext_order(3) = 0
+    real(real64) :: backward_error_initial = 0, relative_residual = 0   !< before refinement
+    character(len=:), allocatable :: refine                              !< mode and whether it refined
   end type run_record_t
 
   integer, parameter :: line_length = 1024
@@ -137,7 +139,18 @@ contains
     character(len=*), intent(in) :: path, variable
     character(len=*), intent(in) :: lines(:)
     type(status_t), intent(inout) :: status
+    call write_temporary(path, lines, variable, status)
+    if (.not. status%failed()) call commit_temporary(path, variable, status)
+  end subroutine write_text_file
+
+  !> First half of write_text_file: the complete temporary file beside path.
+  !> On any error (a full disk among them) the temporary file is removed.
+  subroutine write_temporary(path, lines, variable, status)
+    character(len=*), intent(in) :: path, variable
+    character(len=*), intent(in) :: lines(:)
+    type(status_t), intent(inout) :: status
     integer :: unit, ios, k
+    integer(int64) :: expected, written
     character(len=512) :: msg
     character(len=:), allocatable :: tmp
 
@@ -153,25 +166,49 @@ contains
     end do
     if (ios == 0) flush (unit, iostat=ios, iomsg=msg)
     if (ios /= 0) then
-      close (unit, status='delete')
+      close (unit, status='delete', iostat=k)
       call fail(status, exit_io, variable//' '''//path//''': write failed ('//trim(msg)// &
                 '); the previous file, if any, is unchanged')
       return
     end if
     close (unit, iostat=ios, iomsg=msg)
     if (ios /= 0) then
-      open (newunit=unit, file=tmp, status='old', iostat=k)
-      if (k == 0) close (unit, status='delete')
+      call discard_temporary(path)
       call fail(status, exit_io, variable//' '''//path//''': write failed ('//trim(msg)// &
                 '); the previous file, if any, is unchanged')
       return
     end if
-    if (c_rename(tmp//c_null_char, path//c_null_char) /= 0) then
-      open (newunit=unit, file=tmp, status='old', iostat=k)
-      if (k == 0) close (unit, status='delete')
+    ! libgfortran (12.2) drops ENOSPC from formatted writes without setting
+    ! iostat: a full disk shows only as a short file, so check the size
+    expected = 0
+    do k = 1, size(lines)
+      expected = expected + len_trim(lines(k)) + 1
+    end do
+    inquire (file=tmp, size=written)
+    if (written /= expected) then
+      call discard_temporary(path)
+      call fail(status, exit_io, variable//' '''//path//''': write failed (only '//itoa(int(written))//' of '// &
+                itoa(int(expected))//' bytes reached the disk; is it full?); the previous file, if any, is unchanged')
+    end if
+  end subroutine write_temporary
+
+  !> Second half: rename the finished temporary file onto path.
+  subroutine commit_temporary(path, variable, status)
+    character(len=*), intent(in) :: path, variable
+    type(status_t), intent(inout) :: status
+    if (c_rename(temporary_name(path)//c_null_char, path//c_null_char) /= 0) then
+      call discard_temporary(path)
       call fail(status, exit_io, variable//' '''//path//''': cannot rename the finished temporary file into place')
     end if
-  end subroutine write_text_file
+  end subroutine commit_temporary
+
+  !> Remove the temporary file of path, if there is one.
+  subroutine discard_temporary(path)
+    character(len=*), intent(in) :: path
+    integer :: unit, ios
+    open (newunit=unit, file=temporary_name(path), status='old', iostat=ios)
+    if (ios == 0) close (unit, status='delete', iostat=ios)
+  end subroutine discard_temporary
 
   function temporary_name(path) result(tmp)
     character(len=*), intent(in) :: path

@@ -9,6 +9,8 @@ module patch_grid
   use, intrinsic :: iso_fortran_env, only: real64
   use kcreep_status, only: status_t, fail, exit_bad_input
   use kcreep_strings, only: itoa, rtoa, printable
+  use file_checks, only: read_input_file
+  use input_limits, only: check_grid_size, length_in_range, offset_in_range
   implicit none
   private
   public :: patch_t, ellipse_patch, mask_patch, read_mask_file, parse_mask_rows
@@ -66,6 +68,8 @@ contains
     type(patch_t), intent(out) :: patch
     type(status_t), intent(inout) :: status
 
+    call check_grid_size(size(inside, 1), size(inside, 2), trim(source)//': ', status)
+    if (status%failed()) return
     patch%kind = 'mask'
     patch%mx = size(inside, 1)
     patch%my = size(inside, 2)
@@ -133,17 +137,21 @@ contains
     integer :: unit, ios, mx, my, nrows
     real(real64) :: dx, dy, x0, y0
     character(len=:), allocatable :: line
-    character(len=:), allocatable :: rows(:)
+    character(len=:), allocatable :: rows(:), text
     logical, allocatable :: inside(:, :)
     character(len=512) :: msg
 
+    ! a folder, an unreadable or a huge file is refused before parsing
+    call read_input_file(path, 'mask_file '''//trim(path)//'''', text, status)
+    if (status%failed()) return
+    deallocate (text)
     open (newunit=unit, file=path, status='old', action='read', iostat=ios, iomsg=msg)
     if (ios /= 0) then
       call fail(status, exit_bad_input, 'mask_file '''//trim(path)//''': cannot open ('//trim(msg)//')')
       return
     end if
     call read_line(unit, line, ios)
-    if (ios == 0) read (line, *, iostat=ios) mx, my, dx, dy, x0, y0
+    if (ios == 0) call parse_header(line, mx, my, dx, dy, x0, y0, ios)
     if (ios /= 0) then
       call fail(status, exit_bad_input, 'mask_file '''//trim(path)// &
                 ''': line 1 must be the header "mx my dx dy x0 y0" (two integers, four reals)')
@@ -153,12 +161,14 @@ contains
     if (mx < 1 .or. my < 1) then
       call fail(status, exit_bad_input, 'mask_file '''//trim(path)//''': header mx = '//itoa(mx)// &
                 ', my = '//itoa(my)//' (both must be >= 1)')
-    else if (.not. (dx > 0 .and. dy > 0)) then
+    else if (.not. (length_in_range(dx) .and. length_in_range(dy))) then
       call fail(status, exit_bad_input, 'mask_file '''//trim(path)//''': header dx, dy = '// &
-                rtoa(dx)//', '//rtoa(dy)//' (cell sizes must be > 0)')
-    else if (.not. (abs(x0) <= huge(x0) .and. abs(y0) <= huge(y0))) then
-      call fail(status, exit_bad_input, 'mask_file '''//trim(path)//''': header x0, y0 must be finite')
+                rtoa(dx)//', '//rtoa(dy)//' (cell sizes must be > 0, between 1e-30 and 1e30)')
+    else if (.not. (offset_in_range(x0) .and. offset_in_range(y0))) then
+      call fail(status, exit_bad_input, 'mask_file '''//trim(path)//''': header x0, y0 = '// &
+                rtoa(x0)//', '//rtoa(y0)//' (allowed: 0 or 1e-30 <= |x0|, |y0| <= 1e30)')
     end if
+    call check_grid_size(mx, my, 'mask_file '''//trim(path)//''': header: ', status)
     if (status%failed()) then
       close (unit)
       return
@@ -191,6 +201,37 @@ contains
     if (status%failed()) return
     call mask_patch(inside, dx, dy, x0, y0, 'mask_file '''//trim(path)//'''', patch, status)
   end subroutine read_mask_file
+
+  !> The six header fields, exactly: list-directed input alone would accept a
+  !> '/' or a short line and leave the missing values undefined.
+  subroutine parse_header(line, mx, my, dx, dy, x0, y0, ios)
+    character(len=*), intent(in) :: line
+    integer, intent(out) :: mx, my, ios
+    real(real64), intent(out) :: dx, dy, x0, y0
+    integer :: first, last, nwords
+    character(len=64) :: words(7)
+    character(len=*), parameter :: separators = ' ,'//achar(9)//achar(13)
+
+    nwords = 0
+    last = 0
+    ios = 1
+    mx = 0; my = 0; dx = 0; dy = 0; x0 = 0; y0 = 0
+    do
+      first = verify(line(last + 1:), separators)
+      if (first == 0) exit
+      first = first + last
+      last = scan(line(first:), separators)
+      last = merge(len(line), first + last - 2, last == 0)
+      nwords = nwords + 1
+      if (nwords > size(words) .or. last - first + 1 > len(words)) return
+      words(nwords) = line(first:last)
+      if (scan(words(nwords), '/*') > 0) return
+    end do
+    if (nwords /= 6) return
+    read (words(1), *, iostat=ios) mx
+    if (ios == 0) read (words(2), *, iostat=ios) my
+    if (ios == 0) read (words(3:6), *, iostat=ios) dx, dy, x0, y0
+  end subroutine parse_header
 
   !> Number the patch cells; an empty patch is an error.
   subroutine index_cells(patch, source, status)

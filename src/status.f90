@@ -4,6 +4,7 @@
 !> sets it with `fail` and returns; callers check `status%failed()`. Only the
 !> main program prints the message, as a single line on standard error.
 module kcreep_status
+  use kcreep_strings, only: one_line
   implicit none
   private
   public :: status_t, fail
@@ -33,7 +34,7 @@ contains
     character(len=*), intent(in) :: message
     if (status%code /= 0) return
     status%code = code
-    status%message = message
+    status%message = one_line(message)   ! bad input may carry newlines or control bytes
   end subroutine fail
 
 end module kcreep_status

@@ -3,7 +3,7 @@ module kcreep_strings
   use, intrinsic :: iso_fortran_env, only: real64
   implicit none
   private
-  public :: itoa, rtoa, printable, lower, folder_of, resolve_path
+  public :: itoa, rtoa, printable, lower, one_line, folder_of, resolve_path
 
 contains
 
@@ -36,6 +36,32 @@ contains
       s = c
     end if
   end function printable
+
+  !> text with every control byte shown as \xNN, so that a message stays one
+  !> line whatever bytes a bad input put into it.
+  pure function one_line(text) result(s)
+    character(len=*), intent(in) :: text
+    character(len=:), allocatable :: s
+    integer :: i, j, code, length
+    ! sized first: appending byte by byte is quadratic on long bad input
+    length = 0
+    do i = 1, len(text)
+      code = iachar(text(i:i))
+      length = length + merge(4, 1, code < 32 .or. code == 127)
+    end do
+    allocate (character(len=length) :: s)
+    j = 0
+    do i = 1, len(text)
+      code = iachar(text(i:i))
+      if (code < 32 .or. code == 127) then
+        s(j + 1:j + 4) = printable(text(i:i))
+        j = j + 4
+      else
+        s(j + 1:j + 1) = text(i:i)
+        j = j + 1
+      end if
+    end do
+  end function one_line
 
   pure function lower(text) result(s)
     character(len=*), intent(in) :: text
