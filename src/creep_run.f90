@@ -7,8 +7,9 @@ module creep_run
   use kcreep_strings, only: rtoa
   use patch_grid, only: patch_t
   use namelist_input, only: config_t
-  use tang_assembly, only: operator_table_t, build_operator_table, rigid_creepage, n_load_cases
-  use dense_solver, only: dense_diagnostics_t, solve_dense, check_dense_memory
+  use tang_assembly, only: operator_table_t, build_operator_table, n_load_cases
+  use dense_solver, only: dense_diagnostics_t
+  use linear_solve, only: solve_load_cases
   use creep_coefficients, only: creep_matrix, normalised, traction_coherence
   use kalker_table, only: kalker_coefficients
   use table_output, only: run_record_t
@@ -35,38 +36,20 @@ contains
     type(status_t), intent(inout) :: status
     type(operator_table_t) :: table
     type(dense_diagnostics_t) :: diag
-    real(real64), allocatable :: rhs(:, :)
-    integer :: j, col, n
+    integer :: n
     integer(int64) :: t0, t1, rate
     real(real64) :: t_table
 
     allocate (warnings(0))
     call system_clock(t0, rate)
     n = patch%n
-    call check_dense_memory(n, status)
-    if (status%failed()) return
     call build_operator_table(patch, cfg%scheme, cfg%nu, cfg%g, table)
     call system_clock(t1)
     t_table = real(t1 - t0, real64) / rate
 
-    allocate (rhs(2 * n, count(cfg%requested)))
-    col = 0
-    do j = 1, n_load_cases
-      if (.not. cfg%requested(j)) cycle
-      col = col + 1
-      call rigid_creepage(patch, cfg%scheme, j, rhs(:, col))
-    end do
-    call solve_dense(patch, table, rhs, diag, status)
+    ! dense or iterative, only the systems the requested cases need (linear_solve)
+    call solve_load_cases(cfg%solve, cfg%scheme, cfg%nu, patch, table, cfg%requested, traction, diag, status)
     if (status%failed()) return
-
-    allocate (traction(2 * n, n_load_cases))
-    traction = ieee_value(1.0_real64, ieee_quiet_nan)
-    col = 0
-    do j = 1, n_load_cases
-      if (.not. cfg%requested(j)) cycle
-      col = col + 1
-      traction(:, j) = rhs(:, col)
-    end do
 
     record%case_name = case_name(cfg%input_path)
     record%scheme = cfg%scheme%name
@@ -86,6 +69,8 @@ contains
     end if
     record%rcond = diag%rcond
     record%backward_error = diag%backward_error
+    record%method = diag%method
+    record%iterations = diag%iterations
     record%t_assemble = t_table + diag%t_assemble
     record%t_factor = diag%t_factor
     record%t_solve = diag%t_solve

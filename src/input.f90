@@ -9,6 +9,7 @@ module namelist_input
   use kcreep_strings, only: itoa, rtoa, lower
   use patch_grid, only: patch_t, ellipse_patch, mask_patch, read_mask_file, parse_mask_rows
   use tang_assembly, only: scheme_t, load_case_names, n_load_cases
+  use solver_options, only: solver_options_t, validate_solver_options
   implicit none
   private
   public :: config_t, read_config, build_patch, max_inline_rows, max_row_length
@@ -31,6 +32,7 @@ module namelist_input
     ! &solver
     type(scheme_t) :: scheme
     logical :: requested(n_load_cases) = .true.
+    type(solver_options_t) :: solve           !< method, tolerance, splits
     ! &output
     character(len=:), allocatable :: table_file, traction_file
   end type config_t
@@ -43,15 +45,17 @@ contains
     type(status_t), intent(inout) :: status
 
     ! namelist variables, with their defaults
-    character(len=32) :: shape, scheme
-    real(real64) :: semi_a, semi_b, dx, dy, x0, y0, g, nu, alpha, spin_shift
-    integer :: mx, my
+    character(len=32) :: shape, scheme, method
+    real(real64) :: semi_a, semi_b, dx, dy, x0, y0, g, nu, alpha, spin_shift, tolerance
+    integer :: mx, my, max_iterations, restart
+    logical :: split_systems
     character(len=4096) :: mask_file, table_file, traction_file
     character(len=64) :: load_cases
     character(len=max_row_length), allocatable :: mask_rows(:)
     namelist /patch/ shape, semi_a, semi_b, mx, my, mask_file, mask_rows, dx, dy, x0, y0
     namelist /material/ g, nu
-    namelist /solver/ scheme, alpha, spin_shift, load_cases
+    namelist /solver/ scheme, alpha, spin_shift, load_cases, method, tolerance, max_iterations, restart, &
+                      split_systems
     namelist /output/ table_file, traction_file
 
     integer :: unit, ios, nrows
@@ -76,6 +80,11 @@ contains
     alpha = 0.5_real64
     spin_shift = 0
     load_cases = 'xi eta phi'
+    method = 'auto'
+    tolerance = cfg%solve%tolerance
+    max_iterations = cfg%solve%max_iterations
+    restart = cfg%solve%restart
+    split_systems = cfg%solve%split_systems
     table_file = ''
     traction_file = ''
 
@@ -123,6 +132,11 @@ contains
     cfg%scheme%name = lower(trim(adjustl(scheme)))
     cfg%scheme%alpha = alpha
     cfg%scheme%spin_shift = spin_shift
+    cfg%solve%method = lower(trim(adjustl(method)))
+    cfg%solve%tolerance = tolerance
+    cfg%solve%max_iterations = max_iterations
+    cfg%solve%restart = restart
+    cfg%solve%split_systems = split_systems
     cfg%table_file = trim(table_file)
     if (len(cfg%table_file) == 0) cfg%table_file = default_table_name(path)
     cfg%traction_file = trim(traction_file)
@@ -258,6 +272,7 @@ contains
     if (.not. (abs(cfg%scheme%spin_shift) <= 1)) call fail(status, exit_bad_input, where// &
         '&solver spin_shift = '//rtoa(cfg%scheme%spin_shift)//' (allowed: -1 <= spin_shift <= 1 cell)')
     call parse_load_cases(load_cases, cfg%requested, where, status)
+    call validate_solver_options(cfg%solve, where, status)
   end subroutine validate
 
   !> load_cases: words from xi, eta, phi separated by blanks or commas.

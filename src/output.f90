@@ -25,12 +25,14 @@ module table_output
     real(real64) :: klt(3) = 0               !< Kalker's C11, C22, C23 (NaN unless ellipse)
     real(real64) :: t_assemble = 0, t_factor = 0, t_solve = 0, t_total = 0
     real(real64) :: rcond = 0, backward_error = 0
+    character(len=:), allocatable :: method   !< 'dense' or 'iterative'
+    integer :: iterations = 0                 !< GMRES iterations, 0 for dense
   end type run_record_t
 
   integer, parameter :: line_length = 1024
   character(len=*), parameter :: table_columns = &
     'case scheme mx my n alpha nu g c f11 f12 f13 f21 f22 f23 f31 f32 f33 c11 c22 c23 '// &
-    'klt11 klt22 klt23 t_assemble t_factor t_solve t_total rcond berr verdict'
+    'klt11 klt22 klt23 t_assemble t_factor t_solve t_total rcond berr verdict iterations'
 
   interface
     integer(c_int) function c_rename(old, new) bind(c, name='rename')
@@ -54,7 +56,7 @@ contains
       '# kcreep: creep coefficients of full-adhesion steady rolling', &
       '# (Fx, Fy, Mz) = -[fij] (xi, eta, phi); rigid slip (xi - phi*y, eta + phi*x), leading edge at +x', &
       '# c11 = f11/(g c^2), c22 = f22/(g c^2), c23 = f23/(g c^3); kltij: Kalker table E3 (ellipses)', &
-      '# times in s; rcond: LAPACK 1-norm estimate; berr: normwise backward error; verdict: see README']
+      '# times in s; rcond: LAPACK 1-norm estimate; berr: backward error (iterative: relative residual)']
     integer :: k, nw
 
     nw = size(warnings)
@@ -74,10 +76,10 @@ contains
     character(len=:), allocatable :: line
     character(len=1024) :: buf
     write (buf, '(a, 1x, a, 3(1x, i0), 4(1x, es23.15e3), 9(1x, es23.15e3), 6(1x, es23.15e3), &
-                & 4(1x, es10.3e2), 2(1x, es10.3e3), 1x, a)') &
+                & 4(1x, es10.3e2), 2(1x, es10.3e3), 1x, a, 1x, i0)') &
       r%case_name, r%scheme, r%mx, r%my, r%n, r%alpha, r%nu, r%g, r%c, &
       transpose(r%f), r%cn, r%klt, r%t_assemble, r%t_factor, r%t_solve, r%t_total, &
-      r%rcond, r%backward_error, r%verdict
+      r%rcond, r%backward_error, r%verdict, r%iterations
     line = trim(buf)
   end function table_row
 

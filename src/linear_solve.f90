@@ -1,0 +1,337 @@
+!> Solve the requested load cases by the chosen method.
+!>
+!> dense:     LU of each subsystem the scene needs (system_split): a
+!>            y-symmetric patch gives two half-size systems, nu = 0 splits
+!>            px from py, and a system no requested case needs is skipped.
+!>            Residuals for the backward error come from the FFT operator
+!>            (O(n log n) instead of O(n^2)).
+!> iterative: GMRES on the full system with the FFT operator and the strip
+!>            preconditioner; all requested cases in lockstep.
+!> auto:      the one estimated faster, and iterative whenever the dense
+!>            matrix does not fit in the memory available.
+module linear_solve
+  use, intrinsic :: iso_fortran_env, only: real64, int64
+  use, intrinsic :: ieee_arithmetic, only: ieee_value, ieee_quiet_nan
+  use kcreep_status, only: status_t, fail, exit_numerical, exit_bad_input
+  use kcreep_strings, only: itoa, rtoa
+  use lapack_interfaces, only: dgetrf, dgetrs, dgecon, dlange
+  use patch_grid, only: patch_t
+  use tang_assembly, only: operator_table_t, scheme_t, rigid_creepage, n_load_cases
+  use dense_solver, only: dense_diagnostics_t, available_memory_bytes, backward_error, refine_threshold
+  use system_split, only: subsystem_t, plan_subsystems, assemble_subsystem, restrict_to, expand_from
+  use fft_operator, only: fft_operator_t, create_fft_operator, destroy_fft_operator, apply_fft_operator
+  use strip_preconditioner, only: strip_preconditioner_t, build_strip_preconditioner, apply_strip_preconditioner
+  use krylov, only: block_operator_t, gmres_result_t, gmres
+  use solver_options, only: solver_options_t
+  implicit none
+  private
+  public :: solve_load_cases, choose_method
+
+  type, extends(block_operator_t) :: fft_block_t
+    type(fft_operator_t) :: op
+  contains
+    procedure :: apply => apply_fft_block
+  end type fft_block_t
+
+  type, extends(block_operator_t) :: strip_block_t
+    type(strip_preconditioner_t) :: p
+  contains
+    procedure :: apply => apply_strip_block
+  end type strip_block_t
+
+  !> Rates for the 'auto' choice, measured on the 2-core development machine
+  !> (scripts/bench.sh): the LU factorisation sustains about this many flop/s...
+  real(real64), parameter :: dense_rate = 4e10_real64
+  !> ...and one GMRES step costs about this many seconds per (grid cell of the
+  !> padded FFT grid x log2 of its size), preconditioner included.
+  real(real64), parameter :: iterative_step_cost = 4e-9_real64
+  !> GMRES iterations assumed by the estimate (measured 30 to 70 up to 400 x 400).
+  integer, parameter :: assumed_iterations = 60
+
+contains
+
+  !> 'dense' or 'iterative' for these options and this patch.
+  function choose_method(opts, patch, subs) result(method)
+    type(solver_options_t), intent(in) :: opts
+    type(patch_t), intent(in) :: patch
+    type(subsystem_t), intent(in) :: subs(:)
+    character(len=:), allocatable :: method
+    real(real64) :: t_dense, t_iterative, grid
+    integer :: i
+    if (opts%method /= 'auto') then
+      method = opts%method
+      return
+    end if
+    if (.not. dense_fits(subs)) then
+      method = 'iterative'
+      return
+    end if
+    t_dense = 0
+    do i = 1, size(subs)
+      t_dense = t_dense + 2 * real(subs(i)%m, real64)**3 / 3 / dense_rate
+    end do
+    grid = 4 * real(patch%mx, real64) * patch%my
+    t_iterative = assumed_iterations * iterative_step_cost * grid * log(grid) / log(2.0_real64)
+    method = merge('dense    ', 'iterative', t_dense <= t_iterative)
+    method = trim(method)
+  end function choose_method
+
+  !> The largest dense subsystem matrix (plus its copy-free solve) fits in available memory.
+  logical function dense_fits(subs)
+    type(subsystem_t), intent(in) :: subs(:)
+    integer(int64) :: have, need
+    integer :: i
+    need = 0
+    do i = 1, size(subs)
+      need = max(need, 8_int64 * subs(i)%m * subs(i)%m)
+    end do
+    have = available_memory_bytes()
+    dense_fits = have < 0 .or. need <= have * 9 / 10
+  end function dense_fits
+
+  !> traction(:, j): (px, py) of load case j for unit creepage; NaN for cases not requested.
+  subroutine solve_load_cases(opts, scheme, nu, patch, table, requested, traction, diag, status)
+    type(solver_options_t), intent(in) :: opts
+    type(scheme_t), intent(in) :: scheme
+    real(real64), intent(in) :: nu
+    type(patch_t), intent(in) :: patch
+    type(operator_table_t), intent(in) :: table
+    logical, intent(in) :: requested(n_load_cases)
+    real(real64), allocatable, intent(out) :: traction(:, :)
+    type(dense_diagnostics_t), intent(out) :: diag
+    type(status_t), intent(inout) :: status
+    type(subsystem_t), allocatable :: subs(:)
+    real(real64), allocatable :: rhs(:, :)
+    integer :: j, n
+
+    n = patch%n
+    allocate (rhs(2 * n, n_load_cases), traction(2 * n, n_load_cases))
+    do j = 1, n_load_cases
+      call rigid_creepage(patch, scheme, j, rhs(:, j))
+    end do
+    traction = ieee_value(1.0_real64, ieee_quiet_nan)
+    subs = plan_subsystems(patch, nu, opts%split_systems, requested)
+    diag%method = choose_method(opts, patch, subs)
+    if (diag%method == 'dense') then
+      if (.not. dense_fits(subs)) then
+        call fail(status, exit_bad_input, 'method = ''dense'': the largest dense matrix ('// &
+                  itoa(maxval(subs%m))//' unknowns) needs '// &
+                  rtoa(8 * real(maxval(subs%m), real64)**2 / 2.0_real64**30)//' GiB, only '// &
+                  rtoa(real(available_memory_bytes(), real64) / 2.0_real64**30)// &
+                  ' GiB are available (use method = ''iterative'' or ''auto'')')
+        return
+      end if
+      call solve_dense_split(patch, table, subs, requested, rhs, traction, diag, status)
+    else
+      call check_iterative_memory(opts, patch, count(requested), status)
+      if (status%failed()) return
+      call solve_iterative(opts, patch, table, requested, rhs, traction, diag, status)
+      if (status%failed() .and. opts%method == 'auto' .and. status%code == exit_numerical .and. &
+          dense_fits(subs)) then
+        ! auto promised an answer: GMRES stalls only on hard (near-degenerate)
+        ! systems, which the dense LU still solves and the verdict then judges
+        status = status_t()
+        diag%method = 'dense'
+        diag%iterations = 0
+        call solve_dense_split(patch, table, subs, requested, rhs, traction, diag, status)
+      end if
+    end if
+  end subroutine solve_load_cases
+
+  !> Fail before allocating when the GMRES basis, FFT grids and strip factors cannot fit.
+  subroutine check_iterative_memory(opts, patch, n_cases, status)
+    type(solver_options_t), intent(in) :: opts
+    type(patch_t), intent(in) :: patch
+    integer, intent(in) :: n_cases
+    type(status_t), intent(inout) :: status
+    real(real64) :: need, have
+    ! Krylov basis + a few work vectors, 4 padded grids per case, row factors (<= 2 n mx)
+    need = 8 * (2 * real(patch%n, real64) * ((opts%restart + 6) * n_cases) + &
+                4 * n_cases * 4 * real(patch%mx, real64) * patch%my + 2 * real(patch%n, real64) * patch%mx)
+    have = real(available_memory_bytes(), real64)
+    if (have > 0 .and. need > have) then
+      call fail(status, exit_bad_input, 'the iterative solver for '//itoa(patch%n)//' cells needs about '// &
+                rtoa(need / 2.0_real64**30)//' GiB, only '//rtoa(have / 2.0_real64**30)// &
+                ' GiB are available (use a coarser grid, fewer load_cases or a smaller restart)')
+    end if
+  end subroutine check_iterative_memory
+
+  subroutine solve_dense_split(patch, table, subs, requested, rhs, traction, diag, status)
+    type(patch_t), intent(in) :: patch
+    type(operator_table_t), intent(in) :: table
+    type(subsystem_t), intent(in) :: subs(:)
+    logical, intent(in) :: requested(n_load_cases)
+    real(real64), intent(in) :: rhs(:, :)
+    real(real64), intent(inout) :: traction(:, :)
+    type(dense_diagnostics_t), intent(inout) :: diag
+    type(status_t), intent(inout) :: status
+    type(fft_operator_t) :: op
+    real(real64), allocatable :: a(:, :), b(:, :), x(:, :), r(:, :), work(:)
+    integer, allocatable :: ipiv(:), iwork(:), cases(:)
+    integer :: i, j, m, nrhs, info, n
+    integer(int64) :: t0, t1, rate
+    real(real64) :: anorm_1, anorm_inf, rcond, berr
+
+    n = patch%n
+    call system_clock(t0, rate)
+    call create_fft_operator(patch, table, n_load_cases, op)
+    call system_clock(t1)
+    diag%t_solve = real(t1 - t0, real64) / rate
+    diag%rcond = huge(1.0_real64)
+    diag%backward_error = 0
+    diag%backward_error_initial = 0
+    do j = 1, n_load_cases
+      if (requested(j)) traction(:, j) = 0
+    end do
+    do i = 1, size(subs)
+      associate (s => subs(i))
+        m = s%m
+        cases = pack([(j, j=1, n_load_cases)], s%serves .and. requested)
+        nrhs = size(cases)
+        call system_clock(t0)
+        allocate (a(m, m), ipiv(m), work(4 * m), iwork(m))
+        call assemble_subsystem(patch, table, s, a)
+        call system_clock(t1)
+        diag%t_assemble = diag%t_assemble + real(t1 - t0, real64) / rate
+
+        t0 = t1
+        anorm_1 = dlange('1', m, m, a, m, work)
+        anorm_inf = dlange('I', m, m, a, m, work)
+        call dgetrf(m, m, a, m, ipiv, info)
+        if (info > 0) then
+          call fail(status, exit_numerical, 'the influence matrix ('//s%label//') is exactly singular (LU pivot '// &
+                    itoa(info)//' is zero); the collocation point or the patch is degenerate')
+          return
+        end if
+        call dgecon('1', m, a, m, anorm_1, rcond, work, iwork, info)
+        diag%rcond = min(diag%rcond, rcond)
+        call system_clock(t1)
+        diag%t_factor = diag%t_factor + real(t1 - t0, real64) / rate
+
+        t0 = t1
+        allocate (b(m, nrhs), r(m, nrhs))
+        do j = 1, nrhs
+          call restrict_to(s, n, rhs(:, cases(j)), b(:, j))
+        end do
+        x = b
+        call dgetrs('N', m, nrhs, a, m, ipiv, x, m, info)
+        call residual(s, b, x, r)
+        berr = backward_error(r, b, x, anorm_inf)
+        diag%backward_error_initial = max(diag%backward_error_initial, berr)
+        if (berr > refine_threshold) then
+          call dgetrs('N', m, nrhs, a, m, ipiv, r, m, info)
+          x = x + r
+          call residual(s, b, x, r)
+          berr = backward_error(r, b, x, anorm_inf)
+          diag%refined = .true.
+        end if
+        diag%backward_error = max(diag%backward_error, berr)
+        do j = 1, nrhs
+          call expand_from(s, n, x(:, j), traction(:, cases(j)))
+        end do
+        deallocate (a, ipiv, work, iwork, b, r, x)
+        call system_clock(t1)
+        diag%t_solve = diag%t_solve + real(t1 - t0, real64) / rate
+      end associate
+    end do
+    call destroy_fft_operator(op)
+
+  contains
+
+    !> r = b - A_s x: the full traction x stands for, through the FFT operator, at the subsystem's rows.
+    subroutine residual(s, b, x, r)
+      type(subsystem_t), intent(in) :: s
+      real(real64), intent(in) :: b(:, :), x(:, :)
+      real(real64), intent(out) :: r(:, :)
+      real(real64), allocatable :: full(:, :), ax(:, :)
+      integer :: k
+      allocate (full(2 * n, size(x, 2)), ax(2 * n, size(x, 2)))
+      full = 0
+      do k = 1, size(x, 2)
+        call expand_from(s, n, x(:, k), full(:, k))
+      end do
+      call apply_fft_operator(op, full, ax)
+      do k = 1, size(x, 2)
+        call restrict_to(s, n, ax(:, k), r(:, k))
+        r(:, k) = b(:, k) - r(:, k)
+      end do
+    end subroutine residual
+
+  end subroutine solve_dense_split
+
+  subroutine solve_iterative(opts, patch, table, requested, rhs, traction, diag, status)
+    type(solver_options_t), intent(in) :: opts
+    type(patch_t), intent(in) :: patch
+    type(operator_table_t), intent(in) :: table
+    logical, intent(in) :: requested(n_load_cases)
+    real(real64), intent(in) :: rhs(:, :)
+    real(real64), intent(inout) :: traction(:, :)
+    type(dense_diagnostics_t), intent(inout) :: diag
+    type(status_t), intent(inout) :: status
+    type(fft_block_t) :: a
+    type(strip_block_t) :: m_inv
+    type(gmres_result_t) :: result
+    real(real64), allocatable :: x(:, :)
+    integer, allocatable :: cases(:)
+    integer(int64) :: t0, t1, rate
+    integer :: j, worst
+
+    cases = pack([(j, j=1, n_load_cases)], requested)
+    call system_clock(t0, rate)
+    call create_fft_operator(patch, table, size(cases), a%op)
+    call system_clock(t1)
+    diag%t_assemble = real(t1 - t0, real64) / rate
+    t0 = t1
+    call build_strip_preconditioner(patch, table, m_inv%p, status)
+    if (status%failed()) return
+    call system_clock(t1)
+    diag%t_factor = real(t1 - t0, real64) / rate
+    t0 = t1
+    allocate (x(2 * patch%n, size(cases)))
+    x = 0
+    call gmres(a, m_inv, rhs(:, cases), x, opts%tolerance, opts%restart, opts%max_iterations, result)
+    call system_clock(t1)
+    diag%t_solve = real(t1 - t0, real64) / rate
+    call destroy_fft_operator(a%op)
+    diag%rcond = ieee_value(1.0_real64, ieee_quiet_nan)   ! no factorisation to estimate it from
+    diag%backward_error = maxval(result%relative_residual)
+    diag%backward_error_initial = diag%backward_error
+    diag%iterations = maxval(result%iterations)
+    if (.not. all(result%converged)) then
+      worst = maxloc(result%relative_residual, dim=1)
+      call fail(status, exit_numerical, 'the iterative solver did not converge: load case '// &
+                trim(case_word(cases(worst)))//' has relative residual '// &
+                rtoa(result%relative_residual(worst))//' after '//itoa(result%iterations(worst))// &
+                ' GMRES iterations (tolerance '//rtoa(opts%tolerance)// &
+                '; raise max_iterations or use method = ''dense'')')
+      return
+    end if
+    do j = 1, size(cases)
+      traction(:, cases(j)) = x(:, j)
+    end do
+
+  contains
+
+    pure function case_word(j) result(w)
+      integer, intent(in) :: j
+      character(len=3) :: w
+      w = merge('xi ', merge('eta', 'phi', j == 2), j == 1)
+    end function case_word
+
+  end subroutine solve_iterative
+
+  subroutine apply_fft_block(self, x, y)
+    class(fft_block_t), intent(inout) :: self
+    real(real64), intent(in) :: x(:, :)
+    real(real64), intent(out) :: y(:, :)
+    call apply_fft_operator(self%op, x, y)
+  end subroutine apply_fft_block
+
+  subroutine apply_strip_block(self, x, y)
+    class(strip_block_t), intent(inout) :: self
+    real(real64), intent(in) :: x(:, :)
+    real(real64), intent(out) :: y(:, :)
+    call apply_strip_preconditioner(self%p, x, y)
+  end subroutine apply_strip_block
+
+end module linear_solve
