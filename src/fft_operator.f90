@@ -13,6 +13,7 @@ module fft_operator
   use, intrinsic :: iso_fortran_env, only: real64
   use patch_grid, only: patch_t
   use tang_assembly, only: operator_table_t
+  !$ use omp_lib, only: omp_get_max_threads
   implicit none
   private
   public :: fft_operator_t, create_fft_operator, destroy_fft_operator, apply_fft_operator
@@ -62,7 +63,7 @@ contains
     type(operator_table_t), intent(in) :: table
     integer, intent(in) :: max_vectors
     type(fft_operator_t), intent(out) :: op
-    integer :: s, nh
+    integer :: s, nh, threads
 
     op%n = patch%n
     op%ix = patch%ix
@@ -71,6 +72,16 @@ contains
     if (mod(op%nx, 2) /= 0) op%nx = fast_size(op%nx + 1)   ! even: a simple half spectrum
     op%ny = fast_size(2 * table%my - 1)
     nh = op%nx / 2 + 1
+    ! FFTW's own (pthread) threads on big grids: they sleep when idle, unlike
+    ! OpenMP workers, which spin between the many short parallel regions of
+    ! a GMRES step and steal the cores from OpenBLAS and the main thread.
+    threads = 1
+    !$ threads = omp_get_max_threads()
+    if (real(op%nx, real64) * op%ny < 6.5e4_real64) threads = 1
+    if (threads > 1) then
+      if (fftw_init_threads() == 0) threads = 1
+    end if
+    call fftw_plan_with_nthreads(int(threads, c_int))
     allocate (op%slots(2 * max_vectors))
     do s = 1, size(op%slots)
       op%slots(s)%p_real = fftw_alloc_real(int(op%nx, c_size_t) * op%ny)
@@ -123,7 +134,6 @@ contains
   end subroutine destroy_fft_operator
 
   !> y(:, v) = A x(:, v) for each column: unknowns (px(1:n), py(1:n)) of the patch cells.
-  !> The transforms of the columns and components are independent: one per thread.
   subroutine apply_fft_operator(op, x, y)
     type(fft_operator_t), intent(inout) :: op
     real(real64), intent(in) :: x(:, :)    !< (2n, nv)
@@ -134,7 +144,6 @@ contains
     n = op%n
     nv = size(x, 2)
     if (2 * nv > size(op%slots)) error stop 'apply_fft_operator: block wider than planned'
-    !$omp parallel do private(v, c, k) schedule(static)
     do t = 1, 2 * nv
       v = (t + 1) / 2
       c = t - 2 * (v - 1) - 1       ! 0: px, 1: py
@@ -146,10 +155,8 @@ contains
         call fftw_execute_dft_r2c(op%forward, w%grid, w%spec)
       end associate
     end do
-    !$omp end parallel do
     do v = 1, nv
       associate (wx => op%slots(2 * v - 1)%spec, wy => op%slots(2 * v)%spec)
-        !$omp parallel do private(i, sx, sy) schedule(static)
         do j = 1, op%ny
           do i = 1, op%nx / 2 + 1
             sx = wx(i, j)
@@ -158,10 +165,8 @@ contains
             wy(i, j) = op%kxy(i, j) * sx + op%kyy(i, j) * sy
           end do
         end do
-        !$omp end parallel do
       end associate
     end do
-    !$omp parallel do private(v, c, k) schedule(static)
     do t = 1, 2 * nv
       v = (t + 1) / 2
       c = t - 2 * (v - 1) - 1
@@ -172,7 +177,6 @@ contains
         end do
       end associate
     end do
-    !$omp end parallel do
   end subroutine apply_fft_operator
 
 end module fft_operator

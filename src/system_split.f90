@@ -121,53 +121,73 @@ contains
     type(operator_table_t), intent(in) :: table
     type(subsystem_t), intent(in) :: s
     real(real64), intent(out) :: a(:, :)   !< (m, m)
-    integer :: v, m, m0, ixv, iyv, iyp
-    integer, allocatable :: ixu(:), iyu(:)
+    integer, allocatable :: run_first(:), run_last(:)
+    integer :: v, u, r, nr, m, ixv, iyv, iyp, di, dj, djp, l
+    logical :: new_run
 
+    ! Runs: consecutive unknowns of one component on consecutive cells of one
+    ! grid row. Their coefficients are a contiguous slice of the offset table,
+    ! so a column is filled by a few vector copies instead of m lookups.
     m = s%m
-    allocate (ixu(m), iyu(m))
-    ixu = patch%ix(s%cell)
-    iyu = patch%iy(s%cell)
-    m0 = count(s%comp == 0)   ! px unknowns come first
-    !$omp parallel do private(ixv, iyv, iyp) schedule(static)
+    allocate (run_first(m), run_last(m))
+    nr = 0
+    do u = 1, m
+      new_run = u == 1
+      if (.not. new_run) new_run = s%comp(u) /= s%comp(u - 1) .or. &
+                                   patch%iy(s%cell(u)) /= patch%iy(s%cell(u - 1)) .or. &
+                                   patch%ix(s%cell(u)) /= patch%ix(s%cell(u - 1)) + 1
+      if (new_run) then
+        nr = nr + 1
+        run_first(nr) = u
+      end if
+      run_last(nr) = u
+    end do
+
+    !$omp parallel do private(ixv, iyv, iyp, r, di, dj, djp, l) schedule(static)
     do v = 1, m
       ixv = patch%ix(s%cell(v))
       iyv = patch%iy(s%cell(v))
       iyp = iyv
       if (s%partner(v) > 0) iyp = patch%iy(s%partner(v))
-      if (s%comp(v) == 0) then
-        call fill_column(table%xx, ixu(1:m0), iyu(1:m0), ixv, iyv, iyp, s%partner(v) > 0, s%sign(v), a(1:m0, v))
-        call fill_column(table%xy, ixu(m0 + 1:), iyu(m0 + 1:), ixv, iyv, iyp, s%partner(v) > 0, s%sign(v), &
-                         a(m0 + 1:m, v))
-      else
-        call fill_column(table%xy, ixu(1:m0), iyu(1:m0), ixv, iyv, iyp, s%partner(v) > 0, s%sign(v), a(1:m0, v))
-        call fill_column(table%yy, ixu(m0 + 1:), iyu(m0 + 1:), ixv, iyv, iyp, s%partner(v) > 0, s%sign(v), &
-                         a(m0 + 1:m, v))
-      end if
+      do r = 1, nr
+        associate (u1 => run_first(r), u2 => run_last(r))
+          di = patch%ix(s%cell(u1)) - ixv
+          dj = patch%iy(s%cell(u1)) - iyv
+          djp = patch%iy(s%cell(u1)) - iyp
+          l = u2 - u1
+          ! (every value the copy needs is passed: a host-associated variable
+          ! would be the shared one, not this thread's private copy)
+          if (s%comp(u1) == 0 .and. s%comp(v) == 0) then
+            call fill_run(table%xx, di, dj, djp, l, s%partner(v) > 0, s%sign(v), a(u1:u2, v))
+          else if (s%comp(u1) == 1 .and. s%comp(v) == 1) then
+            call fill_run(table%yy, di, dj, djp, l, s%partner(v) > 0, s%sign(v), a(u1:u2, v))
+          else
+            call fill_run(table%xy, di, dj, djp, l, s%partner(v) > 0, s%sign(v), a(u1:u2, v))
+          end if
+        end associate
+      end do
     end do
     !$omp end parallel do
+
   end subroutine assemble_subsystem
 
-  !> One column segment: t at the offsets to the column's cell (plus sign times to its mirror).
-  pure subroutine fill_column(t, ixu, iyu, ixv, iyv, iyp, mirrored, sign, col)
-    real(real64), intent(in) :: t(:, :)     !< offset table, offsets shifted to start at 1
-    integer, intent(in) :: ixu(:), iyu(:), ixv, iyv, iyp
+  !> col = t(di:di+l, dj) [+ sign t(di:di+l, djp) for a mirrored column];
+  !> t is the offset table with its lower bounds shifted to 1.
+  pure subroutine fill_run(t, di, dj, djp, l, mirrored, sign, col)
+    real(real64), intent(in) :: t(:, :)
+    integer, intent(in) :: di, dj, djp, l
     logical, intent(in) :: mirrored
     real(real64), intent(in) :: sign
     real(real64), intent(out) :: col(:)
-    integer :: u, cx, cy
-    cx = (size(t, 1) + 1) / 2    ! index of offset 0
+    integer :: cx, cy
+    cx = (size(t, 1) + 1) / 2    ! position of offset 0
     cy = (size(t, 2) + 1) / 2
     if (mirrored) then
-      do u = 1, size(col)
-        col(u) = t(cx + ixu(u) - ixv, cy + iyu(u) - iyv) + sign * t(cx + ixu(u) - ixv, cy + iyu(u) - iyp)
-      end do
+      col = t(cx + di:cx + di + l, cy + dj) + sign * t(cx + di:cx + di + l, cy + djp)
     else
-      do u = 1, size(col)
-        col(u) = t(cx + ixu(u) - ixv, cy + iyu(u) - iyv)
-      end do
+      col = t(cx + di:cx + di + l, cy + dj)
     end if
-  end subroutine fill_column
+  end subroutine fill_run
 
   !> The subsystem's entries of a full vector (px(1:n), py(1:n)).
   pure subroutine restrict_to(s, n, full, part)
