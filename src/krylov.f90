@@ -3,11 +3,14 @@
 !> the preconditioner are applied to all active columns at once (one pass
 !> over the preconditioner's factors and the FFT kernels per step).
 !>
-!> Right preconditioning (A M^-1 y = b, x = M^-1 y) keeps the residual that
-!> GMRES minimises the true one, so the tolerance is on ||b - A x|| / ||b||;
-!> at every restart the residual is recomputed from x, not updated.
+!> Flexible right preconditioning (FGMRES, Saad 1993): the preconditioned
+!> vectors z_j = M^-1 v_j are kept and x = x0 + Z y. The preconditioner may
+!> then be inexact (it runs in single precision, so M^-1 is not exactly
+!> linear), and the residual GMRES minimises is still the true one: the
+!> tolerance is on ||b - A x|| / ||b||, and at every restart the residual is
+!> recomputed from x, not updated.
 module krylov
-  use, intrinsic :: iso_fortran_env, only: real64
+  use, intrinsic :: iso_fortran_env, only: real64, int64
   implicit none
   private
   public :: block_operator_t, gmres_result_t, gmres
@@ -41,6 +44,7 @@ module krylov
     integer, allocatable :: iterations(:)          !< per column
     real(real64), allocatable :: relative_residual(:)   !< true ||b - A x|| / ||b|| at the end
     logical, allocatable :: converged(:)
+    real(real64) :: t_operator = 0, t_preconditioner = 0, t_orthogonalise = 0   !< seconds
   end type gmres_result_t
 
 contains
@@ -53,17 +57,18 @@ contains
     real(real64), intent(in) :: tol
     integer, intent(in) :: restart, max_iterations
     type(gmres_result_t), intent(out) :: result
-    real(real64), allocatable :: v(:, :, :), h(:, :, :), g(:, :), cs(:, :), sn(:, :), y(:)
+    real(real64), allocatable :: v(:, :, :), zs(:, :, :), h(:, :, :), g(:, :), cs(:, :), sn(:, :), y(:)
     real(real64), allocatable :: r(:, :), bnorm(:), work(:, :), z(:, :)
     integer, allocatable :: cols(:), jend(:)
     logical, allocatable :: active(:), in_cycle(:)
     integer :: nn, nv, m, j, i, c, col, na
-    real(real64) :: beta, hnew, t
+    real(real64) :: beta, hnew, t, wnorm
+    integer(int64) :: c0, c1, c2, c3, rate
 
     nn = size(b, 1)
     nv = size(b, 2)
     m = restart
-    allocate (v(nn, m + 1, nv), h(m + 1, m, nv), g(m + 1, nv), cs(m, nv), sn(m, nv), y(m))
+    allocate (v(nn, m + 1, nv), zs(nn, m, nv), h(m + 1, m, nv), g(m + 1, nv), cs(m, nv), sn(m, nv), y(m))
     allocate (r(nn, nv), bnorm(nv), jend(nv), active(nv), in_cycle(nv))
     allocate (result%iterations(nv), result%relative_residual(nv), result%converged(nv))
     result%iterations = 0
@@ -106,17 +111,25 @@ contains
         do i = 1, na
           work(:, i) = v(:, j, cols(i))
         end do
+        call system_clock(c0, rate)
         call precond%apply(work, z)
+        call system_clock(c1)
         call a%apply(z, work)
+        call system_clock(c2)
         do i = 1, na
           c = cols(i)
-          ! classical Gram-Schmidt, twice (as stable as modified, but two
-          ! BLAS-2 passes over the basis instead of 2 j vector operations)
+          zs(:, j, c) = z(:, i)
+          ! classical Gram-Schmidt: one BLAS-2 pass over the basis each way;
+          ! a second pass only when the first cancelled much of the vector
+          ! (Kahan's "twice is enough" test), where one pass loses orthogonality
+          wnorm = norm2(work(:, i))
           call dgemv('T', nn, j, 1.0_real64, v(:, :, c), nn, work(:, i), 1, 0.0_real64, h(:, j, c), 1)
           call dgemv('N', nn, j, -1.0_real64, v(:, :, c), nn, h(:, j, c), 1, 1.0_real64, work(:, i), 1)
-          call dgemv('T', nn, j, 1.0_real64, v(:, :, c), nn, work(:, i), 1, 0.0_real64, y, 1)
-          call dgemv('N', nn, j, -1.0_real64, v(:, :, c), nn, y, 1, 1.0_real64, work(:, i), 1)
-          h(1:j, j, c) = h(1:j, j, c) + y(1:j)
+          if (norm2(work(:, i)) < 0.7_real64 * wnorm) then
+            call dgemv('T', nn, j, 1.0_real64, v(:, :, c), nn, work(:, i), 1, 0.0_real64, y, 1)
+            call dgemv('N', nn, j, -1.0_real64, v(:, :, c), nn, y, 1, 1.0_real64, work(:, i), 1)
+            h(1:j, j, c) = h(1:j, j, c) + y(1:j)
+          end if
           hnew = norm2(work(:, i))
           h(j + 1, j, c) = hnew
           if (hnew > 0) v(:, j + 1, c) = work(:, i) / hnew
@@ -139,26 +152,23 @@ contains
           if (abs(g(j + 1, c)) <= tol * bnorm(c) .or. hnew == 0 .or. &
               result%iterations(c) >= max_iterations) in_cycle(c) = .false.
         end do
+        call system_clock(c3)
+        result%t_preconditioner = result%t_preconditioner + real(c1 - c0, real64) / rate
+        result%t_operator = result%t_operator + real(c2 - c1, real64) / rate
+        result%t_orthogonalise = result%t_orthogonalise + real(c3 - c2, real64) / rate
         deallocate (work, z)
       end do
 
-      ! x += M^-1 V y for each column that took steps
+      ! x += Z y for each column that took steps
       cols = pack([(c, c=1, nv)], jend > 0)
-      na = size(cols)
-      allocate (work(nn, na), z(nn, na))
-      do i = 1, na
+      do i = 1, size(cols)
         c = cols(i)
         j = jend(c)
         do col = j, 1, -1
           y(col) = (g(col, c) - dot_product(h(col, col + 1:j, c), y(col + 1:j))) / h(col, col, c)
         end do
-        call dgemv('N', nn, j, 1.0_real64, v(:, :, c), nn, y, 1, 0.0_real64, work(:, i), 1)
+        call dgemv('N', nn, j, 1.0_real64, zs(:, :, c), nn, y, 1, 1.0_real64, x(:, c), 1)
       end do
-      call precond%apply(work, z)
-      do i = 1, na
-        x(:, cols(i)) = x(:, cols(i)) + z(:, i)
-      end do
-      deallocate (work, z)
       call residual(cols)
     end do
 

@@ -10,7 +10,7 @@
 !> auto:      the one estimated faster, and iterative whenever the dense
 !>            matrix does not fit in the memory available.
 module linear_solve
-  use, intrinsic :: iso_fortran_env, only: real64, int64
+  use, intrinsic :: iso_fortran_env, only: real64, int64, error_unit
   use, intrinsic :: ieee_arithmetic, only: ieee_value, ieee_quiet_nan
   use kcreep_status, only: status_t, fail, exit_numerical, exit_bad_input
   use kcreep_strings, only: itoa, rtoa
@@ -39,22 +39,23 @@ module linear_solve
     procedure :: apply => apply_strip_block
   end type strip_block_t
 
-  !> Rates for the 'auto' choice, measured on the 2-core development machine
-  !> (scripts/bench.sh): the LU factorisation sustains about this many flop/s...
-  real(real64), parameter :: dense_rate = 4e10_real64
-  !> ...and one GMRES step costs about this many seconds per (grid cell of the
-  !> padded FFT grid x log2 of its size), preconditioner included.
-  real(real64), parameter :: iterative_step_cost = 4e-9_real64
-  !> GMRES iterations assumed by the estimate (measured 30 to 70 up to 400 x 400).
-  integer, parameter :: assumed_iterations = 60
+  !> Rates for the 'auto' choice, from scripts/bench.sh on the 2-core
+  !> development machine (shared, so rough): the split dense LU ran at about
+  !> 3e10 flop/s end to end, and one lockstep GMRES step for the three load
+  !> cases cost about 1e-8 s per (padded FFT grid cell x log2 of the grid size).
+  real(real64), parameter :: dense_rate = 3e10_real64
+  real(real64), parameter :: iterative_step_cost = 1e-8_real64
+  !> GMRES iterations assumed by the estimate (measured 70 at 60 x 60, 180 at 400 x 400).
+  integer, parameter :: assumed_iterations = 100
 
 contains
 
   !> 'dense' or 'iterative' for these options and this patch.
-  function choose_method(opts, patch, subs) result(method)
+  function choose_method(opts, patch, subs, requested) result(method)
     type(solver_options_t), intent(in) :: opts
     type(patch_t), intent(in) :: patch
     type(subsystem_t), intent(in) :: subs(:)
+    logical, intent(in) :: requested(n_load_cases)
     character(len=:), allocatable :: method
     real(real64) :: t_dense, t_iterative, grid
     integer :: i
@@ -71,7 +72,8 @@ contains
       t_dense = t_dense + 2 * real(subs(i)%m, real64)**3 / 3 / dense_rate
     end do
     grid = 4 * real(patch%mx, real64) * patch%my
-    t_iterative = assumed_iterations * iterative_step_cost * grid * log(grid) / log(2.0_real64)
+    t_iterative = assumed_iterations * iterative_step_cost * grid * log(grid) / log(2.0_real64) &
+                  * max(1, count(requested)) / 3
     method = merge('dense    ', 'iterative', t_dense <= t_iterative)
     method = trim(method)
   end function choose_method
@@ -111,7 +113,7 @@ contains
     end do
     traction = ieee_value(1.0_real64, ieee_quiet_nan)
     subs = plan_subsystems(patch, nu, opts%split_systems, requested)
-    diag%method = choose_method(opts, patch, subs)
+    diag%method = choose_method(opts, patch, subs, requested)
     if (diag%method == 'dense') then
       if (.not. dense_fits(subs)) then
         call fail(status, exit_bad_input, 'method = ''dense'': the largest dense matrix ('// &
@@ -297,6 +299,9 @@ contains
     diag%backward_error = maxval(result%relative_residual)
     diag%backward_error_initial = diag%backward_error
     diag%iterations = maxval(result%iterations)
+    if (len_trim(profile_request()) > 0) write (error_unit, '(a, 3f9.3)') &
+      'kcreep: GMRES seconds in operator, preconditioner, orthogonalisation:', &
+      result%t_operator, result%t_preconditioner, result%t_orthogonalise
     if (.not. all(result%converged)) then
       worst = maxloc(result%relative_residual, dim=1)
       call fail(status, exit_numerical, 'the iterative solver did not converge: load case '// &
@@ -319,6 +324,14 @@ contains
     end function case_word
 
   end subroutine solve_iterative
+
+  !> KCREEP_PROFILE set (to anything): print where the GMRES time went (benchmark aid).
+  function profile_request() result(value)
+    character(len=16) :: value
+    integer :: stat
+    call get_environment_variable('KCREEP_PROFILE', value, status=stat)
+    if (stat /= 0) value = ''
+  end function profile_request
 
   subroutine apply_fft_block(self, x, y)
     class(fft_block_t), intent(inout) :: self

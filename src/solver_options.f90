@@ -12,7 +12,7 @@ module solver_options
     character(len=:), allocatable :: method      !< 'dense', 'iterative' or 'auto'
     real(real64) :: tolerance = 1e-11_real64     !< iterative: relative residual ||b - A x|| / ||b||
     integer :: max_iterations = 1000             !< iterative: total GMRES iterations per load case
-    integer :: restart = 100                     !< iterative: GMRES restart length
+    integer :: restart = 50                      !< iterative: GMRES restart length
     !> Solve y-symmetric patches as an even and an odd half-size problem and,
     !> at nu = 0, px and py separately (off only to check the splits).
     logical :: split_systems = .true.

@@ -10,22 +10,41 @@
 !> ellipse has them in mirror pairs) have the same block: each distinct
 !> pattern is factorised once and applied to all its rows at the same time.
 module strip_preconditioner
-  use, intrinsic :: iso_fortran_env, only: real64
+  use, intrinsic :: iso_fortran_env, only: real32, real64
   use kcreep_status, only: status_t, fail, exit_numerical
   use kcreep_strings, only: itoa
-  use lapack_interfaces, only: dgetrf, dgetrs
   use patch_grid, only: patch_t
   use tang_assembly, only: operator_table_t
   implicit none
   private
   public :: strip_preconditioner_t, build_strip_preconditioner, apply_strip_preconditioner
 
+  ! Single precision: a preconditioner need only be a fixed linear map close to
+  ! A^-1, and 4-byte factors halve the memory traffic of every GMRES step.
+  interface
+    subroutine sgetrf(m, n, a, lda, ipiv, info)
+      import :: real32
+      integer, intent(in) :: m, n, lda
+      real(real32), intent(inout) :: a(lda, *)
+      integer, intent(out) :: ipiv(*), info
+    end subroutine sgetrf
+    subroutine sgetrs(trans, n, nrhs, a, lda, ipiv, b, ldb, info)
+      import :: real32
+      character(len=1), intent(in) :: trans
+      integer, intent(in) :: n, nrhs, lda, ldb
+      real(real32), intent(in) :: a(lda, *)
+      integer, intent(in) :: ipiv(*)
+      real(real32), intent(inout) :: b(ldb, *)
+      integer, intent(out) :: info
+    end subroutine sgetrs
+  end interface
+
   !> Rows sharing one pattern of cells, and the LU factors of its blocks.
   type :: row_group_t
     integer :: length = 0
     integer, allocatable :: offsets(:)     !< ix of each cell minus ix of the first
     integer, allocatable :: first(:)       !< first cell number of each member row
-    real(real64), allocatable :: lu(:, :, :)   !< (length, length, 2): xx and yy LU factors
+    real(real32), allocatable :: lu(:, :, :)   !< (length, length, 2): xx and yy LU factors
     integer, allocatable :: ipiv(:, :)         !< (length, 2)
   end type row_group_t
 
@@ -80,12 +99,12 @@ contains
         allocate (grp%lu(l, l, 2), grp%ipiv(l, 2))
         do j = 1, l
           do i = 1, l
-            grp%lu(i, j, 1) = table%xx(grp%offsets(i) - grp%offsets(j), 0)
-            grp%lu(i, j, 2) = table%yy(grp%offsets(i) - grp%offsets(j), 0)
+            grp%lu(i, j, 1) = real(table%xx(grp%offsets(i) - grp%offsets(j), 0), real32)
+            grp%lu(i, j, 2) = real(table%yy(grp%offsets(i) - grp%offsets(j), 0), real32)
           end do
         end do
         do c = 1, 2
-          call dgetrf(l, l, grp%lu(:, :, c), l, grp%ipiv(:, c), info)
+          call sgetrf(l, l, grp%lu(:, :, c), l, grp%ipiv(:, c), info)
           if (info > 0) then
             m = patch%iy(k)
             call fail(status, exit_numerical, 'strip preconditioner: the '//trim(merge('xx', 'yy', c == 1))// &
@@ -113,7 +132,7 @@ contains
     type(strip_preconditioner_t), intent(in) :: prec
     real(real64), intent(in) :: r(:, :)    !< (2n, nv)
     real(real64), intent(out) :: z(:, :)   !< (2n, nv)
-    real(real64), allocatable :: b(:, :)
+    real(real32), allocatable :: b(:, :)
     integer :: g, c, nv, v, m, nm, l, col, k, info
 
     nv = size(r, 2)
@@ -130,10 +149,10 @@ contains
             do m = 1, nm
               col = col + 1
               k = (c - 1) * prec%n + grp%first(m)
-              b(:, col) = r(k:k + l - 1, v)
+              b(:, col) = real(r(k:k + l - 1, v), real32)
             end do
           end do
-          call dgetrs('N', l, nm * nv, grp%lu(:, :, c), l, grp%ipiv(:, c), b, l, info)
+          call sgetrs('N', l, nm * nv, grp%lu(:, :, c), l, grp%ipiv(:, c), b, l, info)
           col = 0
           do v = 1, nv
             do m = 1, nm
