@@ -25,18 +25,21 @@ module krylov
     end subroutine dgemv
   end interface
 
-  !> Something that maps a block of vectors x(N, nv) to y(N, nv).
+  !> Something that maps a block of vectors x(N, nv) to y(N, nv); columns(k)
+  !> says which right-hand side column k of the block belongs to (an
+  !> operator may differ between right-hand sides).
   type, abstract :: block_operator_t
   contains
     procedure(block_apply), deferred :: apply
   end type block_operator_t
 
   abstract interface
-    subroutine block_apply(self, x, y)
+    subroutine block_apply(self, x, y, columns)
       import :: block_operator_t, real64
       class(block_operator_t), intent(inout) :: self
       real(real64), intent(in) :: x(:, :)
       real(real64), intent(out) :: y(:, :)
+      integer, intent(in) :: columns(:)
     end subroutine block_apply
   end interface
 
@@ -112,9 +115,9 @@ contains
           work(:, i) = v(:, j, cols(i))
         end do
         call system_clock(c0, rate)
-        call precond%apply(work, z)
+        call precond%apply(work, z, cols)
         call system_clock(c1)
-        call a%apply(z, work)
+        call a%apply(z, work, cols)
         call system_clock(c2)
         do i = 1, na
           c = cols(i)
@@ -182,7 +185,7 @@ contains
       if (size(which) == 0) return
       xs = x(:, which)
       allocate (ax(nn, size(which)))
-      call a%apply(xs, ax)
+      call a%apply(xs, ax, which)
       do k = 1, size(which)
         r(:, which(k)) = b(:, which(k)) - ax(:, k)
         result%relative_residual(which(k)) = norm2(r(:, which(k))) / bnorm(which(k))

@@ -27,14 +27,28 @@ module linear_solve
   private
   public :: solve_load_cases, choose_method
 
+  !> GMRES works on the unknowns of the subsystems (system_split), one
+  !> subsystem per column, padded with zeros to the longest: a y-symmetric
+  !> patch thus needs half-length Krylov vectors and half the preconditioner
+  !> work. The operator expands to the full traction, applies the FFT
+  !> operator and restricts back.
   type, extends(block_operator_t) :: fft_block_t
     type(fft_operator_t) :: op
+    type(subsystem_t), allocatable :: subs(:)
+    integer, allocatable :: sub_of(:)     !< subsystem of each column
+    integer :: n = 0
   contains
     procedure :: apply => apply_fft_block
   end type fft_block_t
 
+  !> The strip preconditioner on the representative cells (their mirror
+  !> rows have the same blocks, so the reduced preconditioner is the full
+  !> one restricted).
   type, extends(block_operator_t) :: strip_block_t
     type(strip_preconditioner_t) :: p
+    type(subsystem_t), allocatable :: subs(:)
+    integer, allocatable :: sub_of(:)
+    integer :: n = 0
   contains
     procedure :: apply => apply_strip_block
   end type strip_block_t
@@ -105,6 +119,7 @@ contains
     type(subsystem_t), allocatable :: subs(:)
     real(real64), allocatable :: rhs(:, :)
     integer :: j, n
+    logical :: fallback
 
     n = patch%n
     allocate (rhs(2 * n, n_load_cases), traction(2 * n, n_load_cases))
@@ -127,9 +142,10 @@ contains
     else
       call check_iterative_memory(opts, patch, count(requested), status)
       if (status%failed()) return
-      call solve_iterative(opts, patch, table, requested, rhs, traction, diag, status)
-      if (status%failed() .and. opts%method == 'auto' .and. status%code == exit_numerical .and. &
-          dense_fits(subs)) then
+      call solve_iterative(opts, nu, patch, table, requested, rhs, traction, diag, status)
+      fallback = status%code == exit_numerical .and. opts%method == 'auto'
+      if (fallback) fallback = dense_fits(subs)
+      if (fallback) then
         ! auto promised an answer: GMRES stalls only on hard (near-degenerate)
         ! systems, which the dense LU still solves and the verdict then judges
         status = status_t()
@@ -281,8 +297,9 @@ contains
     norm_inf = maxval(row_sums)
   end subroutine norms_1_inf
 
-  subroutine solve_iterative(opts, patch, table, requested, rhs, traction, diag, status)
+  subroutine solve_iterative(opts, nu, patch, table, requested, rhs, traction, diag, status)
     type(solver_options_t), intent(in) :: opts
+    real(real64), intent(in) :: nu
     type(patch_t), intent(in) :: patch
     type(operator_table_t), intent(in) :: table
     logical, intent(in) :: requested(n_load_cases)
@@ -293,25 +310,57 @@ contains
     type(fft_block_t) :: a
     type(strip_block_t) :: m_inv
     type(gmres_result_t) :: result
-    real(real64), allocatable :: x(:, :)
-    integer, allocatable :: cases(:)
+    type(subsystem_t), allocatable :: subs(:)
+    real(real64), allocatable :: x(:, :), b(:, :)
+    integer, allocatable :: case_of(:), sub_of(:)
+    logical, allocatable :: rows_used(:)
     integer(int64) :: t0, t1, rate
-    integer :: j, worst
+    integer :: i, j, nc, n, mmax, worst
 
-    cases = pack([(j, j=1, n_load_cases)], requested)
+    n = patch%n
+    subs = plan_subsystems(patch, nu, opts%split_systems, requested)
+    ! one GMRES column per (subsystem, requested load case it serves)
+    allocate (case_of(0), sub_of(0))
+    do j = 1, n_load_cases
+      do i = 1, size(subs)
+        if (requested(j) .and. subs(i)%serves(j)) then
+          case_of = [case_of, j]
+          sub_of = [sub_of, i]
+        end if
+      end do
+    end do
+    nc = size(case_of)
+    mmax = maxval(subs%m)
+    ! rows holding representative cells (all rows unless mirrored partners exist)
+    allocate (rows_used(patch%my))
+    rows_used = .false.
+    do i = 1, size(subs)
+      rows_used(patch%iy(subs(i)%cell)) = .true.
+    end do
+
     call system_clock(t0, rate)
-    call create_fft_operator(patch, table, size(cases), a%op)
+    call create_fft_operator(patch, table, nc, a%op)
+    a%subs = subs
+    a%sub_of = sub_of
+    a%n = n
     call system_clock(t1)
     diag%t_assemble = real(t1 - t0, real64) / rate
     t0 = t1
-    call build_strip_preconditioner(patch, table, m_inv%p, status)
+    call build_strip_preconditioner(patch, table, m_inv%p, status, rows_used)
     if (status%failed()) return
+    m_inv%subs = subs
+    m_inv%sub_of = sub_of
+    m_inv%n = n
     call system_clock(t1)
     diag%t_factor = real(t1 - t0, real64) / rate
     t0 = t1
-    allocate (x(2 * patch%n, size(cases)))
+    allocate (x(mmax, nc), b(mmax, nc))
     x = 0
-    call gmres(a, m_inv, rhs(:, cases), x, opts%tolerance, opts%restart, opts%max_iterations, result)
+    b = 0
+    do i = 1, nc
+      call restrict_to(subs(sub_of(i)), n, rhs(:, case_of(i)), b(1:subs(sub_of(i))%m, i))
+    end do
+    call gmres(a, m_inv, b, x, opts%tolerance, opts%restart, opts%max_iterations, result)
     call system_clock(t1)
     diag%t_solve = real(t1 - t0, real64) / rate
     call destroy_fft_operator(a%op)
@@ -325,14 +374,17 @@ contains
     if (.not. all(result%converged)) then
       worst = maxloc(result%relative_residual, dim=1)
       call fail(status, exit_numerical, 'the iterative solver did not converge: load case '// &
-                trim(case_word(cases(worst)))//' has relative residual '// &
+                trim(case_word(case_of(worst)))//' has relative residual '// &
                 rtoa(result%relative_residual(worst))//' after '//itoa(result%iterations(worst))// &
                 ' GMRES iterations (tolerance '//rtoa(opts%tolerance)// &
                 '; raise max_iterations or use method = ''dense'')')
       return
     end if
-    do j = 1, size(cases)
-      traction(:, cases(j)) = x(:, j)
+    do j = 1, n_load_cases
+      if (requested(j)) traction(:, j) = 0
+    end do
+    do i = 1, nc
+      call expand_from(subs(sub_of(i)), n, x(1:subs(sub_of(i))%m, i), traction(:, case_of(i)))
     end do
 
   contains
@@ -353,18 +405,50 @@ contains
     if (stat /= 0) value = ''
   end function profile_request
 
-  subroutine apply_fft_block(self, x, y)
+  subroutine apply_fft_block(self, x, y, columns)
     class(fft_block_t), intent(inout) :: self
     real(real64), intent(in) :: x(:, :)
     real(real64), intent(out) :: y(:, :)
-    call apply_fft_operator(self%op, x, y)
+    integer, intent(in) :: columns(:)
+    real(real64), allocatable :: full(:, :), afull(:, :)
+    integer :: c, m
+    allocate (full(2 * self%n, size(x, 2)), afull(2 * self%n, size(x, 2)))
+    full = 0
+    do c = 1, size(x, 2)
+      m = self%subs(self%sub_of(columns(c)))%m
+      call expand_from(self%subs(self%sub_of(columns(c))), self%n, x(1:m, c), full(:, c))
+    end do
+    call apply_fft_operator(self%op, full, afull)
+    y = 0
+    do c = 1, size(x, 2)
+      m = self%subs(self%sub_of(columns(c)))%m
+      call restrict_to(self%subs(self%sub_of(columns(c))), self%n, afull(:, c), y(1:m, c))
+    end do
   end subroutine apply_fft_block
 
-  subroutine apply_strip_block(self, x, y)
+  subroutine apply_strip_block(self, x, y, columns)
     class(strip_block_t), intent(inout) :: self
     real(real64), intent(in) :: x(:, :)
     real(real64), intent(out) :: y(:, :)
-    call apply_strip_preconditioner(self%p, x, y)
+    integer, intent(in) :: columns(:)
+    real(real64), allocatable :: full(:, :), zfull(:, :)
+    integer :: c, u
+    allocate (full(2 * self%n, size(x, 2)), zfull(2 * self%n, size(x, 2)))
+    full = 0
+    do c = 1, size(x, 2)
+      associate (s => self%subs(self%sub_of(columns(c))))
+        do u = 1, s%m
+          full(s%comp(u) * self%n + s%cell(u), c) = x(u, c)
+        end do
+      end associate
+    end do
+    call apply_strip_preconditioner(self%p, full, zfull)
+    y = 0
+    do c = 1, size(x, 2)
+      associate (s => self%subs(self%sub_of(columns(c))))
+        call restrict_to(s, self%n, zfull(:, c), y(1:s%m, c))
+      end associate
+    end do
   end subroutine apply_strip_block
 
 end module linear_solve

@@ -55,11 +55,14 @@ module strip_preconditioner
 
 contains
 
-  subroutine build_strip_preconditioner(patch, table, prec, status)
+  !> rows_used (optional): only these grid rows are preconditioned (the
+  !> representative half of a y-symmetric patch); the others give zero.
+  subroutine build_strip_preconditioner(patch, table, prec, status, rows_used)
     type(patch_t), intent(in) :: patch
     type(operator_table_t), intent(in) :: table
     type(strip_preconditioner_t), intent(out) :: prec
     type(status_t), intent(inout) :: status
+    logical, intent(in), optional :: rows_used(:)
     integer, allocatable :: row_first(:), row_length(:), group_of(:), members(:)
     integer :: iy, k, g, ng, l, i, j, c, info, m
 
@@ -75,6 +78,9 @@ contains
     ng = 0
     do iy = 1, patch%my
       if (row_length(iy) == 0) cycle
+      if (present(rows_used)) then
+        if (.not. rows_used(iy)) cycle
+      end if
       do j = 1, iy - 1
         if (group_of(j) == 0) cycle
         if (same_pattern(row_first(j), row_first(iy), row_length(iy))) then
@@ -136,6 +142,7 @@ contains
     integer :: g, c, nv, v, m, nm, l, col, k, info
 
     nv = size(r, 2)
+    z = 0
     ! one LAPACK triangular solve per group and component, with all its rows
     ! (and all columns) as right-hand sides: the factors are read once
     do g = 1, size(prec%groups)
