@@ -13,6 +13,7 @@ module dense_solver
   implicit none
   private
   public :: dense_diagnostics_t, solve_dense, check_dense_memory, refine_modes
+  public :: available_memory_bytes, backward_error, relative_residual, refine_threshold
 
   !> Backward errors above this are refined once (about 100 unit round-offs).
   real(real64), parameter :: refine_threshold = 100 * epsilon(1.0_real64)
@@ -30,6 +31,8 @@ module dense_solver
     real(real64) :: relative_residual = 0     !< max_j |b_j - A x_j| / |b_j| before refinement, inf-norms
     logical :: refined = .false.
     real(real64) :: t_assemble = 0, t_factor = 0, t_solve = 0
+    character(len=:), allocatable :: method   !< 'dense' or 'iterative' (set by linear_solve)
+    integer :: iterations = 0                 !< GMRES iterations (largest over load cases), 0 for dense
   end type dense_diagnostics_t
 
 contains

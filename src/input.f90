@@ -14,6 +14,7 @@ module namelist_input
   use file_checks, only: read_input_file
   use namelist_scan, only: scan_namelist_text
   use input_limits, only: check_grid_size, length_in_range, offset_in_range, modulus_in_range
+  use solver_options, only: solver_options_t, validate_solver_options
   implicit none
   private
   public :: config_t, read_config, build_patch, max_inline_rows, max_row_length
@@ -42,6 +43,7 @@ module namelist_input
     logical :: extrapolate = .false.            !< Richardson in the mesh size (mesh_extrapolation)
     integer :: extrapolate_levels = 3, refine_ratio = 2
     character(len=:), allocatable :: refine     !< see dense_solver refine_modes
+    type(solver_options_t) :: solve           !< method, tolerance, splits
     ! &output
     character(len=:), allocatable :: table_file, traction_file
   end type config_t
@@ -59,10 +61,10 @@ contains
     character(len=*), intent(in), optional :: base_folder
 
     ! namelist variables, with their defaults
-    character(len=32) :: shape, scheme
-    real(real64) :: semi_a, semi_b, dx, dy, x0, y0, g, nu, alpha, spin_shift
-    integer :: mx, my, extrapolate_levels, refine_ratio
-    logical :: extrapolate
+    character(len=32) :: shape, scheme, method, refine
+    real(real64) :: semi_a, semi_b, dx, dy, x0, y0, g, nu, alpha, spin_shift, tolerance
+    integer :: mx, my, extrapolate_levels, refine_ratio, max_iterations, restart
+    logical :: extrapolate, split_systems
     character(len=4096) :: mask_file, table_file, traction_file
     character(len=64) :: load_cases
     character(len=max_row_length), allocatable :: mask_rows(:)
@@ -73,8 +75,8 @@ contains
     logical :: material_given
     namelist /patch/ shape, semi_a, semi_b, mx, my, mask_file, mask_rows, dx, dy, x0, y0, contact_file, contact_case
     namelist /material/ g, nu
-    character(len=32) :: refine
-    namelist /solver/ scheme, alpha, spin_shift, load_cases, extrapolate, extrapolate_levels, refine_ratio, refine
+    namelist /solver/ scheme, alpha, spin_shift, load_cases, extrapolate, extrapolate_levels, refine_ratio, refine, &
+                      method, tolerance, max_iterations, restart, split_systems
     namelist /output/ table_file, traction_file
 
     integer :: unit, ios, nrows
@@ -106,6 +108,11 @@ contains
     extrapolate_levels = 3
     refine_ratio = 2
     refine = 'auto'
+    method = 'auto'
+    tolerance = cfg%solve%tolerance
+    max_iterations = cfg%solve%max_iterations
+    restart = cfg%solve%restart
+    split_systems = cfg%solve%split_systems
     table_file = ''
     traction_file = ''
 
@@ -165,6 +172,11 @@ contains
     cfg%extrapolate_levels = extrapolate_levels
     cfg%refine_ratio = refine_ratio
     cfg%refine = lower(trim(adjustl(refine)))
+    cfg%solve%method = lower(trim(adjustl(method)))
+    cfg%solve%tolerance = tolerance
+    cfg%solve%max_iterations = max_iterations
+    cfg%solve%restart = restart
+    cfg%solve%split_systems = split_systems
     cfg%table_file = trim(table_file)
     if (len(cfg%table_file) == 0) cfg%table_file = default_table_name(path)
     cfg%traction_file = trim(traction_file)
@@ -291,6 +303,7 @@ contains
       call fail(status, exit_bad_input, where//'&solver refine = '''//cfg%refine// &
                 ''' (allowed: ''auto'', ''always'', ''never'', ''lapack'')')
     call parse_load_cases(load_cases, cfg%requested, where, status)
+    call validate_solver_options(cfg%solve, where, status)
   end subroutine validate
 
   !> load_cases: words from xi, eta, phi separated by blanks or commas.

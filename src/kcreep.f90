@@ -195,6 +195,7 @@ contains
     write (output_unit, '(2x, a, es9.2, a, es9.2)') 'rcond ', record%rcond, ', backward error ', record%backward_error
     write (output_unit, '(2x, a, es9.2, a, es9.2, a)') 'solve: relative residual ', record%relative_residual, &
       ', backward error before refinement ', record%backward_error_initial, ', refine = '//trim(record%refine)
+    write (output_unit, '(2x, a, i0)') 'method: '//record%method//', GMRES iterations ', record%iterations
     write (output_unit, '(2x, a, 4f9.3)') 'time assemble factor solve total [s]:', record%t_assemble, &
       record%t_factor, record%t_solve, record%t_total
     write (output_unit, '(2x, a)') 'verdict: '//record%verdict//'   table: '//cfg%table_file

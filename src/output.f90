@@ -30,13 +30,15 @@ module table_output
     real(real64) :: ext(3) = 0, ext_error(3) = 0, ext_order(3) = 0
     real(real64) :: backward_error_initial = 0, relative_residual = 0   !< before refinement
     character(len=:), allocatable :: refine                              !< mode and whether it refined
+    character(len=:), allocatable :: method   !< 'dense' or 'iterative'
+    integer :: iterations = 0                 !< GMRES iterations, 0 for dense
   end type run_record_t
 
   integer, parameter :: line_length = 1024
   character(len=*), parameter :: table_columns = &
     'case scheme mx my n alpha nu g c f11 f12 f13 f21 f22 f23 f31 f32 f33 c11 c22 c23 '// &
     'klt11 klt22 klt23 t_assemble t_factor t_solve t_total rcond berr verdict '// &
-    'ext11 ext22 ext23 exterr11 exterr22 exterr23 extp11 extp22 extp23'
+    'ext11 ext22 ext23 exterr11 exterr22 exterr23 extp11 extp22 extp23 iterations'
 
   interface
     integer(c_int) function c_rename(old, new) bind(c, name='rename')
@@ -60,7 +62,7 @@ contains
       '# kcreep: creep coefficients of full-adhesion steady rolling', &
       '# (Fx, Fy, Mz) = -[fij] (xi, eta, phi); rigid slip (xi - phi*y, eta + phi*x), leading edge at +x', &
       '# c11 = f11/(g c^2), c22 = f22/(g c^2), c23 = f23/(g c^3); kltij: Kalker table E3 (ellipses)', &
-      '# times in s; rcond: LAPACK 1-norm estimate; berr: normwise backward error; verdict: see README']
+      '# times in s; rcond: LAPACK 1-norm estimate; berr: backward error (iterative: relative residual)']
     integer :: k, nw
 
     nw = size(warnings)
@@ -88,7 +90,7 @@ contains
     ext = ieee_nan()
     if (r%extrapolated) ext = [r%ext, r%ext_error, r%ext_order]
     line = trim(buf)
-    write (buf, '(6(1x, es23.15e3), 3(1x, f6.3))') ext
+    write (buf, '(6(1x, es23.15e3), 3(1x, f6.3), 1x, i0)') ext, r%iterations
     line = line//trim(buf)
   end function table_row
 

@@ -52,7 +52,11 @@ cases = [
     ("mask_file_mx", kc.namelist("shape='mask', mask_file='m.mask', mx=5"), {"m.mask": mask_ok}, "mx = 5 but mask_file"),
     ("table_folder", kc.namelist(good_patch, "", "", "table_file='no/such/folder/x.tab'"), {}, "table_file"),
     ("traction_folder", kc.namelist(good_patch, "", "", "traction_file='no/such/t.txt'"), {}, "traction_file"),
-    ("too_large", kc.namelist("semi_a=1, semi_b=1, mx=2000, my=2000"), {}, "GiB"),
+    ("method", kc.namelist(good_patch, "", "method='fast'"), {}, "method = 'fast'"),
+    ("tolerance", kc.namelist(good_patch, "", "tolerance=0"), {}, "tolerance = 0"),
+    ("max_iterations", kc.namelist(good_patch, "", "max_iterations=0"), {}, "max_iterations = 0"),
+    ("restart", kc.namelist(good_patch, "", "restart=0"), {}, "restart = 0"),
+    ("too_large", kc.namelist("semi_a=1, semi_b=1, mx=2000, my=2000", "", "method='dense'"), {}, "GiB"),
 ]
 for name, text, files, fragment in cases:
     table = os.path.join(folder, name + ".tab")

@@ -1,0 +1,14 @@
+#!/usr/bin/env bash
+# kcreep benchmark: a ladder of grid sizes per solution path, the dgemm and
+# dgetrf rates of this machine, and the issue-4 targets. Prints the table and
+# writes docs/performance.md and docs/figures/performance.png.
+#   scripts/bench.sh                 full ladder, 3 repeats (medians), ~10 min on 2 cores
+#   REPEATS=1 scripts/bench.sh       one run per point
+#   QUICK=1 scripts/bench.sh         small sizes only (checks the script, not the targets)
+#   KCREEP_BUILD_DIR=dir             build somewhere else (default build/)
+set -euo pipefail
+here=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
+build_dir=${KCREEP_BUILD_DIR:-$here/build}
+cmake -S "$here" -B "$build_dir" -DCMAKE_BUILD_TYPE=Release >/dev/null
+cmake --build "$build_dir" -j "$(nproc)" >/dev/null
+exec python3 "$here/scripts/bench.py" "$build_dir" "$here"
