@@ -151,6 +151,7 @@ contains
     record%f = nan
     record%cn = nan
     record%klt = nan
+    record%fastsim = nan
     record%t_assemble = nan
     record%t_factor = nan
     record%t_solve = nan

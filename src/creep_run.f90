@@ -12,6 +12,7 @@ module creep_run
   use linear_solve, only: solve_load_cases
   use creep_coefficients, only: creep_matrix, normalised, traction_coherence
   use kalker_table, only: kalker_coefficients
+  use fastsim_flexibility, only: fastsim_flexibilities
   use table_output, only: run_record_t
   implicit none
   private
@@ -84,6 +85,7 @@ contains
     record%c = patch%equivalent_radius()
     record%f = creep_matrix(patch, traction, cfg%requested)
     record%cn = normalised(record%f, cfg%g, record%c)
+    record%fastsim = fastsim_flexibilities(patch, record%f(1, 1), record%f(2, 2), record%f(2, 3))
     if (patch%kind == 'ellipse') then
       record%klt = kalker_coefficients(patch%semi_a / patch%semi_b, cfg%nu)
     else

@@ -192,10 +192,16 @@ contains
           ' +- ', record%ext_error(i), '   (order ', record%ext_order(i), ')'
       end do
     end if
-    write (output_unit, '(2x, a, es9.2, a, es9.2)') 'rcond ', record%rcond, ', backward error ', record%backward_error
-    write (output_unit, '(2x, a, es9.2, a, es9.2, a)') 'solve: relative residual ', record%relative_residual, &
-      ', backward error before refinement ', record%backward_error_initial, ', refine = '//trim(record%refine)
-    write (output_unit, '(2x, a, i0)') 'method: '//record%method//', GMRES iterations ', record%iterations
+    write (output_unit, '(2x, a, 3es12.4)') 'FASTSIM L1 L2 L3:', record%fastsim
+    if (record%method == 'dense') then
+      write (output_unit, '(2x, a)') 'method: dense LU (LAPACK)'
+      write (output_unit, '(2x, a, es9.2, a, es9.2)') 'rcond ', record%rcond, ', backward error ', record%backward_error
+      write (output_unit, '(2x, a, es9.2, a, es9.2, a)') 'solve: relative residual ', record%relative_residual, &
+        ', backward error before refinement ', record%backward_error_initial, ', refine = '//trim(record%refine)
+    else
+      write (output_unit, '(2x, a, i0, a, es9.2, a)') 'method: iterative (FFT operator, preconditioned GMRES), ', &
+        record%iterations, ' iterations, relative residual ', record%backward_error, ' (no rcond estimate)'
+    end if
     write (output_unit, '(2x, a, 4f9.3)') 'time assemble factor solve total [s]:', record%t_assemble, &
       record%t_factor, record%t_solve, record%t_total
     write (output_unit, '(2x, a)') 'verdict: '//record%verdict//'   table: '//cfg%table_file

@@ -32,13 +32,14 @@ module table_output
     character(len=:), allocatable :: refine                              !< mode and whether it refined
     character(len=:), allocatable :: method   !< 'dense' or 'iterative'
     integer :: iterations = 0                 !< GMRES iterations, 0 for dense
+    real(real64) :: fastsim(3) = 0            !< FASTSIM flexibilities L1, L2, L3 (fastsim_flexibility)
   end type run_record_t
 
   integer, parameter :: line_length = 1024
   character(len=*), parameter :: table_columns = &
     'case scheme mx my n alpha nu g c f11 f12 f13 f21 f22 f23 f31 f32 f33 c11 c22 c23 '// &
     'klt11 klt22 klt23 t_assemble t_factor t_solve t_total rcond berr verdict '// &
-    'ext11 ext22 ext23 exterr11 exterr22 exterr23 extp11 extp22 extp23 iterations'
+    'ext11 ext22 ext23 exterr11 exterr22 exterr23 extp11 extp22 extp23 iterations L1 L2 L3'
 
   interface
     integer(c_int) function c_rename(old, new) bind(c, name='rename')
@@ -90,7 +91,7 @@ contains
     ext = ieee_nan()
     if (r%extrapolated) ext = [r%ext, r%ext_error, r%ext_order]
     line = trim(buf)
-    write (buf, '(6(1x, es23.15e3), 3(1x, f6.3), 1x, i0)') ext, r%iterations
+    write (buf, '(6(1x, es23.15e3), 3(1x, f6.3), 1x, i0, 3(1x, es23.15e3))') ext, r%iterations, r%fastsim
     line = line//trim(buf)
   end function table_row
 
