@@ -1,0 +1,30 @@
+"""Every example in input/ runs as the README says (from a folder holding
+input/, with shared/ beside it) and ends with exit 0 and verdict ok."""
+import glob
+import os
+import shutil
+import subprocess
+import sys
+import kctest as kc
+
+scratch = kc.setup()
+repo = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
+shared = os.path.join(repo, "..", "shared")
+work = os.path.join(scratch, "repo")
+shutil.copytree(os.path.join(repo, "input"), os.path.join(work, "input"))
+if os.path.isdir(shared):
+    os.symlink(os.path.abspath(shared), os.path.join(scratch, "shared"))
+examples = sorted(glob.glob(os.path.join(work, "input", "*.nml")))
+kc.check(len(examples) >= 4, f"{len(examples)} examples in input/")
+for path in examples:
+    rel = os.path.relpath(path, work)
+    if "contact" in rel and not os.path.isdir(shared):
+        kc.check(False, f"{rel}: needs ../shared/contact-samples beside the repository")
+        continue
+    proc = subprocess.run([kc.KCREEP, rel], cwd=work, capture_output=True, text=True)
+    kc.check(proc.returncode == 0, f"{rel}: exit {proc.returncode} {proc.stderr.strip()[:200]}")
+    table = os.path.join(work, os.path.basename(path)[:-4] + ".tab")
+    if proc.returncode == 0:
+        row = kc.read_table(table)[0]
+        kc.check(row["verdict"] == "ok", f"{rel}: verdict {row['verdict']}")
+kc.finish()
