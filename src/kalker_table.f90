@@ -88,28 +88,27 @@ contains
   pure function kalker_coefficients(a_over_b, nu) result(c)
     real(real64), intent(in) :: a_over_b, nu
     real(real64) :: c(3)
-    real(real64) :: at_nu(3)
-    integer :: k
 
     if (a_over_b < table_ratio(1)) then
       c = narrow_asymptote(a_over_b, nu)
     else if (a_over_b > table_ratio(n_rows)) then
       c = long_asymptote(1 / a_over_b, nu)
     else
-      do k = 1, 3
-        at_nu(k) = interpolate_ratio(table_c11(k, :), a_over_b)
-      end do
-      c(1) = quadratic_in_nu(at_nu, nu)
-      do k = 1, 3
-        at_nu(k) = interpolate_ratio(table_c22(k, :), a_over_b)
-      end do
-      c(2) = quadratic_in_nu(at_nu, nu)
-      do k = 1, 3
-        at_nu(k) = interpolate_ratio(table_c23(k, :), a_over_b)
-      end do
-      c(3) = quadratic_in_nu(at_nu, nu)
+      c = [table_value(table_c11, a_over_b, nu), table_value(table_c22, a_over_b, nu), &
+           table_value(table_c23, a_over_b, nu)]
     end if
   end function kalker_coefficients
+
+  !> One coefficient inside the table: in a/b at each tabulated nu, then in nu.
+  pure real(real64) function table_value(table, a_over_b, nu) result(v)
+    real(real64), intent(in) :: table(3, n_rows), a_over_b, nu
+    real(real64) :: at_nu(3)
+    integer :: k
+    do k = 1, 3
+      at_nu(k) = interpolate_ratio(table(k, :), a_over_b)
+    end do
+    v = quadratic_in_nu(at_nu, nu)
+  end function table_value
 
   !> Cubic Lagrange interpolation of ln(values) in ln(a/b) over the 4 nearest rows.
   pure real(real64) function interpolate_ratio(values, a_over_b) result(v)

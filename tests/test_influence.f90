@@ -9,15 +9,15 @@
 program test_influence
   use, intrinsic :: iso_fortran_env, only: real64
   use influence_coefficients, only: influence_t, cell_displacement, cell_displacement_x_derivative
+  use unit_checks, only: checker_t
   implicit none
+  type(checker_t) :: t
   real(real64), parameter :: pi = acos(-1.0_real64), nu = 0.3_real64, g = 2.5_real64
   real(real64), parameter :: a = 0.6_real64, b = 0.25_real64, h = 1e-5_real64
   real(real64) :: pts(2, 6), xr, yr, scale, r, x, y
   type(influence_t) :: d, up, um, c1, c2, c3, c4
-  integer :: k, failures, checks
+  integer :: k
 
-  failures = 0
-  checks = 0
   pts = reshape([0.3_real64, 0.0_real64, 1.3_real64, 0.7_real64, -2.1_real64, 0.05_real64, &
                  0.0_real64, 3.0_real64, 10.5_real64, -7.2_real64, 0.3_real64, 0.1_real64], [2, 6])
   do k = 1, size(pts, 2)
@@ -27,17 +27,17 @@ program test_influence
     up = cell_displacement(xr + h, yr, a, b, nu, g)
     um = cell_displacement(xr - h, yr, a, b, nu, g)
     scale = max(abs(d%xx), abs(d%xy), abs(d%yy))
-    call check(abs(d%xx - (up%xx - um%xx) / (2 * h)) <= 1e-7_real64 * scale, 'derivative xx = central difference')
-    call check(abs(d%xy - (up%xy - um%xy) / (2 * h)) <= 1e-7_real64 * scale, 'derivative xy = central difference')
-    call check(abs(d%yy - (up%yy - um%yy) / (2 * h)) <= 1e-7_real64 * scale, 'derivative yy = central difference')
+    call t%check(abs(d%xx - (up%xx - um%xx) / (2 * h)) <= 1e-7_real64 * scale, 'derivative xx = central difference')
+    call t%check(abs(d%xy - (up%xy - um%xy) / (2 * h)) <= 1e-7_real64 * scale, 'derivative xy = central difference')
+    call t%check(abs(d%yy - (up%yy - um%yy) / (2 * h)) <= 1e-7_real64 * scale, 'derivative yy = central difference')
 
     c1 = cell_displacement(xr, yr, a, b, nu, g)
     c2 = cell_displacement(-xr, yr, a, b, nu, g)
     c3 = cell_displacement(xr, -yr, a, b, nu, g)
     c4 = cell_displacement(-xr, -yr, a, b, nu, g)
-    call check(abs(c1%xx - c2%xx) <= 1e-14_real64 * abs(c1%xx) .and. abs(c1%xx - c3%xx) <= 1e-14_real64 * abs(c1%xx) &
+    call t%check(abs(c1%xx - c2%xx) <= 1e-14_real64 * abs(c1%xx) .and. abs(c1%xx - c3%xx) <= 1e-14_real64 * abs(c1%xx) &
                .and. abs(c1%yy - c4%yy) <= 1e-14_real64 * abs(c1%yy), 'xx, yy even in x and y (to round-off)')
-    call check(abs(c1%xy + c2%xy) <= 1e-12_real64 * abs(c1%xx) .and. abs(c1%xy + c3%xy) <= 1e-12_real64 * abs(c1%xx), &
+    call t%check(abs(c1%xy + c2%xy) <= 1e-12_real64 * abs(c1%xx) .and. abs(c1%xy + c3%xy) <= 1e-12_real64 * abs(c1%xx), &
                'xy odd in x and y (to round-off)')
   end do
 
@@ -45,23 +45,10 @@ program test_influence
   y = -130 * b
   r = hypot(x, y)
   c1 = cell_displacement(x, y, a, b, nu, g)
-  call check(abs(c1%xx / (4 * a * b * ((1 - nu) / r + nu * x**2 / r**3) / (pi * g)) - 1) < 1e-4_real64, 'far field xx')
-  call check(abs(c1%xy / (4 * a * b * (nu * x * y / r**3) / (pi * g)) - 1) < 1e-4_real64, 'far field xy')
-  call check(abs(c1%yy / (4 * a * b * ((1 - nu) / r + nu * y**2 / r**3) / (pi * g)) - 1) < 1e-4_real64, 'far field yy')
+  call t%check(abs(c1%xx / (4 * a * b * ((1 - nu) / r + nu * x**2 / r**3) / (pi * g)) - 1) < 1e-4_real64, 'far field xx')
+  call t%check(abs(c1%xy / (4 * a * b * (nu * x * y / r**3) / (pi * g)) - 1) < 1e-4_real64, 'far field xy')
+  call t%check(abs(c1%yy / (4 * a * b * ((1 - nu) / r + nu * y**2 / r**3) / (pi * g)) - 1) < 1e-4_real64, 'far field yy')
 
-  print '(i0, a, i0, a)', checks - failures, ' passed, ', failures, ' failed'
-  if (failures > 0) error stop 1
-
-contains
-
-  subroutine check(condition, what)
-    logical, intent(in) :: condition
-    character(len=*), intent(in) :: what
-    checks = checks + 1
-    if (.not. condition) then
-      failures = failures + 1
-      print '(a)', 'FAIL '//what
-    end if
-  end subroutine check
+  call t%finish()
 
 end program test_influence

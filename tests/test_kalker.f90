@@ -7,18 +7,18 @@
 program test_kalker
   use, intrinsic :: iso_fortran_env, only: real64
   use kalker_table, only: kalker_coefficients, table_ratio, table_c11, table_c22, table_c23, n_rows
+  use unit_checks, only: checker_t
   implicit none
+  type(checker_t) :: t
   real(real64), parameter :: nus(3) = [0.0_real64, 0.25_real64, 0.5_real64], pi = acos(-1.0_real64)
   real(real64) :: c(3), lo(3), hi(3), g, values(9), mid
   character(len=512) :: path, line
   character(len=8) :: kind
-  integer :: unit, ios, row, k, failures, checks
+  integer :: unit, ios, row, k
 
-  failures = 0
-  checks = 0
   call get_command_argument(1, path)
   open (newunit=unit, file=trim(path), status='old', action='read', iostat=ios)
-  call check(ios == 0, 'table file opens')
+  call t%check(ios == 0, 'table file opens')
   row = 0
   do while (ios == 0)
     read (unit, '(a)', iostat=ios) line
@@ -27,15 +27,15 @@ program test_kalker
     row = row + 1
     kind = line(1:3)   ! 'a/b' or 'b/a': a slash would end a list-directed read
     read (line(4:), *) g, values
-    call check(abs(merge(g, 1 / g, kind == 'a/b') - table_ratio(row)) < 1e-14_real64, 'row ratio')
-    call check(all(values == [table_c11(:, row), table_c22(:, row), table_c23(:, row)]), 'row values')
+    call t%check(abs(merge(g, 1 / g, kind == 'a/b') - table_ratio(row)) < 1e-14_real64, 'row ratio')
+    call t%check(all(values == [table_c11(:, row), table_c22(:, row), table_c23(:, row)]), 'row values')
   end do
-  call check(row == n_rows, 'row count')
+  call t%check(row == n_rows, 'row count')
 
   do row = 1, n_rows
     do k = 1, 3
       c = kalker_coefficients(table_ratio(row), nus(k))
-      call check(all(abs(c - [table_c11(k, row), table_c22(k, row), table_c23(k, row)]) <= 1e-12_real64 * c), &
+      call t%check(all(abs(c - [table_c11(k, row), table_c22(k, row), table_c23(k, row)]) <= 1e-12_real64 * c), &
                  'interpolation hits the table nodes')
     end do
   end do
@@ -44,29 +44,16 @@ program test_kalker
     c = kalker_coefficients(mid, 0.25_real64)
     lo = [table_c11(2, row), table_c22(2, row), table_c23(2, row)]
     hi = [table_c11(2, row + 1), table_c22(2, row + 1), table_c23(2, row + 1)]
-    call check(all(c >= min(lo, hi) .and. c <= max(lo, hi)), 'interpolant between its neighbours')
+    call t%check(all(c >= min(lo, hi) .and. c <= max(lo, hi)), 'interpolant between its neighbours')
   end do
   c = kalker_coefficients(0.01_real64, 0.25_real64)
-  call check(abs(c(1) - pi**2 / 3) < 1e-12_real64 .and. abs(c(2) - pi**2 / 4) < 1e-12_real64, 'narrow asymptote')
+  call t%check(abs(c(1) - pi**2 / 3) < 1e-12_real64 .and. abs(c(2) - pi**2 / 4) < 1e-12_real64, 'narrow asymptote')
   c = kalker_coefficients(0.0999_real64, 0.25_real64)
-  call check(abs(c(1) / table_c11(2, 1) - 1) < 0.01_real64, 'asymptote meets the table at a/b = 0.1 (within 1 %)')
+  call t%check(abs(c(1) / table_c11(2, 1) - 1) < 0.01_real64, 'asymptote meets the table at a/b = 0.1 (within 1 %)')
   c = kalker_coefficients(10.01_real64, 0.25_real64)
-  call check(abs(c(1) / table_c11(2, n_rows) - 1) < 0.04_real64, &
+  call t%check(abs(c(1) / table_c11(2, n_rows) - 1) < 0.04_real64, &
              'asymptote meets the table at a/b = 10 (within 4 %: measured 3.5 %)')
 
-  print '(i0, a, i0, a)', checks - failures, ' passed, ', failures, ' failed'
-  if (failures > 0) error stop 1
-
-contains
-
-  subroutine check(condition, what)
-    logical, intent(in) :: condition
-    character(len=*), intent(in) :: what
-    checks = checks + 1
-    if (.not. condition) then
-      failures = failures + 1
-      print '(a)', 'FAIL '//what
-    end if
-  end subroutine check
+  call t%finish()
 
 end program test_kalker
