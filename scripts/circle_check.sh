@@ -1,30 +1,33 @@
 #!/usr/bin/env bash
 # The unit circle at nu = 0.25 on 40 x 40, 60 x 60 and 80 x 80 grids with
 # both schemes: C11, C22, C23 against Kalker's table and the wall time
-# (median of --repeats runs, default 3).
-#   scripts/circle_check.sh [--repeats N] [--grids "40 60 80"]
+# (median of --repeats runs, default 3) with the chosen solver method.
+#   scripts/circle_check.sh [--repeats N] [--grids "40 60 80"] [--method auto|dense|iterative]
 set -euo pipefail
 here=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
 kcreep=${KCREEP:-$here/build/kcreep}
 repeats=3
 grids="40 60 80"
+method=auto
 while (($#)); do
   case $1 in
     --repeats) repeats=$2; shift 2 ;;
     --grids) grids=$2; shift 2 ;;
-    *) echo "circle_check.sh: unknown option $1 (allowed: --repeats N, --grids LIST)" >&2; exit 2 ;;
+    --method) method=$2; shift 2 ;;
+    *) echo "circle_check.sh: unknown option $1 (allowed: --repeats N, --grids LIST, --method M)" >&2; exit 2 ;;
   esac
 done
 [[ -x $kcreep ]] || { echo "circle_check.sh: no kcreep at $kcreep (run scripts/setup.sh)" >&2; exit 2; }
 work=$(mktemp -d)
 trap 'rm -rf "$work"' EXIT
+echo "# unit circle, nu = 0.25, method = $method; dCij: against Kalker's table; t_total: median of $repeats"
 printf '%-12s %5s %6s %9s %9s %9s %8s %8s %8s %9s\n' scheme grid n C11 C22 C23 'dC11%' 'dC22%' 'dC23%' 't_total_s'
 for scheme in collocation backward; do
   for m in $grids; do
     cat > "$work/c.nml" <<EON
 &patch shape='ellipse', semi_a=1, semi_b=1, mx=$m, my=$m /
 &material g=1, nu=0.25 /
-&solver scheme='$scheme', alpha=0.5 /
+&solver scheme='$scheme', alpha=0.5, method='$method' /
 EON
     times=()
     for ((r = 0; r < repeats; r++)); do
