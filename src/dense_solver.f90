@@ -1,18 +1,17 @@
-!> Dense LU solution of the full-adhesion system with LAPACK, with the
-!> checks that say whether the answer can be trusted: LAPACK's reciprocal
-!> condition estimate, the normwise backward error of each solution
-!> (residual computed without the matrix, from the offset table), and one
-!> step of iterative refinement when that backward error is not at round-off.
+!> What the dense path needs besides the LU itself (which linear_solve does
+!> on the split systems): the diagnostics record, memory checks, the
+!> normwise backward error and relative residual, and the whole-system solve
+!> with LAPACK's expert driver (&solver refine = 'lapack') for comparison.
 module dense_solver
   use, intrinsic :: iso_fortran_env, only: real64, int64
   use kcreep_status, only: status_t, fail, exit_numerical, exit_bad_input
   use kcreep_strings, only: itoa, rtoa
-  use lapack_interfaces, only: dgetrf, dgetrs, dgecon, dlange, dgesvx
+  use lapack_interfaces, only: dlange, dgesvx
   use patch_grid, only: patch_t
   use tang_assembly, only: operator_table_t, assemble_dense, apply_operator
   implicit none
   private
-  public :: dense_diagnostics_t, solve_dense, check_dense_memory, refine_modes
+  public :: dense_diagnostics_t, solve_lapack_expert, check_dense_memory, refine_modes
   public :: available_memory_bytes, backward_error, relative_residual, refine_threshold
 
   !> Backward errors above this are refined once (about 100 unit round-offs).
@@ -77,79 +76,16 @@ contains
     end if
   end subroutine check_dense_memory
 
-  !> Solve A x = b for the columns of rhs (x overwrites rhs).
-  subroutine solve_dense(patch, table, rhs, diag, status, refine)
-    type(patch_t), intent(in) :: patch
-    type(operator_table_t), intent(in) :: table
-    real(real64), intent(inout) :: rhs(:, :)      !< (2n, ncases): in b, out x
-    type(dense_diagnostics_t), intent(out) :: diag
-    type(status_t), intent(inout) :: status
-    character(len=*), intent(in), optional :: refine   !< one of refine_modes; 'auto' when absent
-    character(len=:), allocatable :: mode
-    real(real64), allocatable :: a(:, :), b(:, :), r(:, :), work(:)
-    integer, allocatable :: ipiv(:), iwork(:)
-    integer :: m, info, nrhs
-    integer(int64) :: t0, t1, rate
-    real(real64) :: anorm_1, anorm_inf
-
-    m = 2 * patch%n
-    nrhs = size(rhs, 2)
-    mode = 'auto'
-    if (present(refine)) mode = trim(refine)
-    call check_dense_memory(patch%n, status)
-    if (status%failed()) return
-    if (mode == 'lapack') then
-      call solve_expert(patch, table, rhs, diag, status)
-      return
-    end if
-
-    call system_clock(t0, rate)
-    allocate (a(m, m), ipiv(m), work(4 * m), iwork(m))
-    call assemble_dense(patch, table, a)
-    call system_clock(t1)
-    diag%t_assemble = real(t1 - t0, real64) / rate
-
-    t0 = t1
-    anorm_1 = dlange('1', m, m, a, m, work)
-    anorm_inf = dlange('I', m, m, a, m, work)
-    call dgetrf(m, m, a, m, ipiv, info)
-    if (info > 0) then
-      call fail(status, exit_numerical, 'the influence matrix is exactly singular (LU pivot '// &
-                itoa(info)//' is zero); the collocation point or the patch is degenerate')
-      return
-    end if
-    call dgecon('1', m, a, m, anorm_1, diag%rcond, work, iwork, info)
-    call system_clock(t1)
-    diag%t_factor = real(t1 - t0, real64) / rate
-
-    t0 = t1
-    b = rhs
-    call dgetrs('N', m, nrhs, a, m, ipiv, rhs, m, info)
-    allocate (r(m, nrhs))
-    call residual(patch, table, b, rhs, r)
-    diag%backward_error_initial = backward_error(r, b, rhs, anorm_inf)
-    diag%relative_residual = relative_residual(r, b)
-    diag%backward_error = diag%backward_error_initial
-    if ((mode == 'auto' .and. diag%backward_error > refine_threshold) .or. mode == 'always') then
-      call dgetrs('N', m, nrhs, a, m, ipiv, r, m, info)
-      rhs = rhs + r
-      call residual(patch, table, b, rhs, r)
-      diag%backward_error = backward_error(r, b, rhs, anorm_inf)
-      diag%refined = .true.
-    end if
-    call system_clock(t1)
-    diag%t_solve = real(t1 - t0, real64) / rate
-  end subroutine solve_dense
-
-  !> LAPACK's expert driver: equilibration, LU, condition estimate and
-  !> iterative refinement (dgerfs) in one call. rcond is that of the
+  !> refine = 'lapack': the whole unsplit 2n x 2n system through LAPACK's expert
+  !> driver: equilibration, LU, condition estimate and iterative refinement
+  !> (dgerfs) in one call, to compare with kcreep's own refinement. rcond is that of the
   !> equilibrated matrix; the backward errors are recomputed here, normwise,
   !> so that they compare with the other modes.
-  subroutine solve_expert(patch, table, rhs, diag, status)
+  subroutine solve_lapack_expert(patch, table, rhs, diag, status)
     type(patch_t), intent(in) :: patch
     type(operator_table_t), intent(in) :: table
     real(real64), intent(inout) :: rhs(:, :)
-    type(dense_diagnostics_t), intent(inout) :: diag
+    type(dense_diagnostics_t), intent(out) :: diag
     type(status_t), intent(inout) :: status
     real(real64), allocatable :: a(:, :), af(:, :), b(:, :), x(:, :), r(:, :), rs(:), cs(:), &
                                  ferr(:), berr(:), work(:)
@@ -188,7 +124,7 @@ contains
     diag%backward_error = backward_error(r, b, rhs, anorm_inf)
     diag%backward_error_initial = diag%backward_error
     diag%relative_residual = relative_residual(r, b)
-  end subroutine solve_expert
+  end subroutine solve_lapack_expert
 
   !> max_j |r_j| / |b_j|, infinity norms.
   pure real(real64) function relative_residual(r, b) result(rho)

@@ -15,6 +15,7 @@ module namelist_input
   use namelist_scan, only: scan_namelist_text
   use input_limits, only: check_grid_size, length_in_range, offset_in_range, modulus_in_range
   use solver_options, only: solver_options_t, validate_solver_options
+  use dense_solver, only: refine_modes
   implicit none
   private
   public :: config_t, read_config, build_patch, max_inline_rows, max_row_length
@@ -299,7 +300,7 @@ contains
     if (cfg%extrapolate .and. (cfg%refine_ratio < 2 .or. cfg%refine_ratio > 4)) &
       call fail(status, exit_bad_input, where//'&solver refine_ratio = '//itoa(cfg%refine_ratio)// &
                 ' (allowed: 2, 3 or 4; every level multiplies the cells per direction by it)')
-    if (findloc([character(len=8) :: 'auto', 'always', 'never', 'lapack'], cfg%refine, dim=1) == 0) &
+    if (findloc(refine_modes, cfg%refine, dim=1) == 0) &
       call fail(status, exit_bad_input, where//'&solver refine = '''//cfg%refine// &
                 ''' (allowed: ''auto'', ''always'', ''never'', ''lapack'')')
     call parse_load_cases(load_cases, cfg%requested, where, status)

@@ -18,7 +18,7 @@ module linear_solve
   use patch_grid, only: patch_t
   use tang_assembly, only: operator_table_t, scheme_t, rigid_creepage, n_load_cases
   use dense_solver, only: dense_diagnostics_t, available_memory_bytes, backward_error, relative_residual, &
-                          refine_threshold, solve_dense
+                          refine_threshold, solve_lapack_expert
   use system_split, only: subsystem_t, plan_subsystems, assemble_subsystem, restrict_to, expand_from
   use fft_operator, only: fft_operator_t, create_fft_operator, destroy_fft_operator, apply_fft_operator
   use strip_preconditioner, only: strip_preconditioner_t, build_strip_preconditioner, apply_strip_preconditioner
@@ -179,7 +179,7 @@ contains
     integer :: j
     cases = pack([(j, j=1, n_load_cases)], requested)
     x = rhs(:, cases)
-    call solve_dense(patch, table, x, diag, status, 'lapack')
+    call solve_lapack_expert(patch, table, x, diag, status)
     if (status%failed()) return
     diag%method = 'dense'
     diag%iterations = 0
