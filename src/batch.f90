@@ -283,7 +283,7 @@ contains
     do k = 1, size(paths)
       call load_input(paths(k)%s, folder_of(paths(k)%s), cfg, patch, status)
       if (status%failed()) return
-      bytes(k) = case_memory_bytes(patch)
+      bytes(k) = case_memory_bytes(cfg, patch)
     end do
   end subroutine estimate_memory
 

@@ -7,6 +7,7 @@ module case_driver
   use patch_grid, only: patch_t
   use namelist_input, only: config_t, read_config, build_patch
   use creep_run, only: run_case
+  use linear_solve, only: solve_memory_bytes
   use mesh_extrapolation, only: run_extrapolated
   use table_output, only: run_record_t, check_output_path
   implicit none
@@ -56,17 +57,16 @@ contains
     end if
   end subroutine solve_input
 
-  !> Bytes a case needs at its peak: the dense matrix 8 (2n)^2 of the LU,
-  !> about 20 vectors of length 2n (pivots, work, right-hand sides, residuals,
-  !> tractions) and the operator table with its influence coefficients
-  !> (about 40 reals per grid cell). The program itself (code, OpenBLAS
-  !> buffers) is not included: a few tens of MiB, see README.
-  pure integer(int64) function case_memory_bytes(patch) result(bytes)
+  !> Bytes a case needs at its peak: what its solve path needs
+  !> (linear_solve%solve_memory_bytes: the dense subsystem matrix or the
+  !> iterative solver's storage) and the operator table with its influence
+  !> coefficients (about 40 reals per grid cell). The program itself (code,
+  !> OpenBLAS buffers) is not included: a few tens of MiB, see README.
+  function case_memory_bytes(cfg, patch) result(bytes)
+    type(config_t), intent(in) :: cfg
     type(patch_t), intent(in) :: patch
-    integer(int64) :: m, cells
-    m = 2_int64 * patch%n
-    cells = int(patch%mx, int64) * patch%my
-    bytes = 8 * m * m + 160 * m + 320 * cells
+    integer(int64) :: bytes
+    bytes = solve_memory_bytes(cfg%solve, cfg%nu, patch, cfg%requested) + 320 * int(patch%mx, int64) * patch%my
   end function case_memory_bytes
 
 end module case_driver

@@ -26,7 +26,7 @@ module linear_solve
   use solver_options, only: solver_options_t
   implicit none
   private
-  public :: solve_load_cases, choose_method
+  public :: solve_load_cases, choose_method, solve_memory_bytes
 
   !> GMRES works on the unknowns of the subsystems (system_split), one
   !> subsystem per column, padded with zeros to the longest: a y-symmetric
@@ -195,9 +195,7 @@ contains
     integer, intent(in) :: n_cases
     type(status_t), intent(inout) :: status
     real(real64) :: need, have
-    ! Krylov basis + a few work vectors, 4 padded grids per case, row factors (<= 2 n mx)
-    need = 8 * (2 * real(patch%n, real64) * ((opts%restart + 6) * n_cases) + &
-                4 * n_cases * 4 * real(patch%mx, real64) * patch%my + 2 * real(patch%n, real64) * patch%mx)
+    need = iterative_bytes(opts, patch, n_cases)
     have = real(available_memory_bytes(), real64)
     if (have > 0 .and. need > have) then
       call fail(status, exit_bad_input, 'the iterative solver for '//itoa(patch%n)//' cells needs about '// &
@@ -205,6 +203,35 @@ contains
                 ' GiB are available (use a coarser grid, fewer load_cases or a smaller restart)')
     end if
   end subroutine check_iterative_memory
+
+  !> Krylov basis + a few work vectors, 4 padded grids per case, row factors (<= 2 n mx).
+  pure real(real64) function iterative_bytes(opts, patch, n_cases) result(bytes)
+    type(solver_options_t), intent(in) :: opts
+    type(patch_t), intent(in) :: patch
+    integer, intent(in) :: n_cases
+    bytes = 8 * (2 * real(patch%n, real64) * ((opts%restart + 6) * n_cases) + &
+                 4 * n_cases * 4 * real(patch%mx, real64) * patch%my + 2 * real(patch%n, real64) * patch%mx)
+  end function iterative_bytes
+
+  !> Peak bytes of solve_load_cases for this case, for the method it will take
+  !> ('auto' decided as it would be now): the largest dense subsystem matrix
+  !> with about 20 vectors of its size, or the iterative solver's storage.
+  function solve_memory_bytes(opts, nu, patch, requested) result(bytes)
+    type(solver_options_t), intent(in) :: opts
+    real(real64), intent(in) :: nu
+    type(patch_t), intent(in) :: patch
+    logical, intent(in) :: requested(n_load_cases)
+    integer(int64) :: bytes
+    type(subsystem_t), allocatable :: subs(:)
+    integer(int64) :: m
+    subs = plan_subsystems(patch, nu, opts%split_systems, requested)
+    if (choose_method(opts, patch, subs, requested) == 'dense') then
+      m = maxval(subs%m)
+      bytes = 8 * m * m + 160 * m
+    else
+      bytes = int(iterative_bytes(opts, patch, count(requested)), int64)
+    end if
+  end function solve_memory_bytes
 
   subroutine solve_dense_split(patch, table, subs, requested, refine, rhs, traction, diag, status)
     type(patch_t), intent(in) :: patch

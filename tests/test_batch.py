@@ -98,9 +98,11 @@ kc.check(proc.returncode == 4 and "batch table" in proc.stderr, f"unwritable tab
 
 # --- kill a batch in the middle, resume, compare with an uninterrupted run
 sweep = []
-for k, m in enumerate([10, 12, 40, 40, 40]):     # the 40 x 40 cases take ~0.5 s each here
+# dense 60 x 60 cases take ~0.5 s each here: time enough to kill the batch between two
+for k, m in enumerate([10, 12, 60, 60, 60]):
     name = f"s{k}_{m}"
-    write(os.path.join(sub, name + ".nml"), f"&patch semi_a=1, semi_b={0.5 + 0.1 * k}, mx={m}, my={m} /\n")
+    write(os.path.join(sub, name + ".nml"),
+          f"&patch semi_a=1, semi_b={0.5 + 0.1 * k}, mx={m}, my={m} /\n&solver method='dense' /\n")
     sweep.append("sub/" + name + ".nml")
 write(os.path.join(folder, "sweep.list"), "\n".join(sweep) + "\n")
 ref_proc = batch("sweep.list", "reference.tab")
@@ -153,16 +155,22 @@ proc = batch("good.list", "other.tab")
 kc.check(proc.returncode == 2 and "another list" in proc.stderr and len(proc.stderr.strip().splitlines()) == 1,
          f"partial of another list refused: {proc.stderr.strip()!r}")
 
-# --- --estimate-memory: the dense matrix 8 (2n)^2 plus a little
-est = subprocess.run([kc.KCREEP, "--estimate-memory", "sub/s2_40.nml", "sub/e10.nml", "sub/m.nml"], cwd=folder,
-                     capture_output=True, text=True)
+# --- --estimate-memory: what the case's solve path allocates, plus a little.
+# method = 'dense' on a y-symmetric ellipse: the two half systems of n unknowns,
+# one matrix buffer of 8 n^2 bytes; 'auto' on 80 x 80 takes the iterative path.
+write(os.path.join(sub, "it80.nml"), "&patch semi_a=1, semi_b=0.8, mx=80, my=80 /\n&solver method='iterative' /\n")
+est = subprocess.run([kc.KCREEP, "--estimate-memory", "sub/s2_60.nml", "sub/e10.nml", "sub/m.nml", "sub/it80.nml"],
+                     cwd=folder, capture_output=True, text=True)
 values = [int(v) for v in est.stdout.split()]
-n40 = reference[2]["n"]
-dense = 8 * (2 * n40) ** 2
-kc.check(est.returncode == 0 and len(values) == 3, f"one estimate per file: {est.stdout.split()}")
-# measured (GNU time, OPENBLAS_NUM_THREADS=1): 40 x 40 circle estimate 52.0e6 B, peak RSS 62.4e6 B;
-# 80 x 80 estimate 811e6 B, peak RSS 818e6 B: the program itself adds ~10 MB
-kc.check(dense <= values[0] <= 1.05 * dense, f"40 x 40: estimate {values[0]} within 5 % above 8(2n)^2 = {dense}")
+n60 = reference[2]["n"]
+dense = 8 * n60 ** 2
+kc.check(est.returncode == 0 and len(values) == 4, f"one estimate per file: {est.stdout.split()}")
+# measured (GNU time, OPENBLAS_NUM_THREADS=1, unit circle): dense 80 x 80 estimate 205e6 B,
+# peak RSS 227e6 B; dense 40 x 40 13.5e6 / 26.5e6 B (the program itself adds 10-20 MB);
+# iterative 80 x 80 24e6 / 28e6 B, 200 x 200 213e6 / 137e6 B (the estimate is generous)
+kc.check(dense <= values[0] <= 1.05 * dense, f"dense 60 x 60: estimate {values[0]} within 5 % above 8 n^2 = {dense}")
+n80 = 5024 * 0.8   # about: the 80 x 80 ellipse with b/a = 0.8 has as many cells as 0.8 of the circle
+kc.check(0 < values[3] < 8 * n80 ** 2 / 4, f"iterative 80 x 80: estimate {values[3]} far below a dense matrix")
 kc.check(values[2] >= 8 * (2 * 10) ** 2, "mask case relative to its namelist folder: estimated")
 proc = subprocess.run([kc.KCREEP, "--estimate-memory", "sub/bad.nml"], cwd=folder, capture_output=True, text=True)
 kc.check(proc.returncode == 2 and "shape = 'circle'" in proc.stderr, "estimate of a bad input: status 2")
