@@ -2,22 +2,25 @@
 scratch folder and read its coefficient table (standard library only)."""
 import math
 import os
+import shutil
 import subprocess
 import sys
 import tempfile
 
 KCREEP = None
+SCRATCH = None
 FAILURES = []
 CHECKS = [0]
 
 
 def setup():
     """Take the kcreep binary from argv[1]; return the scratch folder."""
-    global KCREEP
+    global KCREEP, SCRATCH
     if len(sys.argv) < 2:
         sys.exit("usage: test_x.py PATH/TO/kcreep")
     KCREEP = os.path.abspath(sys.argv[1])
-    return tempfile.mkdtemp(prefix="kcreep-test-")
+    SCRATCH = tempfile.mkdtemp(prefix="kcreep-test-")
+    return SCRATCH
 
 
 def namelist(patch="", material="", solver="", output=""):
@@ -87,6 +90,10 @@ def small(value, scale, rel, message):
 def finish():
     passed = CHECKS[0] - len(FAILURES)
     print(f"{passed} passed, {len(FAILURES)} failed")
+    if FAILURES:
+        print(f"scratch folder kept for inspection: {SCRATCH}")
+    elif SCRATCH and not os.environ.get("KCREEP_KEEP_TEST_FILES"):
+        shutil.rmtree(SCRATCH, ignore_errors=True)
     sys.exit(1 if FAILURES else 0)
 
 
