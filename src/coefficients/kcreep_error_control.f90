@@ -1,0 +1,160 @@
+!> Error control in the mesh size: which grids to run for a target error, the
+!> extrapolation to zero cell size, the error estimate and the verdict.
+!>
+!> The model (measured, docs/accuracy.md): with the backward scheme on
+!> near-square cells, and for an ellipse with the coefficients normalised by
+!> the area of the cells inside it, every coefficient behaves as
+!>     f(h) = f0 + K h + noise(h),
+!> first order in the cell size h, plus an irregular part from the staircase
+!> boundary that no smooth model captures (about 0.03 % of C11 on a circle at
+!> 32 to 256 cells across; up to 0.1 % on elongated ellipses). Fitting the order
+!> from three levels mistakes that noise for a change of order; so the order is
+!> fixed at 1 and the levels are used as a regression, not as an interpolation:
+!>   levels   N/3, N/2, 2N/3, N cells across the shorter axis (N a multiple of 6),
+!>   limit    the least-squares fit of f0 + K h through the levels,
+!>   error    t * (standard error of f0), t the two-sided 95 % Student factor for
+!>            the degrees of freedom left (levels - 2): the scatter of the levels
+!>            about the straight line measures the noise, and the noise is what
+!>            limits the accuracy at these resolutions.
+!> Measured honesty (docs/accuracy.md): this estimate bounded the error against
+!> an independent fine-grid reference in 19 or 20 of 20 ellipses for C11, C22,
+!> C23 at N = 48.
+!>
+!> Everything here is pure: the driver runs the levels and calls these.
+module kcreep_error_control
+  use, intrinsic :: iso_fortran_env, only: real64
+  use, intrinsic :: ieee_arithmetic, only: ieee_value, ieee_quiet_nan
+  implicit none
+  private
+  public :: default_target_error, c23_target_factor, min_estimate_cells, first_cells, max_refinements
+  public :: coefficient_targets, ellipse_level_grid, level_cells, student_t95
+  public :: first_order_fit, level_estimate, single_grid_estimate, within_target, uncertain_flag
+
+  !> &solver target_error when not given: the relative error aimed at for C11 and C22.
+  real(real64), parameter :: default_target_error = 1e-3_real64
+  !> C23 (and f23, f32) get this multiple of target_error: it is the slowest to
+  !> converge (its discretisation error is 2-3 times that of C11 at the same grid).
+  real(real64), parameter :: c23_target_factor = 3
+  !> Fewer cells than this across the shorter axis on the coarsest level used:
+  !> the level is outside the first-order range (errors of 10-50 %, the sign of the
+  !> error still changes); no estimate is made from it.
+  integer, parameter :: min_estimate_cells = 12
+  !> The first finest level (cells across the shorter axis): levels 16, 24, 32, 48.
+  integer, parameter :: first_cells = 48
+  !> At most this many doublings of the finest level (48 -> 96 -> 192).
+  integer, parameter :: max_refinements = 2
+
+contains
+
+  !> Relative targets of (C11, C22, C23) for a target_error.
+  pure function coefficient_targets(target) result(t)
+    real(real64), intent(in) :: target
+    real(real64) :: t(3)
+    t = [target, target, c23_target_factor * target]
+  end function coefficient_targets
+
+  !> Grid of near-square cells over [-a, a] x [-b, b] with `cells` cells across
+  !> the shorter axis (dx/dy within a rounding step of 1).
+  pure subroutine ellipse_level_grid(semi_a, semi_b, cells, mx, my)
+    real(real64), intent(in) :: semi_a, semi_b
+    integer, intent(in) :: cells
+    integer, intent(out) :: mx, my
+    if (semi_a >= semi_b) then
+      my = cells
+      mx = max(cells, nint(cells * semi_a / semi_b))
+    else
+      mx = cells
+      my = max(cells, nint(cells * semi_b / semi_a))
+    end if
+  end subroutine ellipse_level_grid
+
+  !> Cells across the shorter axis of the levels for finest level `finest`
+  !> (a multiple of 6): N/3, N/2, 2N/3, N, coarsest first.
+  pure function level_cells(finest) result(cells)
+    integer, intent(in) :: finest
+    integer :: cells(4)
+    cells = [finest / 3, finest / 2, (2 * finest) / 3, finest]
+  end function level_cells
+
+  !> Two-sided 95 % factor of Student's t distribution for dof degrees of freedom.
+  pure real(real64) function student_t95(dof) result(t)
+    integer, intent(in) :: dof
+    real(real64), parameter :: table(10) = [12.706_real64, 4.303_real64, 3.182_real64, 2.776_real64, &
+                                            2.571_real64, 2.447_real64, 2.365_real64, 2.306_real64, &
+                                            2.262_real64, 2.228_real64]
+    if (dof < 1) then
+      t = ieee_value(1.0_real64, ieee_quiet_nan)
+    else if (dof <= size(table)) then
+      t = table(dof)
+    else
+      t = 1.96_real64 + 2.5_real64 / dof   ! within 1 % of the exact factor beyond 10
+    end if
+  end function student_t95
+
+  !> Least-squares fit f = f0 + K h; std_error: the standard error of f0 from the
+  !> residual scatter (NaN with two levels: no scatter left to measure).
+  pure subroutine first_order_fit(h, f, f0, slope, std_error)
+    real(real64), intent(in) :: h(:), f(:)
+    real(real64), intent(out) :: f0, slope, std_error
+    real(real64) :: hm, fm, shh, s2
+    integer :: m
+    m = size(h)
+    hm = sum(h) / m
+    fm = sum(f) / m
+    shh = sum((h - hm)**2)
+    slope = sum((h - hm) * (f - fm)) / shh
+    f0 = fm - slope * hm
+    if (m > 2) then
+      s2 = sum((f - f0 - slope * h)**2) / (m - 2)
+      std_error = sqrt(s2 * (1.0_real64 / m + hm**2 / shh))
+    else
+      std_error = ieee_value(1.0_real64, ieee_quiet_nan)
+    end if
+  end subroutine first_order_fit
+
+  !> Limit and relative 95 % error estimate from the levels (h the cell size of
+  !> each level, any consistent unit; f the area-normalised coefficient).
+  !> Two levels: the first-order extrapolation, and as estimate the size of the
+  !> correction itself (|limit - f(finest)|, no scatter to measure).
+  pure subroutine level_estimate(h, f, limit, rel_error)
+    real(real64), intent(in) :: h(:), f(:)
+    real(real64), intent(out) :: limit, rel_error
+    real(real64) :: slope, se
+    integer :: finest
+    call first_order_fit(h, f, limit, slope, se)
+    if (size(h) > 2) then
+      rel_error = student_t95(size(h) - 2) * se / abs(limit)
+    else
+      finest = minloc(h, 1)
+      rel_error = abs(limit - f(finest)) / abs(limit)
+    end if
+  end subroutine level_estimate
+
+  !> The error of a coefficient computed on one grid (target_error = 0), from a
+  !> second grid with twice the cell size: first order gives f(h) - f0 = f(2h) - f(h);
+  !> the factor 2 covers the noise and the h log h term of collocation (measured:
+  !> docs/accuracy.md). area_error: the relative difference between the patch
+  !> the coefficient refers to and the staircase (0 for masks), added in full.
+  pure real(real64) function single_grid_estimate(f_h, f_2h, area_error) result(rel_error)
+    real(real64), intent(in) :: f_h, f_2h, area_error
+    rel_error = 2 * abs(f_h - f_2h) / abs(f_h) + abs(area_error)
+  end function single_grid_estimate
+
+  !> Every estimate at or below its target (NaN estimates are not within).
+  pure logical function within_target(rel_error, targets)
+    real(real64), intent(in) :: rel_error(:), targets(:)
+    within_target = all(rel_error <= targets)
+  end function within_target
+
+  !> The verdict flag for a run with estimates rel_error(1:3) of C11, C22, C23:
+  !> 'uncertain' when target > 0 and any estimate exceeds (or lacks) its target.
+  pure function uncertain_flag(rel_error, target) result(flag)
+    real(real64), intent(in) :: rel_error(3), target
+    character(len=:), allocatable :: flag
+    flag = ''
+    if (target > 0) then
+      if (.not. within_target(rel_error, coefficient_targets(target))) flag = 'uncertain'
+    end if
+  end function uncertain_flag
+
+end module kcreep_error_control
