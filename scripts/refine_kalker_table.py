@@ -1,0 +1,169 @@
+#!/usr/bin/env python3
+"""Kalker's table E3 recomputed by kcreep, with error bars.
+
+    refine_kalker_table.py [--levels 32,40,48,56,64,80,96] [--ratios 0.5,1,2]
+                           [--nu 0,0.25,0.5] [--max-seconds S] [--table-only]
+
+For every a/b and nu of data/kalker-table-E3.dat: the ellipse with c = 1 on
+near-square grids with N cells across its shorter axis (the levels), the
+backward scheme on the iterative path, coefficients normalised by the area
+of the cells inside the ellipse. Each level's numbers are appended to
+docs/data/kalker_refined_levels.dat as soon as they exist, so the script
+resumes where it stopped (run it in chunks). The table
+docs/data/kalker_refined.dat is then rebuilt from all levels present:
+
+    value  the least-squares fit f0 + K h through the levels (order fixed at 1)
+    u      max(t95 * standard error of f0, |f0 - f0'|), f0' the fit of
+           f0 + K h + L h^2: the scatter of the levels (the staircase noise)
+           and the model error, whichever is larger (absolute units)
+
+Cases with fewer than 4 levels are left out of the table.
+"""
+import argparse
+import math
+import os
+import sys
+import time
+
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+import kcreep_levels as K  # noqa: E402
+
+ROOT = os.path.join(os.path.dirname(os.path.abspath(__file__)), "..")
+LEVELS_FILE = os.path.join(ROOT, "docs", "data", "kalker_refined_levels.dat")
+TABLE_FILE = os.path.join(ROOT, "docs", "data", "kalker_refined.dat")
+KALKER_FILE = os.path.join(ROOT, "data", "kalker-table-E3.dat")
+T95 = {1: 12.706, 2: 4.303, 3: 3.182, 4: 2.776, 5: 2.571, 6: 2.447, 7: 2.365, 8: 2.306}
+LEVEL_COLUMNS = ["a_over_b", "nu", "N", "mx", "my", "n", "c11", "c22", "c23", "c33", "c32", "iterations", "seconds"]
+
+
+def kalker_points():
+    """[(a_over_b, nu, {c11, c22, c23})] of Kalker's table, in table order."""
+    out = []
+    with open(KALKER_FILE) as f:
+        for line in f:
+            if line.startswith("#") or not line.strip():
+                continue
+            p = line.split()
+            g = float(p[1])
+            r = g if p[0] == "a/b" else 1 / g
+            v = [float(x) for x in p[2:11]]
+            for j, nu in enumerate((0.0, 0.25, 0.5)):
+                out.append((r, nu, {"c11": v[j], "c22": v[3 + j], "c23": v[6 + j]}))
+    return out
+
+
+def key(r, nu):
+    return (round(r, 6), round(nu, 6))
+
+
+def read_levels():
+    data = {}
+    if not os.path.exists(LEVELS_FILE):
+        return data
+    with open(LEVELS_FILE) as f:
+        for line in f:
+            if line.startswith("#") or not line.strip():
+                continue
+            row = dict(zip(LEVEL_COLUMNS, line.split()))
+            k = key(float(row["a_over_b"]), float(row["nu"]))
+            data.setdefault(k, {})[int(row["N"])] = {c: float(row[c]) for c in ("c11", "c22", "c23", "c33", "c32")}
+    return data
+
+
+def append_level(r, nu, N, d):
+    new = not os.path.exists(LEVELS_FILE)
+    with open(LEVELS_FILE, "a") as f:
+        if new:
+            f.write("# kcreep levels for the refined Kalker table (scripts/refine_kalker_table.py): ellipse c = 1,\n"
+                    "# backward scheme, N cells across the shorter axis, coefficients normalised by the staircase area\n")
+            f.write("# " + " ".join(LEVEL_COLUMNS) + "\n")
+        f.write(f"{r:.6g} {nu:.6g} {N} {d['mx']} {d['my']} {d['n']} {d['c11']:.12e} {d['c22']:.12e} "
+                f"{d['c23']:.12e} {d['c33']:.12e} {d['c32']:.12e} {d['iterations']} {d['time']:.3f}\n")
+
+
+def lstsq(hs, fs, orders):
+    """f0 and its standard error of the fit f = f0 + sum K_p h^p (normal equations, small)."""
+    m, k = len(hs), len(orders) + 1
+    A = [[1.0] + [h ** p for p in orders] for h in hs]
+    ATA = [[sum(A[i][a] * A[i][b] for i in range(m)) for b in range(k)] for a in range(k)]
+    ATf = [sum(A[i][a] * fs[i] for i in range(m)) for a in range(k)]
+    c = K.solve(ATA, ATf)
+    res = [fs[i] - sum(A[i][a] * c[a] for a in range(k)) for i in range(m)]
+    dof = m - k
+    if dof <= 0:
+        return c[0], float("nan"), dof
+    s2 = sum(x * x for x in res) / dof
+    e0 = K.solve(ATA, [1.0] + [0.0] * (k - 1))[0]     # (ATA^-1)_00
+    return c[0], math.sqrt(s2 * e0), dof
+
+
+def refined_value(levels, coeff):
+    """(value, u) from {N: {coeff: value}}."""
+    Ns = sorted(levels)
+    hs = [1.0 / N for N in Ns]
+    fs = [levels[N][coeff] for N in Ns]
+    f1, se1, dof1 = lstsq(hs, fs, (1,))
+    f2, _, _ = lstsq(hs, fs, (1, 2))
+    u = max(T95.get(dof1, 2.0) * se1, abs(f1 - f2))
+    return f1, u
+
+
+def write_table(data, points):
+    rows = []
+    for r, nu, _ in points:
+        lv = data.get(key(r, nu), {})
+        if len(lv) < 4:
+            continue
+        vals = []
+        for c in ("c11", "c22", "c23", "c33", "c32"):
+            vals.extend(refined_value(lv, c))
+        rows.append((r, nu, min(lv), max(lv), len(lv), vals))
+    tmp = TABLE_FILE + ".tmp"
+    with open(tmp, "w") as f:
+        f.write("# Kalker's creep coefficients recomputed by kcreep (scripts/refine_kalker_table.py):\n"
+                "# ellipse with c = sqrt(ab) = 1, backward scheme on near-square cells, levels from Nmin to Nmax\n"
+                "# cells across the shorter axis, normalised by the staircase area, least-squares fit f0 + K h;\n"
+                "# u = absolute uncertainty: max(95 % interval of the fit, change when an h^2 term is added).\n"
+                "# c32 = f32/(G c^3) (= -c23 by reciprocity, kept as a check), c33 = f33/(G c^4).\n")
+        f.write("# a_over_b nu c11 u11 c22 u22 c23 u23 c33 u33 c32 u32 Nmin Nmax levels\n")
+        for r, nu, nmin, nmax, nl, v in rows:
+            f.write(f"{r:.6g} {nu:.6g} " + " ".join(f"{x:.6g}" for x in v) + f" {nmin} {nmax} {nl}\n")
+    os.replace(tmp, TABLE_FILE)
+    return rows
+
+
+def main():
+    ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
+    ap.add_argument("--levels", default="32,40,48,56,64,80,96")
+    ap.add_argument("--ratios", default="", help="comma-separated a/b subset (default: all of Kalker's)")
+    ap.add_argument("--nu", default="0,0.25,0.5")
+    ap.add_argument("--max-seconds", type=float, default=float("inf"), help="stop starting new levels after this")
+    ap.add_argument("--table-only", action="store_true")
+    args = ap.parse_args()
+    points = kalker_points()
+    data = read_levels()
+    if not args.table_only:
+        levels = [int(x) for x in args.levels.split(",")]
+        ratios = [float(x) for x in args.ratios.split(",")] if args.ratios else None
+        nus = [float(x) for x in args.nu.split(",")]
+        todo = [(r, nu) for r, nu, _ in points
+                if nu in nus and (ratios is None or any(abs(r - x) < 1e-6 * x for x in ratios))]
+        todo.sort(key=lambda p: max(p[0], 1 / p[0]))     # cheap (round) ellipses first
+        t0 = time.time()
+        for r, nu in todo:
+            for N in levels:
+                if N in data.get(key(r, nu), {}):
+                    continue
+                if time.time() - t0 > args.max_seconds:
+                    print("time budget used; run again to continue", file=sys.stderr)
+                    break
+                d = K.ellipse_level(r, nu, N)
+                append_level(r, nu, N, d)
+                data.setdefault(key(r, nu), {})[N] = d
+                print(f"a/b {r:.4g} nu {nu:g} N {N}: {d['mx']} x {d['my']}, {d['time']:.1f} s", file=sys.stderr)
+    rows = write_table(data, points)
+    print(f"{len(rows)} of {len(points)} points in {TABLE_FILE}")
+
+
+if __name__ == "__main__":
+    main()

@@ -1,0 +1,12 @@
+#!/bin/bash
+# The refined Kalker table (docs/data/kalker_refined.dat), in chunks of at most
+# about 5 minutes each (scripts/refine_kalker_table.py resumes where it stopped).
+# Heavy: about an hour on 2 cores for all 57 points; runs under nice.
+#   scripts/refine_kalker_table.sh [extra options of refine_kalker_table.py]
+set -euo pipefail
+here=$(cd "$(dirname "$0")" && pwd)
+export KCREEP=${KCREEP:-$here/../build/kcreep}
+for chunk in $(seq 1 40); do
+  out=$(nice -n 10 python3 "$here/refine_kalker_table.py" --max-seconds 240 "$@" 2>&1 | tee /dev/stderr)
+  if ! grep -q "time budget used" <<<"$out"; then break; fi
+done
