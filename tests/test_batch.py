@@ -37,8 +37,9 @@ def batch(list_name, table=None, cwd=folder, env=None):
 
 # --- a mixed list: good cases, a bad input, a missing file, a mask relative to its namelist
 cases = {
-    "e10": "&patch semi_a=1, semi_b=0.6, mx=10, my=10 /\n",
-    "e16b": "&patch semi_a=0.5, semi_b=1, mx=16, my=16 /\n&solver scheme='backward' /\n",
+    # grids exactly as given (target_error = 0): a 10 x 10 grid cannot meet a target
+    "e10": "&patch semi_a=1, semi_b=0.6, mx=10, my=10 /\n&solver target_error=0 /\n",
+    "e16b": "&patch semi_a=0.5, semi_b=1, mx=16, my=16 /\n&solver scheme='backward', target_error=0 /\n",
     "bad": "&patch shape='circle' /\n",
     "m": "&patch shape='mask', mask_file='m.mask' /\n",
     "elong": "&patch semi_a=5, semi_b=1, mx=12, my=12 /\n",   # flagged: elongated cells

@@ -1,0 +1,10 @@
+#!/bin/bash
+# Error and time of the default run over Kalker's grid of a/b and nu, against
+# the refined table (docs/data/kalker_refined.dat); timing under the shared
+# benchmark lock. Options go to scripts/accuracy_table.py, e.g.
+#   scripts/accuracy_table.sh --out docs/data/accuracy_default.dat
+#   scripts/accuracy_table.sh --solver "target_error = 1e-4" --ratios 1
+set -euo pipefail
+here=$(cd "$(dirname "$0")" && pwd)
+export KCREEP=${KCREEP:-$here/../build/kcreep}
+exec flock /tmp/kcreep-bench.lock python3 "$here/accuracy_table.py" "$@"

@@ -1,0 +1,300 @@
+!> Runs under error control (&solver target_error): the levels of
+!> kcreep_error_control, the extrapolated coefficients and their error
+!> estimates, or the estimate of a single given grid.
+!>
+!> target > 0 on an ellipse without a given grid: kcreep chooses near-square
+!>   grids, levels 16, 20, 24, 28, 32, 36, 40, 48 cells across the shorter
+!>   axis, and doubles them (reusing the levels it has) while an estimate is
+!>   above its target, at most max_refinements times and while the finest level
+!>   stays within max_level_cells.
+!> target > 0 on a mask: every cell is split into k x k subcells, k = 1, 2, 3, 4
+!>   (the staircase is the patch the user gave; it is not smoothed).
+!> a given grid (ellipse with mx, my; CONTACT's grid) or target = 0: the grid
+!>   as given, and as estimate the difference to the grid with twice the cell
+!>   size (ellipse) or half the cell size (mask, CONTACT), see
+!>   kcreep_error_control single_grid_estimate, split_grid_estimate.
+module kcreep_error_run
+  use, intrinsic :: iso_fortran_env, only: real64
+  use, intrinsic :: ieee_arithmetic, only: ieee_value, ieee_quiet_nan, ieee_is_nan
+  use kcreep_status, only: status_t
+  use kcreep_strings, only: itoa, rtoa
+  use kcreep_patch, only: patch_t, ellipse_patch
+  use kcreep_problem, only: problem_t, result_t
+  use kcreep_run, only: run_case, solve_cache_t
+  use kcreep_extrapolation, only: refined_patch
+  use kcreep_verdict, only: message_length, verdict_ok, verdict_uncertain
+  use kcreep_fastsim, only: fastsim_flexibilities
+  use kcreep_error_control
+  implicit none
+  private
+  public :: run_controlled, max_level_cells, base_levels, mask_factors
+
+  !> The finest level kcreep chooses has at most this many patch cells: a
+  !> run-time budget (an a/b = 10 ellipse at 48 cells across is 18,000 cells,
+  !> about 2 s on the iterative path, at 96 across 72,000 cells, 15 s; the
+  !> circle at 96 across is 7,200 cells, at 192 across 29,000)
+  integer, parameter :: max_level_cells = 20000
+  !> Base levels on an ellipse (cells across the shorter axis).
+  integer, parameter :: base_levels(8) = [16, 20, 24, 28, 32, 36, 40, 48]
+  !> Split factors of a mask.
+  integer, parameter :: mask_factors(4) = [1, 2, 3, 4]
+  !> Power of c in f_ij = G c^p C_ij.
+  integer, parameter :: c_power(3, 3) = reshape([2, 2, 3, 2, 2, 3, 3, 3, 4], [3, 3])
+
+contains
+
+  !> Solve problem under error control: result%err(1:3) are the estimated
+  !> relative errors of C11, C22, C23 (NaN: no estimate, a warning says why).
+  !> problem%refine_grid: kcreep may choose the grids (ellipse) or split the
+  !> cells (mask); otherwise the grid is solved as given.
+  subroutine run_controlled(problem, result, status, cache)
+    type(problem_t), intent(in) :: problem
+    type(result_t), intent(out) :: result
+    type(status_t), intent(inout) :: status
+    type(solve_cache_t), intent(inout), optional :: cache
+
+    if (problem%target_error > 0 .and. problem%refine_grid) then
+      if (problem%patch%kind == 'ellipse') then
+        call run_ellipse_levels(problem, result, status)
+      else
+        call run_mask_levels(problem, result, status)
+      end if
+    else
+      call run_single(problem, result, status, cache)
+    end if
+    if (status%failed()) return
+    call add_uncertain(result, problem%target_error)
+  end subroutine run_controlled
+
+  !> The given grid and its error estimate from one auxiliary grid.
+  subroutine run_single(problem, result, status, cache)
+    type(problem_t), intent(in) :: problem
+    type(result_t), intent(out) :: result
+    type(status_t), intent(inout) :: status
+    type(solve_cache_t), intent(inout), optional :: cache
+    type(problem_t) :: aux
+    type(result_t) :: aux_result
+    character(len=message_length) :: line
+    real(real64) :: q, q_aux, area_error
+    integer :: i, across, p
+
+    call run_case(problem, result, status, cache)
+    if (status%failed()) return
+    result%err = ieee_value(1.0_real64, ieee_quiet_nan)
+    aux = problem
+    associate (patch => problem%patch)
+      if (patch%kind == 'ellipse') then
+        across = min(patch%mx, patch%my) / 2
+        if (across < min_estimate_cells) then
+          line = 'no error estimate: the grid with twice the cell size would have '//itoa(across)// &
+                 ' cells across, fewer than '//itoa(min_estimate_cells)//' (the grid is too coarse to judge itself)'
+          result%warnings = [result%warnings, line]
+          return
+        end if
+        call ellipse_patch(patch%semi_a, patch%semi_b, max(1, nint(patch%mx / 2.0_real64)), &
+                           max(1, nint(patch%my / 2.0_real64)), aux%patch, status)
+      else
+        if (4 * patch%n > max_level_cells) then
+          line = 'no error estimate: the grid with every cell split in 2 x 2 would have '//itoa(4 * patch%n)// &
+                 ' cells, more than '//itoa(max_level_cells)
+          result%warnings = [result%warnings, line]
+          return
+        end if
+        call refined_patch(patch, 2, aux%patch, status)
+      end if
+      if (status%failed()) return
+      call run_case(aux, aux_result, status)
+      if (status%failed()) return
+      result%t_assemble = result%t_assemble + aux_result%t_assemble
+      result%t_factor = result%t_factor + aux_result%t_factor
+      result%t_solve = result%t_solve + aux_result%t_solve
+      result%t_total = result%t_total + aux_result%t_total
+      q = area_ratio(patch)
+      q_aux = area_ratio(aux%patch)
+      do i = 1, 3
+        p = merge(2, 3, i < 3)
+        if (patch%kind == 'ellipse') then
+          area_error = q**(p / 2.0_real64) - 1
+          result%err(i) = single_grid_estimate(result%cn(i) * q**(p / 2.0_real64), &
+                                               aux_result%cn(i) * q_aux**(p / 2.0_real64), area_error)
+        else
+          result%err(i) = split_grid_estimate(result%cn(i), aux_result%cn(i))
+        end if
+      end do
+    end associate
+  end subroutine run_single
+
+  !> Ellipse levels chosen by kcreep, refined until the estimates meet the target.
+  subroutine run_ellipse_levels(problem, result, status)
+    type(problem_t), intent(in) :: problem
+    type(result_t), intent(out) :: result
+    type(status_t), intent(inout) :: status
+    type(problem_t) :: level_problem
+    integer, allocatable :: done(:), want(:), idx(:)
+    real(real64), allocatable :: fnorm(:, :, :)    !< (3, 3, level) area-normalised f
+    character(len=message_length), allocatable :: warnings(:)
+    character(len=message_length) :: line
+    integer :: refinement, k, mx, my
+    real(real64) :: t(4)
+
+    allocate (done(0), fnorm(3, 3, 0), warnings(0))
+    t = 0
+    level_problem = problem
+    associate (a => problem%patch%semi_a, b => problem%patch%semi_b)
+      do refinement = 0, max_refinements
+        want = base_levels * 2**refinement
+        if (refinement > 0) then
+          ! the finest new level must stay within the budget (pi/4 of the grid is inside)
+          call ellipse_level_grid(a, b, want(size(want)), mx, my)
+          if (0.79_real64 * mx * my > max_level_cells) then
+            line = 'error control: refining to '//itoa(mx)//' x '//itoa(my)//' cells would exceed '// &
+                   itoa(max_level_cells)//' patch cells; stopped at '//itoa(want(size(want)) / 2)//' cells across'
+            warnings = [warnings, line]
+            want = base_levels * 2**(refinement - 1)
+            exit
+          end if
+        end if
+        do k = 1, size(want)
+          if (any(done == want(k))) cycle
+          call ellipse_level_grid(a, b, want(k), mx, my)
+          call ellipse_patch(a, b, mx, my, level_problem%patch, status)
+          if (status%failed()) return
+          call run_level(level_problem, want(k), result, fnorm, warnings, t, status)
+          if (status%failed()) return
+          done = [done, want(k)]
+        end do
+        idx = [(findloc(done, want(k), 1), k=1, size(want))]
+        call fit_levels(1.0_real64 / want, fnorm(:, :, idx), result)
+        if (within_target(result%err, coefficient_targets(problem%target_error))) exit
+      end do
+    end associate
+    call finish_result(result, t)
+    result%warnings = warnings
+  end subroutine run_ellipse_levels
+
+  !> Mask levels: every cell split into k x k subcells.
+  subroutine run_mask_levels(problem, result, status)
+    type(problem_t), intent(in) :: problem
+    type(result_t), intent(out) :: result
+    type(status_t), intent(inout) :: status
+    type(problem_t) :: level_problem
+    real(real64), allocatable :: fnorm(:, :, :)
+    character(len=message_length), allocatable :: warnings(:)
+    integer :: k, used
+    real(real64) :: t(4)
+
+    allocate (fnorm(3, 3, 0), warnings(0))
+    t = 0
+    level_problem = problem
+    used = 0
+    do k = 1, size(mask_factors)
+      if (problem%patch%n * mask_factors(k)**2 > max_level_cells .and. used >= 2) exit
+      if (mask_factors(k) > 1) then
+        call refined_patch(problem%patch, mask_factors(k), level_problem%patch, status)
+        if (status%failed()) return
+      end if
+      call run_level(level_problem, mask_factors(k), result, fnorm, warnings, t, status)
+      if (status%failed()) return
+      used = k
+    end do
+    call fit_levels(1.0_real64 / mask_factors(1:used), fnorm, result)
+    call finish_result(result, t)
+    result%warnings = warnings
+  end subroutine run_mask_levels
+
+  !> One level: solve, keep its normalised f and its warnings; the result is the level's.
+  subroutine run_level(level_problem, label, result, fnorm, warnings, t, status)
+    type(problem_t), intent(in) :: level_problem
+    integer, intent(in) :: label
+    type(result_t), intent(inout) :: result
+    real(real64), allocatable, intent(inout) :: fnorm(:, :, :)
+    character(len=message_length), allocatable, intent(inout) :: warnings(:)
+    real(real64), intent(inout) :: t(4)
+    type(status_t), intent(inout) :: status
+    character(len=message_length) :: line
+    real(real64), allocatable :: f(:, :, :)
+    integer :: i
+
+    call run_case(level_problem, result, status)
+    if (status%failed()) return
+    t = t + [result%t_assemble, result%t_factor, result%t_solve, result%t_total]
+    allocate (f(3, 3, size(fnorm, 3) + 1))
+    f(:, :, 1:size(fnorm, 3)) = fnorm
+    f(:, :, size(f, 3)) = result%f * area_ratio(level_problem%patch)**(c_power / 2.0_real64)
+    call move_alloc(f, fnorm)
+    do i = 1, size(result%warnings)
+      line = 'level '//itoa(label)//' ('//itoa(level_problem%patch%mx)//' x '//itoa(level_problem%patch%my)// &
+             '): '//trim(result%warnings(i))
+      warnings = [warnings, line]
+    end do
+  end subroutine run_level
+
+  !> The fit of every f entry: the result gets the limits, err those of C11, C22, C23.
+  subroutine fit_levels(h, fnorm, result)
+    real(real64), intent(in) :: h(:), fnorm(:, :, :)
+    type(result_t), intent(inout) :: result
+    real(real64) :: limit, rel
+    integer :: i, j
+    result%err = ieee_value(1.0_real64, ieee_quiet_nan)
+    do j = 1, 3
+      do i = 1, 3
+        if (any(ieee_is_nan(fnorm(i, j, :)))) then
+          result%f(i, j) = ieee_value(1.0_real64, ieee_quiet_nan)
+          cycle
+        end if
+        call level_estimate(h, fnorm(i, j, :), limit, rel)
+        result%f(i, j) = limit
+        if (i == 1 .and. j == 1) result%err(1) = rel
+        if (i == 2 .and. j == 2) result%err(2) = rel
+        if (i == 2 .and. j == 3) result%err(3) = rel
+      end do
+    end do
+  end subroutine fit_levels
+
+  !> result%f holds limits normalised by the staircase's own c: they refer to
+  !> the patch's c (ellipse: sqrt(ab); mask: its own). The c's and summed times.
+  subroutine finish_result(result, t)
+    type(result_t), intent(inout) :: result
+    real(real64), intent(in) :: t(4)
+    result%cn = [result%f(1, 1) / (result%g * result%c**2), result%f(2, 2) / (result%g * result%c**2), &
+                 result%f(2, 3) / (result%g * result%c**3)]
+    ! FASTSIM's flexibilities of the finest patch with the extrapolated f
+    result%fastsim = fastsim_flexibilities(result%patch, result%f(1, 1), result%f(2, 2), result%f(2, 3))
+    result%t_assemble = t(1)
+    result%t_factor = t(2)
+    result%t_solve = t(3)
+    result%t_total = t(4)
+  end subroutine finish_result
+
+  !> (area the coefficients refer to) / (area of the cells): pi a b / staircase for an ellipse, 1 otherwise.
+  pure real(real64) function area_ratio(patch)
+    type(patch_t), intent(in) :: patch
+    real(real64), parameter :: pi = acos(-1.0_real64)
+    if (patch%kind == 'ellipse') then
+      area_ratio = pi * patch%semi_a * patch%semi_b / patch%area()
+    else
+      area_ratio = 1
+    end if
+  end function area_ratio
+
+  !> 'uncertain' in the verdict, with its warning, when an estimate misses its target.
+  subroutine add_uncertain(result, target)
+    type(result_t), intent(inout) :: result
+    real(real64), intent(in) :: target
+    character(len=message_length) :: line
+    real(real64) :: targets(3)
+    if (len(uncertain_flag(result%err, target)) == 0) return
+    targets = coefficient_targets(target)
+    result%verdict_flags = ior(result%verdict_flags, verdict_uncertain)
+    if (result%verdict == 'ok') then
+      result%verdict = 'uncertain'
+    else
+      result%verdict = result%verdict//',uncertain'
+    end if
+    line = 'uncertain: estimated relative errors of C11, C22, C23 '//rtoa(result%err(1))//', '// &
+           rtoa(result%err(2))//', '//rtoa(result%err(3))//' against targets '//rtoa(targets(1))//', '// &
+           rtoa(targets(2))//', '//rtoa(targets(3))//' (target_error; C23 gets 3 times it)'
+    result%warnings = [result%warnings, line]
+  end subroutine add_uncertain
+
+end module kcreep_error_run
