@@ -32,6 +32,15 @@ program test_error_control
   call level_estimate([2.0_real64, 1.0_real64], [4.2_real64, 4.15_real64], limit, rel)
   call t%check(abs(limit - 4.1_real64) < 1e-13_real64 .and. abs(rel - 0.05_real64 / 4.1_real64) < 1e-13_real64, &
                'level_estimate, 2 levels: limit 2 f(h) - f(2h), error |limit - f(h)|')
+  ! the smooth (mask) model: f0 + K h + L h^1.5 is recovered exactly, and its
+  ! estimate is the distance to the h log h model (nonzero: the models differ)
+  h = [1.0_real64, 0.5_real64, 1.0_real64 / 3, 0.25_real64]
+  f = 2 + h + 3 * h**1.5_real64
+  call basis_fit(h, f, 1, f0, se)
+  call t%check(abs(f0 - 2) < 1e-12_real64 .and. se < 1e-12_real64, 'basis_fit: exact f0 + K h + L h^1.5')
+  call smooth_level_estimate(h, f, limit, rel)
+  call t%check(abs(limit - 2) < 1e-12_real64 .and. rel > 1e-3_real64, &
+               'smooth_level_estimate: limit exact, model uncertainty counted')
   call t%check(abs(student_t95(2) - 4.303_real64) < 1e-3_real64 .and. abs(student_t95(30) - 2.042_real64) < 0.02_real64, &
                'student_t95: 4.303 at 2 dof, about 2.04 at 30')
 

@@ -28,7 +28,8 @@ module kcreep_error_control
   private
   public :: default_target_error, c23_target_factor, min_estimate_cells, first_cells, max_refinements
   public :: coefficient_targets, ellipse_level_grid, level_cells, student_t95
-  public :: first_order_fit, level_estimate, single_grid_estimate, split_grid_estimate, within_target, uncertain_flag
+  public :: first_order_fit, level_estimate, smooth_level_estimate, basis_fit, single_grid_estimate
+  public :: split_grid_estimate, within_target, uncertain_flag
 
   !> &solver target_error when not given: the relative error aimed at for C11 and C22.
   real(real64), parameter :: default_target_error = 1e-3_real64
@@ -129,6 +130,62 @@ contains
       rel_error = abs(limit - f(finest)) / abs(limit)
     end if
   end subroutine level_estimate
+
+  !> Least-squares fit f = f0 + K h + L g(h) with g(h) = h**1.5 (kind 1) or
+  !> h log h (kind 2); std_error of f0 (NaN without degrees of freedom left).
+  pure subroutine basis_fit(h, f, kind, f0, std_error)
+    real(real64), intent(in) :: h(:), f(:)
+    integer, intent(in) :: kind
+    real(real64), intent(out) :: f0, std_error
+    real(real64) :: a(size(h), 3), ata(3, 3), atf(3), inv(3, 3), c(3), s2, det
+    integer :: m
+    m = size(h)
+    a(:, 1) = 1
+    a(:, 2) = h
+    if (kind == 1) then
+      a(:, 3) = h**1.5_real64
+    else
+      a(:, 3) = h * log(h)
+    end if
+    ata = matmul(transpose(a), a)
+    atf = matmul(transpose(a), f)
+    ! the 3 x 3 inverse by cofactors (well conditioned enough for h in (0, 1])
+    inv(1, 1) = ata(2, 2) * ata(3, 3) - ata(2, 3) * ata(3, 2)
+    inv(1, 2) = ata(1, 3) * ata(3, 2) - ata(1, 2) * ata(3, 3)
+    inv(1, 3) = ata(1, 2) * ata(2, 3) - ata(1, 3) * ata(2, 2)
+    inv(2, 1) = ata(2, 3) * ata(3, 1) - ata(2, 1) * ata(3, 3)
+    inv(2, 2) = ata(1, 1) * ata(3, 3) - ata(1, 3) * ata(3, 1)
+    inv(2, 3) = ata(1, 3) * ata(2, 1) - ata(1, 1) * ata(2, 3)
+    inv(3, 1) = ata(2, 1) * ata(3, 2) - ata(2, 2) * ata(3, 1)
+    inv(3, 2) = ata(1, 2) * ata(3, 1) - ata(1, 1) * ata(3, 2)
+    inv(3, 3) = ata(1, 1) * ata(2, 2) - ata(1, 2) * ata(2, 1)
+    det = ata(1, 1) * inv(1, 1) + ata(1, 2) * inv(2, 1) + ata(1, 3) * inv(3, 1)
+    inv = inv / det
+    c = matmul(inv, atf)
+    f0 = c(1)
+    if (m > 3) then
+      s2 = sum((f - matmul(a, c))**2) / (m - 3)
+      std_error = sqrt(s2 * inv(1, 1))
+    else
+      std_error = ieee_value(1.0_real64, ieee_quiet_nan)
+    end if
+  end subroutine basis_fit
+
+  !> Levels without staircase noise (a mask whose cells are split: the same
+  !> patch on every level): the convergence is smooth but not straight (the
+  !> slope grows like h^0.5 or log h; measured on a rectangle, splits 1 to 12).
+  !> Limit: the fit f0 + K h + L h^1.5; error: its distance to the fit
+  !> f0 + K h + L h log h (the model uncertainty) plus the 95 % statistical
+  !> part when levels are left over (at least 4 levels).
+  pure subroutine smooth_level_estimate(h, f, limit, rel_error)
+    real(real64), intent(in) :: h(:), f(:)
+    real(real64), intent(out) :: limit, rel_error
+    real(real64) :: other, se, se_other
+    call basis_fit(h, f, 1, limit, se)
+    call basis_fit(h, f, 2, other, se_other)
+    rel_error = abs(limit - other) / abs(limit)
+    if (se == se) rel_error = rel_error + student_t95(size(h) - 3) * se / abs(limit)
+  end subroutine smooth_level_estimate
 
   !> The error of a coefficient computed on one grid (target_error = 0), from a
   !> second grid with twice the cell size: first order gives f(h) - f0 = f(2h) - f(h);

@@ -188,7 +188,7 @@ contains
     level_problem = problem
     used = 0
     do k = 1, size(mask_factors)
-      if (problem%patch%n * mask_factors(k)**2 > max_level_cells .and. used >= 2) exit
+      if (problem%patch%n * mask_factors(k)**2 > max_level_cells .and. used >= 3) exit
       if (mask_factors(k) > 1) then
         call refined_patch(problem%patch, mask_factors(k), level_problem%patch, status)
         if (status%failed()) return
@@ -197,7 +197,7 @@ contains
       if (status%failed()) return
       used = k
     end do
-    call fit_levels(1.0_real64 / mask_factors(1:used), fnorm, result)
+    call fit_levels(1.0_real64 / mask_factors(1:used), fnorm, result, smooth=.true.)
     call finish_result(result, t)
     result%warnings = warnings
   end subroutine run_mask_levels
@@ -230,9 +230,10 @@ contains
   end subroutine run_level
 
   !> The fit of every f entry: the result gets the limits, err those of C11, C22, C23.
-  subroutine fit_levels(h, fnorm, result)
+  subroutine fit_levels(h, fnorm, result, smooth)
     real(real64), intent(in) :: h(:), fnorm(:, :, :)
     type(result_t), intent(inout) :: result
+    logical, intent(in), optional :: smooth   !< levels without staircase noise (mask splits)
     real(real64) :: limit, rel
     integer :: i, j
     result%err = ieee_value(1.0_real64, ieee_quiet_nan)
@@ -242,7 +243,11 @@ contains
           result%f(i, j) = ieee_value(1.0_real64, ieee_quiet_nan)
           cycle
         end if
-        call level_estimate(h, fnorm(i, j, :), limit, rel)
+        if (present(smooth)) then
+          call smooth_level_estimate(h, fnorm(i, j, :), limit, rel)
+        else
+          call level_estimate(h, fnorm(i, j, :), limit, rel)
+        end if
         result%f(i, j) = limit
         if (i == 1 .and. j == 1) result%err(1) = rel
         if (i == 2 .and. j == 2) result%err(2) = rel

@@ -1,0 +1,90 @@
+"""Error control (&solver target_error): the estimate err11 err22 err23 bounds
+the error measured against a fine-grid extrapolation on cheap cases, and the
+verdict says 'uncertain' exactly when an estimate misses its target.
+
+References: a rectangle mask is refined exactly (every cell split), so its
+fine-grid reference is a least-squares fit c0 + K h + L h^1.5 through splits of
+4 to 12 (96 x 48 cells), computed here; for the unit circle the reference is the
+refined table docs/data/kalker_refined.dat (levels 32 to 96 cells across,
+with its own uncertainty u, which the check allows for)."""
+import math
+import os
+import kctest as kc
+
+folder = kc.setup()
+repo = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
+COEFFS = ("c11", "c22", "c23")
+
+
+def nml(patch, material="nu=0.25", solver=""):
+    # written directly (not kctest.namelist): these runs test kcreep's own defaults
+    return f"&patch {patch} /\n&material {material} /\n&solver {solver} /\n"
+
+
+def rect_mask(mx, my, lx=2.0, ly=1.0):
+    dx, dy = lx / mx, ly / my
+    rows = ", ".join("'" + "#" * mx + "'" for _ in range(my))
+    return (f"shape='mask', mask_rows={rows}, dx={dx!r}, dy={dy!r}, "
+            f"x0={-lx / 2 + dx / 2!r}, y0={-ly / 2 + dy / 2!r}")
+
+
+def fit_limit(hs, fs):
+    """f0 of the least-squares fit f0 + K h + L h^1.5 (a rectangle's splits 1 to 12
+    fit it to 4e-5 from any four of them, while a straight line drifts by 0.2 %)."""
+    rows = [[1.0, h, h ** 1.5] for h in hs]
+    ata = [[sum(r[a] * r[b] for r in rows) for b in range(3)] for a in range(3)]
+    atf = [sum(r[a] * f for r, f in zip(rows, fs)) for a in range(3)]
+    for c in range(3):                      # Gauss-Jordan on the 3 x 3 normal equations
+        p = ata[c][c]
+        for r in range(3):
+            if r != c:
+                q = ata[r][c] / p
+                ata[r] = [x - q * y for x, y in zip(ata[r], ata[c])]
+                atf[r] -= q * atf[c]
+    return atf[0] / ata[0][0]
+
+
+# --- 1. mask: the default run (splits 1..4 of an 8 x 4 rectangle) against splits 4..12
+_, out, err, t = kc.run(nml(rect_mask(8, 4)), folder, "rect")
+row = t[0]
+fine = {}
+for s in (4, 6, 8, 12):
+    fine[s] = kc.run(nml(rect_mask(8 * s, 4 * s), solver="target_error=0"), folder, f"rect{s}")[3][0]
+for c, e in zip(COEFFS, ("err11", "err22", "err23")):
+    ref = fit_limit([1 / s for s in fine], [fine[s][c] for s in fine])
+    true = abs(row[c] - ref) / abs(ref)
+    kc.check(math.isfinite(row[e]) and row[e] >= true,
+             f"rectangle mask: {e} = {row[e]:.2e} bounds the error {true:.2e} against splits 4-12 ({row[c]:.6f} vs {ref:.6f})")
+kc.check(row["mx"] == 32 and row["my"] == 16, f"rectangle mask: finest split 4 x 4 ({row['mx']} x {row['my']})")
+
+# --- 2. the unit circle on explicit grids (target_error = 0): the one-grid estimate
+ref_rows = [r for r in kc.read_table(os.path.join(repo, "docs", "data", "kalker_refined.dat"))
+            if abs(r["a_over_b"] - 1) < 1e-9 and abs(r["nu"] - 0.25) < 1e-9]
+kc.check(len(ref_rows) == 1, "refined table has the unit circle at nu = 0.25")
+if ref_rows:
+    ref = ref_rows[0]
+    for m in (24, 32, 40):
+        r = kc.run(nml(f"semi_a=1, semi_b=1, mx={m}, my={m}", solver="target_error=0"), folder, f"c{m}")[3][0]
+        for c, e, u in zip(COEFFS, ("err11", "err22", "err23"), ("u11", "u22", "u23")):
+            true = abs(r[c] - ref[c]) / ref[c]
+            kc.check(r[e] + ref[u] / ref[c] >= true,
+                     f"circle {m} x {m}: {e} = {r[e]:.2e} bounds the error {true:.2e} (reference u {ref[u] / ref[c]:.1e})")
+        kc.check(r["verdict"] == "ok", f"circle {m} x {m}, target_error = 0: never uncertain ({r['verdict']})")
+
+# --- 3. 'uncertain' when it should
+code, out, err, t = kc.run(nml("semi_a=1, semi_b=1, mx=24, my=24", solver="target_error=1e-4"), folder, "strict")
+kc.check("uncertain" in t[0]["verdict"] and "uncertain:" in err,
+         f"24 x 24 grid, target 1e-4: verdict {t[0]['verdict']} and a warning")
+code, out, err, t = kc.run(nml("semi_a=1, semi_b=1, mx=24, my=24", solver="target_error=0.05"), folder, "loose")
+kc.check(t[0]["verdict"] == "ok" and max(t[0]["err11"], t[0]["err22"]) <= 0.05 and t[0]["err23"] <= 0.15,
+         f"24 x 24 grid, target 5 %: ok ({t[0]['verdict']}, estimates {t[0]['err11']:.1e} {t[0]['err22']:.1e})")
+code, out, err, t = kc.run(nml("semi_a=1, semi_b=1, mx=10, my=10"), folder, "tiny")
+kc.check(all(math.isnan(t[0][e]) for e in ("err11", "err22", "err23")) and "too coarse" in err
+         and "uncertain" in t[0]["verdict"], f"10 x 10 grid: no estimate, said, uncertain ({t[0]['verdict']})")
+code, out, err, t = kc.run(nml("semi_a=1, semi_b=1, mx=10, my=10", solver="target_error=0"), folder, "tiny0")
+kc.check("uncertain" not in t[0]["verdict"], f"10 x 10 grid, target_error = 0: not uncertain ({t[0]['verdict']})")
+
+# --- 4. bad input
+code, out, err, t = kc.run(nml("semi_a=1, semi_b=1", solver="target_error=-1"), folder, "bad", expect_ok=False)
+kc.check(code == 2 and "target_error" in err and "allowed" in err, f"target_error = -1: exit 2, named ({err.strip()})")
+kc.finish()
