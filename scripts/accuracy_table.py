@@ -28,7 +28,7 @@ def read_reference(path):
     ref = {}
     rows = K.read_table(path)
     for r in rows:
-        key = (round(float(r["a_over_b"]), 6), round(float(r["nu"]), 6))
+        key = (float(r["a_over_b"]), float(r["nu"]))
         ref[key] = {c: (float(r[c]), float(r["u" + c[1:]])) for c in ("c11", "c22", "c23")}
     return ref
 
@@ -44,7 +44,8 @@ def main():
     ref = read_reference(args.reference)
     nus = [float(x) for x in args.nu.split(",")]
     ratios = [float(x) for x in args.ratios.split(",")] if args.ratios else None
-    keys = sorted(k for k in ref if k[1] in nus and (ratios is None or any(abs(k[0] - x) < 1e-6 * x for x in ratios)))
+    keys = sorted(k for k in ref if any(abs(k[1] - x) < 1e-9 for x in nus)
+                  and (ratios is None or any(abs(k[0] - x) < 1e-5 * x for x in ratios)))
     lines = ["# a_over_b nu  err11 est11 u11  err22 est22 u22  err23 est23 u23 (relative, %)  mx my  seconds  verdict"]
     errs = {c: [] for c in ("c11", "c22", "c23")}
     bounded = {c: 0 for c in errs}

@@ -53,7 +53,8 @@ def kalker_points():
 
 
 def key(r, nu):
-    return (round(r, 6), round(nu, 6))
+    """As the levels file writes them (6 significant digits)."""
+    return (f"{r:.6g}", f"{nu:.6g}")
 
 
 def read_levels():
