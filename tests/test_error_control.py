@@ -87,4 +87,14 @@ kc.check("uncertain" not in t[0]["verdict"], f"10 x 10 grid, target_error = 0: n
 # --- 4. bad input
 code, out, err, t = kc.run(nml("semi_a=1, semi_b=1", solver="target_error=-1"), folder, "bad", expect_ok=False)
 kc.check(code == 2 and "target_error" in err and "allowed" in err, f"target_error = -1: exit 2, named ({err.strip()})")
+code, out, err, t = kc.run(nml("semi_a=5, semi_b=1, mx=40, my=40", solver="scheme='collocation'"), folder, "col",
+                           expect_ok=False)
+kc.check(code == 2 and "col.nml" in err and "cells long in x" in err and t is None,
+         f"collocation on dx/dy = 5 with a target: refused, naming the input ({err.strip()[:120]})")
+code, out, err, t = kc.run(nml("semi_a=5, semi_b=1, mx=40, my=40", solver="scheme='collocation', target_error=0"),
+                           folder, "col0")
+kc.check(code == 0 and "degenerate" in t[0]["verdict"], f"the same grid as given (target 0): run and flagged ({t[0]['verdict']})")
+code, out, err, t = kc.run(nml("semi_a=5, semi_b=1", solver="scheme='collocation', target_error=0.01"), folder, "colsq")
+kc.check(code == 0 and abs(t[0]["mx"] / t[0]["my"] - 5) < 0.1,
+         f"collocation under error control: kcreep's own near-square grid ({t[0]['mx']} x {t[0]['my']})")
 kc.finish()

@@ -19,6 +19,7 @@ module kcreep_namelist
   use kcreep_dense, only: refine_modes
   use kcreep_problem, only: problem_t
   use kcreep_error_control, only: default_target_error
+  use kcreep_check, only: collocation_aspect_limit
   implicit none
   private
   public :: config_t, read_config, build_patch, problem_of, max_inline_rows, max_row_length
@@ -387,6 +388,16 @@ contains
                       cfg%contact%yl + cfg%contact%dy / 2, 'contact_file '''//cfg%contact_file//'''', patch, status)
       patch%kind = 'contact'
     end select
+    if (status%failed()) return
+    ! the same refusal as kcreep_check, naming the input
+    if (cfg%scheme%name == 'collocation' .and. cfg%target_error > 0 .and. &
+        .not. (cfg%refine_grid .and. patch%kind == 'ellipse')) then
+      if (patch%dx > collocation_aspect_limit * patch%dy) call fail(status, exit_bad_input, 'input '''// &
+          cfg%input_path//''': &solver scheme = ''collocation'' on cells long in x (dx/dy = '// &
+          rtoa(patch%dx / patch%dy)//', allowed <= '//rtoa(collocation_aspect_limit)// &
+          ' with target_error > 0): use near-square cells, scheme = ''backward'', or target_error = 0 '// &
+          'to run this grid as given')
+    end if
   end subroutine build_patch
 
   !> shape = 'contact': grid, mask and material of case contact_case of contact_file.

@@ -12,7 +12,11 @@ module kcreep_check
   use kcreep_problem, only: problem_t
   implicit none
   private
-  public :: check_problem
+  public :: check_problem, collocation_aspect_limit
+
+  !> Cells longer in x than this (dx/dy) are 'long' for collocation: the
+  !> verdict's hint uses the same 1.5 (kcreep_verdict).
+  real(real64), parameter :: collocation_aspect_limit = 1.5_real64
 
 contains
 
@@ -51,6 +55,19 @@ contains
       call fail(status, exit_bad_input, 'refine_ratio = '//itoa(problem%refine_ratio)//' (allowed: 2 to 4)')
     end if
     if (status%failed()) return
+    ! collocation on cells long in x is unusable (3-12 % off, with or without
+    ! extrapolation; docs/accuracy.md): error control refuses it; a grid run
+    ! as given (target_error = 0) is allowed and flagged by the verdict
+    if (problem%scheme%name == 'collocation' .and. problem%target_error > 0 .and. &
+        .not. (problem%refine_grid .and. problem%patch%kind == 'ellipse')) then
+      if (problem%patch%dx > collocation_aspect_limit * problem%patch%dy) then
+        call fail(status, exit_bad_input, 'scheme = ''collocation'' on cells long in x (dx/dy = '// &
+                  rtoa(problem%patch%dx / problem%patch%dy)//', allowed <= '//rtoa(collocation_aspect_limit)// &
+                  ' with target_error > 0): use near-square cells, scheme = ''backward'', or target_error = 0 '// &
+                  'to run this grid as given')
+        return
+      end if
+    end if
     if (.not. allocated(problem%solve%method)) then
       call fail(status, exit_bad_input, 'method: not set (allowed: dense, iterative, auto)')
       return
