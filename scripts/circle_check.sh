@@ -27,7 +27,7 @@ for scheme in collocation backward; do
     cat > "$work/c.nml" <<EON
 &patch shape='ellipse', semi_a=1, semi_b=1, mx=$m, my=$m /
 &material g=1, nu=0.25 /
-&solver scheme='$scheme', alpha=0.5, method='$method' /
+&solver scheme='$scheme', alpha=0.5, method='$method', target_error=0 /
 EON
     times=()
     for ((r = 0; r < repeats; r++)); do

@@ -20,7 +20,7 @@ ellipse_nml() {
   cat >"$file.new" <<EOF
 &patch shape = 'ellipse', semi_a = $a, semi_b = $b, mx = $mx, my = $my /
 &material nu = $nu /
-&solver $solver /
+&solver target_error=0, $solver /
 EOF
   # keep the old file (and its timestamp) when nothing changed, so a rerun resumes
   if [[ -f $file ]] && cmp -s "$file" "$file.new"; then rm -f "$file.new"; else mv "$file.new" "$file"; fi
