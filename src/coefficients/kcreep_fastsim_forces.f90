@@ -34,10 +34,11 @@
 !> Everything here is pure: arrays in, numbers out.
 module kcreep_fastsim_forces
   use, intrinsic :: iso_fortran_env, only: real64
+  use, intrinsic :: ieee_arithmetic, only: ieee_value, ieee_quiet_nan
   implicit none
   private
   public :: fastsim_forces, fastsim_result_t, weighted_flexibility
-  public :: flexibility_weighted, flexibility_separate, flexibility_rule_name
+  public :: flexibility_weighted, flexibility_separate, flexibility_rule_name, spin_x_flexibility
   public :: cell_outside, cell_adhesion, cell_slip, mask_strip_integrals
 
   integer, parameter :: flexibility_weighted = 1, flexibility_separate = 2
@@ -84,13 +85,14 @@ contains
   !>  c_len: length of the weighted rule (sqrt(area/pi)); rule: flexibility_weighted or _separate.
   !> Optional: px, py (mx, my) the cell tractions (0 outside), state (mx, my) the stick/slip map.
   pure subroutine fastsim_forces(inside, pn, dx, dy, x0, y0, flex, mu, creep, c_len, rule, &
-                                 res, px, py, state)
+                                 res, px, py, state, flex_spin_x)
     logical, intent(in) :: inside(:, :)
     real(real64), intent(in) :: pn(:, :), dx, dy, x0, y0, flex(3), mu, creep(3), c_len
     integer, intent(in) :: rule
     type(fastsim_result_t), intent(out) :: res
     real(real64), intent(out), optional :: px(:, :), py(:, :)
     integer, intent(out), optional :: state(:, :)
+    real(real64), intent(in), optional :: flex_spin_x   !< separate rule: L of the -phi y term (default L3)
     real(real64) :: h, da, x, y, tx, ty, gx, gy, bound, mag, step, xe
     real(real64) :: rx, ry, sx, sy, fx, fy, mz, fn
     real(real64) :: inv1, inv2, inv3
@@ -115,6 +117,7 @@ contains
     sy = creep(2) * inv2
     rx = creep(3) * inv3
     ry = creep(3) * inv3
+    if (rule == flexibility_separate .and. present(flex_spin_x)) rx = creep(3) / flex_spin_x
 
     fx = 0; fy = 0; mz = 0; fn = 0
     n_cells = 0; n_adhesion = 0
@@ -173,6 +176,42 @@ contains
       res%adhesion = 0
     end if
   end subroutine fastsim_forces
+
+  !> Flexibility of the longitudinal spin term (-phi y) under the separate rule, such that the
+  !> full-adhesion spin moment is -f33 phi:  Mz = -phi (J3 / L3 + J2 / L4) with
+  !> J2 = Int y^2 (x_l - x) dA, J3 = Int x (x_l^2 - x^2)/2 dA (cell-exact); NaN when f33 <= J3/L3.
+  pure real(real64) function spin_x_flexibility(inside, dx, dy, x0, y0, l3, f33) result(l4)
+    logical, intent(in) :: inside(:, :)
+    real(real64), intent(in) :: dx, dy, x0, y0, l3, f33
+    real(real64) :: h, x_lead, x, y, j2, j3
+    integer :: ix, iy, mx
+
+    mx = size(inside, 1)
+    h = dx / 2
+    j2 = 0; j3 = 0
+    do iy = 1, size(inside, 2)
+      y = y0 + (iy - 1) * dy
+      x_lead = 0
+      do ix = mx, 1, -1
+        if (.not. inside(ix, iy)) cycle
+        x = x0 + (ix - 1) * dx
+        if (ix == mx) then
+          x_lead = x + h
+        else if (.not. inside(ix + 1, iy)) then
+          x_lead = x + h
+        end if
+        j2 = j2 + (y**2 + dy**2 / 12) * 2 * h * (x_lead - x)
+        ! Int x (x_l^2 - x^2)/2 dx over the cell [x - h, x + h]
+        j3 = j3 + (x_lead**2 * x * h - (x**3 * h + x * h**3))
+      end do
+    end do
+    j2 = j2 * dy; j3 = j3 * dy
+    if (f33 > j3 / l3) then
+      l4 = j2 / (f33 - j3 / l3)
+    else
+      l4 = ieee_value(l4, ieee_quiet_nan)
+    end if
+  end function spin_x_flexibility
 
   !> (I1, I3) of the patch: I1 = Int (x_l - x) dA, I3 = Int (x_l^2 - x^2)/2 dA over every strip
   !> segment with leading edge x_l, integrated exactly over the cells (as kcreep_fastsim does for
