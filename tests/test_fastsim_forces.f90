@@ -18,7 +18,7 @@ program test_fastsim_forces
   use kcreep_pressure_models, only: hertz_pressure, paraboloid_pressure, strip_parabolic_pressure
   use kcreep_equivalent_ellipse, only: equivalent_ellipse_t, equivalent_ellipses, patch_moments, &
                                        ellipse_flexibilities, ellipse_box, ellipse_moments
-  use kalker_table, only: kalker_coefficients
+  use kcreep_kalker_table, only: kalker_coefficients
   use unit_checks, only: checker_t
   implicit none
   type(checker_t) :: t

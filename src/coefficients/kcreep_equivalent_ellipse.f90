@@ -13,7 +13,7 @@
 !> L3 = pi a sqrt(a/b)/(4 C23 G) (Kalker's FASTSIM flexibilities).
 module kcreep_equivalent_ellipse
   use, intrinsic :: iso_fortran_env, only: real64
-  use kalker_table, only: kalker_coefficients
+  use kcreep_kalker_table, only: kalker_coefficients
   implicit none
   private
   public :: equivalent_ellipse_t, equivalent_ellipses, ellipse_flexibilities, patch_moments
