@@ -18,6 +18,7 @@ module kcreep_app_cli
   use kcreep_app_batch, only: run_batch, estimate_memory, default_batch_table, text_t, exit_cases_failed
   use kcreep_app_files, only: write_temporary, commit_temporary, discard_temporary
   use kcreep_app_summary, only: print_summary
+  use kcreep_app_fastsim, only: run_fastsim
   implicit none
   private
   public :: command_t, parse_command, run_command, stop_with
@@ -88,24 +89,50 @@ contains
     type(status_t), intent(inout) :: status
     type(config_t) :: cfg
     type(run_record_t) :: record
+    character(len=400), allocatable :: creep(:)
+    character(len=200), allocatable :: maps(:), fastsim_summary(:), fastsim_warnings(:)
+    logical :: with_maps
+    integer :: i
 
     call solve_input(input_path, '', .true., cfg, record, status)
     if (status%failed()) return
+    with_maps = .false.
+    if (cfg%fastsim_on) then
+      call run_fastsim(cfg, record, creep, maps, fastsim_summary, fastsim_warnings, status)
+      if (status%failed()) return
+      with_maps = cfg%fastsim%maps
+    end if
     ! every output complete in its temporary file before any is renamed into
     ! place: a failure (a full disk) leaves all the previous files as they were
     call write_temporary(cfg%table_file, table_lines([record], record%warnings), 'table_file', status)
     if (.not. status%failed() .and. len(cfg%traction_file) > 0) &
       call write_temporary(cfg%traction_file, traction_lines(record%patch, record%traction, cfg%requested), &
                            'traction_file', status)
+    if (.not. status%failed() .and. cfg%fastsim_on) call write_temporary(cfg%creep_file, creep, 'creep_file', status)
+    if (.not. status%failed() .and. with_maps) call write_temporary(cfg%creep_map_file, maps, 'creep_map_file', status)
     if (.not. status%failed()) call commit_temporary(cfg%table_file, 'table_file', status)
     if (.not. status%failed() .and. len(cfg%traction_file) > 0) &
       call commit_temporary(cfg%traction_file, 'traction_file', status)
+    if (.not. status%failed() .and. cfg%fastsim_on) call commit_temporary(cfg%creep_file, 'creep_file', status)
+    if (.not. status%failed() .and. with_maps) call commit_temporary(cfg%creep_map_file, 'creep_map_file', status)
     if (status%failed()) then
       call discard_temporary(cfg%table_file)
       if (len(cfg%traction_file) > 0) call discard_temporary(cfg%traction_file)
+      if (cfg%fastsim_on) call discard_temporary(cfg%creep_file)
+      if (with_maps) call discard_temporary(cfg%creep_map_file)
       return
     end if
     call print_summary(input_path, cfg, record)
+    if (cfg%fastsim_on) then
+      do i = 1, size(fastsim_summary)
+        write (output_unit, '(2x, a)') trim(fastsim_summary(i))
+      end do
+      if (with_maps) write (output_unit, '(2x, a)') 'FASTSIM maps: '//cfg%creep_map_file
+      do i = 1, size(fastsim_warnings)
+        write (output_unit, '(2x, a)') 'WARNING: '//trim(fastsim_warnings(i))
+        write (error_unit, '(a)') 'kcreep: warning: '//trim(fastsim_warnings(i))
+      end do
+    end if
     if (profile_requested() .and. record%method == 'iterative') write (error_unit, '(a, 3f9.3)') &
       'kcreep: GMRES seconds in operator, preconditioner, orthogonalisation:', &
       record%t_operator, record%t_preconditioner, record%t_orthogonalise
