@@ -357,13 +357,7 @@ contains
     do i = first_element, text%n
       if (len_trim(text%lines(i)) == 0) cycle
       if (index(adjustl(text%lines(i)), '%') == 1) exit
-      if (pn_column >= 3) then
-        read (text%lines(i), *, iostat=ios) row
-        element = nint(row(1))
-        igs = nint(row(2))
-      else
-        read (text%lines(i), *, iostat=ios) element, igs
-      end if
+      read (text%lines(i), *, iostat=ios) element, igs
       if (ios /= 0) then
         call fail(status, exit_bad_input, where//'line '//itoa(i)//': cannot read I, IGS from "'// &
                   trim(text%lines(i)(1:min(60, len_trim(text%lines(i)))))//'"')
@@ -389,6 +383,12 @@ contains
       seen(ix, iy) = .true.
       c%inside(ix, iy) = igs >= 1
       if (pn_column >= 3 .and. igs >= 1) then
+        read (text%lines(i), *, iostat=ios) row
+        if (ios /= 0) then
+          call fail(status, exit_bad_input, where//'line '//itoa(i)//': cannot read PN (column '// &
+                    itoa(pn_column)//') from "'//trim(text%lines(i)(1:min(60, len_trim(text%lines(i)))))//'"')
+          return
+        end if
         if (.not. (row(pn_column) >= 0 .and. row(pn_column) <= huge(1.0_real64))) then
           call fail(status, exit_bad_input, where//'line '//itoa(i)//': PN = '//rtoa(row(pn_column))// &
                     ' (a normal pressure must be finite and >= 0)')
