@@ -62,7 +62,7 @@ contains
 
     allocate (lines(2 + size(points) * (patch%n + 1) + 2 * max(0, size(points) - 1)))
     lines(1) = '# kcreep FASTSIM traction and stick/slip maps: one block per creepage point and source'
-    lines(2) = '# ix iy x y pn px py state   (state 1 adhesion, 2 slip; blocks separated by a comment line)'
+    lines(2) = '# ix iy x y pn px py state   (state 1 adhesion, 2 slip; blocks separated by two blank lines)'
     n = 2
     do k = 1, size(points)
       if (k > 1) then          ! two blank lines: gnuplot's 'index k-1' selects block k
