@@ -2,7 +2,7 @@
 !> creep-force curve on the solved patch, the lines of the creep table and
 !> of the maps, and the summary lines.
 module kcreep_app_fastsim
-  use, intrinsic :: iso_fortran_env, only: real64
+  use, intrinsic :: iso_fortran_env, only: real64, int64
   use kcreep_status, only: status_t
   use kcreep_namelist, only: config_t
   use kcreep_table, only: run_record_t
@@ -50,6 +50,7 @@ contains
     integer :: ns, k, s, ref
     real(real64) :: worst(size(source_names)), mufn
     character(len=200) :: buf
+    integer(int64) :: t0, t1, rate
 
     allocate (warnings(0))
     associate (p => record%patch)
@@ -67,7 +68,9 @@ contains
                     'no pressure given): forces beyond the linear range depend on it']
       end select
     end associate
+    call system_clock(t0, rate)
     call creep_curve(record%result_t, pn, cfg%fastsim, points, maps)
+    call system_clock(t1)
     lines = creep_lines(record%case_name, record%result_t, cfg%fastsim, pressure_label(cfg), points)
     if (cfg%fastsim%maps) then
       map_lines = creep_map_lines(record%patch, pn, points, maps)
@@ -78,9 +81,9 @@ contains
     ! summary: the points, and for each other source its largest force difference to the exact L
     ns = count(cfg%fastsim%sources)
     allocate (summary(2))
-    write (summary(1), '(a, i0, a, i0, a, es10.3, a)') 'FASTSIM: ', size(cfg%fastsim%creepages, 2), &
+    write (summary(1), '(a, i0, a, i0, a, es10.3, a, f8.4, a)') 'FASTSIM: ', size(cfg%fastsim%creepages, 2), &
       ' creepage points x ', ns, ' flexibility source(s), mu = ', cfg%fastsim%mu, &
-      ', rule '//flexibility_rule_name(cfg%fastsim%rule)
+      ', rule '//flexibility_rule_name(cfg%fastsim%rule)//', ', real(t1 - t0, real64) / rate, ' s'
     summary(2) = '  pressure '//pressure_label(cfg)//'; creep table: '//cfg%creep_file
     if (cfg%fastsim%sources(1) .and. ns > 1) then
       worst = 0

@@ -14,6 +14,7 @@ H = 0.2
 
 
 def inside(shape, x, y):
+    x, y = round(x, 9), round(y, 9)      # no decision on a rounding error of the grid
     if shape == 'two_lobed':
         return ((x / 3.0) ** 2 + ((y - 2.6) / 3.0) ** 2 <= 1) or ((x / 3.6) ** 2 + ((y + 2.6) / 3.4) ** 2 <= 1)
     if shape == 'crescent':
@@ -30,7 +31,8 @@ def inside(shape, x, y):
 
 def write(folder, shape):
     # bounding box of the shape on a fine sample, then the grid with one empty cell around
-    xs = [i * H for i in range(-80, 81)]
+    # cell centres at odd multiples of H/2: the grid is symmetric about x = 0 and y = 0
+    xs = [(i + 0.5) * H for i in range(-80, 80)]
     cells = [(x, y) for x in xs for y in xs if inside(shape, x, y)]
     x_lo = min(c[0] for c in cells) - H; x_hi = max(c[0] for c in cells) + H
     y_lo = min(c[1] for c in cells) - H; y_hi = max(c[1] for c in cells) + H
@@ -41,7 +43,7 @@ def write(folder, shape):
         y = y_lo + iy * H
         rows.append(''.join('#' if inside(shape, x_lo + ix * H, y) else '.' for ix in range(mx)))
     with open(os.path.join(folder, f'{shape}.mask'), 'w') as f:
-        f.write(f'{mx} {my} {H} {H} {x_lo:.6g} {y_lo:.6g}\n')
+        f.write(f'{mx} {my} {H} {H} {round(x_lo, 9):.6g} {round(y_lo, 9):.6g}\n')
         f.write('\n'.join(rows) + '\n')
     return mx, my, sum(r.count('#') for r in rows)
 
