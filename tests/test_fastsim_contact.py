@@ -11,14 +11,17 @@ Measured (docs/fastsim.md), errors |F - F_CONTACT| / (mu Fn):
   - the kidney's pure curves: exact L within 4.9 %, the equivalent ellipses' L up to 9.6 %.
 Limits below: the measured value plus a margin of ~1 % of mu Fn (a change of the scheme that
 moves any of them by more should be looked at).
-usage: test_fastsim_contact.py CURVE_TOOL KCREEP SHARED_DIR COMPARE_SCRIPT"""
+scripts/compare_contact.sh compares the slip cases of a CONTACT output with kcreep's &fastsim
+(exact and ellipse L): on ellipse_a6_b4_slip it prints the same errors (1.91 %, 1.81 %).
+usage: test_fastsim_contact.py CURVE_TOOL KCREEP SHARED_DIR COMPARE_SCRIPT COMPARE_CONTACT_SH"""
 import csv
 import os
+import re
 import subprocess
 import sys
 import tempfile
 
-curve, kcreep, shared, script = (os.path.abspath(a) for a in sys.argv[1:5])
+curve, kcreep, shared, script, compare_sh = (os.path.abspath(a) for a in sys.argv[1:6])
 failures = []
 
 
@@ -70,5 +73,14 @@ kid = [r for r in rows if r['patch'] == 'kidney_mu0p3' and r['kind'] == 'pure']
 ex = max(float(r['exact_separate_err']) for r in kid)
 ell = min(max(float(r['box_separate_err']) for r in kid), max(float(r['moments_separate_err']) for r in kid))
 check(ex < ell - 2, f'kidney, pure creepages: exact L {ex:.2f} % beats the equivalent ellipses ({ell:.2f} %)')
+# compare_contact.sh: the slip cases through kcreep's own &fastsim
+r = subprocess.run(['bash', compare_sh, os.path.join(shared, 'contact-samples/ellipse_a6_b4_slip.out')],
+                   capture_output=True, text=True, env=dict(os.environ, KCREEP=kcreep))
+lines = [l for l in r.stdout.splitlines() if 'FASTSIM (mu = 0.3000, L: exact)' in l]
+errs = [float(re.search(r'= ([0-9.]+) %', l).group(1)) for l in lines]
+check(r.returncode == 0 and len(errs) == 2, f'compare_contact.sh: FASTSIM lines for both slip cases (exit {r.returncode})')
+sample = [r for r in rows if r['patch'] == 'ellipse_a6_b4_slip']
+check(all(abs(e - float(x['exact_separate_err'])) < 0.006 for e, x in zip(errs, sample)),
+      f'compare_contact.sh (&fastsim) and compare_contact_slip.py (tool) agree: {errs}')
 print(f'{len(failures)} failed')
 sys.exit(1 if failures else 0)
