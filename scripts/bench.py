@@ -231,4 +231,6 @@ text = "\n".join(lines) + "\n"
 with open(os.path.join(root, "docs", "performance.md"), "w") as f:
     f.write(text)
 print(text)
+# the FASTSIM section (creep curves) after the solver table
+subprocess.run([sys.executable, os.path.join(root, "scripts", "bench_fastsim.py"), build, root], check=True)
 shutil.rmtree(work, ignore_errors=True)

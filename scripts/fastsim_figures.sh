@@ -95,4 +95,20 @@ plot 'combined.dat' u 3:xtic(2) t "weighted L (Kalker 1982)" lc rgb "#d62728", \
      '' u 6 t "separate, moment ellipse L" lc rgb "#2ca02c"
 EOG
 cp fastsim_contact.png fastsim_combined.png "$figs/"
-echo "figures: $figs/fastsim_contact.png $figs/fastsim_combined.png"
+
+# the crescent example: its curves for the three flexibility sources, and a traction map
+cp "$here/input/crescent.mask" .
+sed "s|input/crescent.mask|crescent.mask|" "$here/input/crescent.nml" > crescent.nml
+"$KCREEP" crescent.nml > /dev/null 2>&1
+"$here/scripts/plot_creep.sh" crescent.creep --out . > /dev/null
+cat > crescent_map.nml <<'EON'
+&patch shape = 'mask', mask_file = 'crescent.mask' /
+&material g = 82000, nu = 0.28 /
+&solver scheme = 'backward' /
+&fastsim mu = 0.3, fn = 10000, creepages = 4e-4 4e-4 0, maps = .true. /
+EON
+"$KCREEP" crescent_map.nml > /dev/null 2>&1
+"$here/scripts/plot_creep.sh" crescent_map.creep --map crescent_map.creepmap --row 1 --out . > /dev/null
+cp crescent_creep.png "$figs/fastsim_crescent_curves.png"
+cp crescent_map_map.png "$figs/fastsim_crescent_map.png"
+echo "figures: $figs/fastsim_contact.png $figs/fastsim_combined.png $figs/fastsim_crescent_curves.png $figs/fastsim_crescent_map.png"
