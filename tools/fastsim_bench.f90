@@ -53,7 +53,7 @@ program fastsim_bench
     call sort(times)
     write (output_unit, '(a, i0, a, i0, a, i0, 2a, f9.5, a, f9.5, a, es10.3, a, es12.5)') 'grid ', n, ' x ', n, &
       ', ', points, ' points, rule ', merge('weighted', 'separate', rule == flexibility_weighted)// &
-      ': best ', times(1), ' s, median ', times(repeats / 2 + 1), ' s, per cell and point ', &
+      ': best ', times(1), ' s, median ', times((repeats + 1) / 2), ' s, per cell and point ', &
       times(1) / (points * count(inside)), ' s; checksum ', checksum
   end do
 
