@@ -2,7 +2,7 @@
  * ellipse, then a mask solved repeatedly; every status checked, and the
  * error paths (NULL handle, NULL arrays, bad values) exercised.
  *
- *   api_example [ellipse|mask|errors|bench N]
+ *   api_example [ellipse|mask|errors|bench N [ellipse|mask|moving [auto|dense|iterative]]]
  * prints "key value..." lines that tests/test_install.py compares with the
  * command line and Python. */
 #include <math.h>
@@ -142,6 +142,7 @@ int main(int argc, char **argv) {
     /* repeated solves of one 40 x 40 patch on one handle: first call, then the median */
     int repeats = argc > 2 ? atoi(argv[2]) : 50;
     const char *shape = argc > 3 ? argv[3] : "ellipse";
+    if (argc > 4) must(h, kcreep_set_solver(h, argv[4], 0), "kcreep_set_solver");
     int *inside = circle_mask(40);
     double *times = malloc(sizeof(double) * repeats);
     for (int r = 0; r < repeats; r++) {
@@ -149,6 +150,16 @@ int main(int argc, char **argv) {
       if (strcmp(shape, "ellipse") == 0) {
         must(h, kcreep_set_ellipse(h, 1.0, 1.0, 40, 40), "kcreep_set_ellipse");
         must(h, kcreep_solve(h), "kcreep_solve");
+      } else if (strcmp(shape, "moving") == 0) {
+        /* a time-stepping loop: the patch changes every call (semi-axes
+         * breathing by up to 5 %, centre drifting), the grid stays */
+        double a = 0.9 + 0.05 * sin(0.7 * r), b = 0.9 + 0.05 * cos(0.5 * r), xc = 0.03 * sin(0.3 * r);
+        for (int iy = 0; iy < 40; iy++)
+          for (int ix = 0; ix < 40; ix++) {
+            double x = -1 + (ix + 0.5) / 20 - xc, y = -1 + (iy + 0.5) / 20;
+            inside[iy * 40 + ix] = (x / a) * (x / a) + (y / b) * (y / b) <= 1;
+          }
+        must(h, kcreep_solve_mask(h, 40, 40, inside, 0.05, 0.05, -0.975, -0.975), "kcreep_solve_mask");
       } else {
         must(h, kcreep_solve_mask(h, 40, 40, inside, 0.05, 0.05, -0.975, -0.975), "kcreep_solve_mask");
       }
