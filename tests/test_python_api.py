@@ -87,9 +87,12 @@ rows = kcreep.table.read(os.path.join(folder, "circle.tab"))
 kc.check(len(rows) == 1 and rows[0]["case"] == "circle" and rows[0]["f11"] == row["f11"], "kcreep.table.read")
 
 # pip install ./python (Debian's setuptools, no network), then import it with KCREEP_LIBRARY
-target = os.path.join(folder, "site")
+# (from a copy: pip builds in the source folder, which must stay clean)
+import shutil  # noqa: E402
+target, package_copy = os.path.join(folder, "site"), os.path.join(folder, "python")
+shutil.copytree(os.path.join(source_dir, "python"), package_copy, ignore=shutil.ignore_patterns("__pycache__"))
 proc = subprocess.run([sys.executable, "-m", "pip", "install", "--no-build-isolation", "--no-deps", "--no-index",
-                       "--target", target, os.path.join(source_dir, "python")], capture_output=True, text=True)
+                       "--target", target, package_copy], capture_output=True, text=True)
 kc.check(proc.returncode == 0, "pip install ./python" + ("" if proc.returncode == 0 else ": " + proc.stderr[-500:]))
 library = os.path.join(source_dir, "build", "libkcreep.so")
 if not os.path.exists(library):
