@@ -12,6 +12,8 @@ import subprocess
 import sys
 import tempfile
 import time
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "python"))
+from kcreep import table, docsection  # noqa: E402  (standard library only)
 
 build, root = sys.argv[1], sys.argv[2]
 KCREEP = os.path.join(build, "kcreep")
@@ -65,20 +67,7 @@ def run_kcreep(path, m, scheme="collocation"):
 
 
 def read_row(path):
-    cols, vals = None, None
-    with open(path) as f:
-        for line in f:
-            if line.startswith("#"):
-                cols = line[1:].split()
-            else:
-                vals = line.split()
-    row = {}
-    for c, v in zip(cols, vals):
-        try:
-            row[c] = float(v)
-        except ValueError:
-            row[c] = v
-    return row
+    return table.read_row(path)
 
 
 def blas(*args):
@@ -228,7 +217,6 @@ for path in ("dense", "dense-unsplit"):
         lines.append(f"- Assembly / factorisation at {target_m} x {target_m}, {path}: "
                      f"{r['t_assemble']:.3f} / {r['t_factor']:.3f} s = **{r['t_assemble'] / r['t_factor']:.3f}**.")
 text = "\n".join(lines) + "\n"
-with open(os.path.join(root, "docs", "performance.md"), "w") as f:
-    f.write(text)
+docsection.replace_section(os.path.join(root, "docs", "performance.md"), "solvers", text)
 print(text)
 shutil.rmtree(work, ignore_errors=True)
