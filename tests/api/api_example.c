@@ -145,6 +145,7 @@ int main(int argc, char **argv) {
     if (argc > 4) must(h, kcreep_set_solver(h, argv[4], 0), "kcreep_set_solver");
     int *inside = circle_mask(40);
     double *times = malloc(sizeof(double) * repeats);
+    long total_iterations = 0;
     for (int r = 0; r < repeats; r++) {
       double t0 = seconds();
       if (strcmp(shape, "ellipse") == 0) {
@@ -166,10 +167,15 @@ int main(int argc, char **argv) {
       double c[3];
       must(h, kcreep_get_normalised(h, c), "kcreep_get_normalised");
       times[r] = seconds() - t0;
+      int iterations;
+      double residual, rcond, solve_seconds;
+      must(h, kcreep_get_diagnostics(h, &iterations, &residual, &rcond, &solve_seconds), "kcreep_get_diagnostics");
+      total_iterations += iterations;
     }
     double first = times[0];
     qsort(times + 1, repeats - 1, sizeof(double), compare_double);
-    printf("bench %s first_ms %.3f repeated_median_ms %.3f\n", shape, 1e3 * first, 1e3 * times[repeats / 2]);
+    printf("bench %s first_ms %.3f repeated_median_ms %.3f mean_iterations %.1f\n", shape, 1e3 * first,
+           1e3 * times[repeats / 2], (double)total_iterations / repeats);
     free(times); free(inside);
   }
   kcreep_delete(&h);
