@@ -228,7 +228,14 @@ for path in ("dense", "dense-unsplit"):
         lines.append(f"- Assembly / factorisation at {target_m} x {target_m}, {path}: "
                      f"{r['t_assemble']:.3f} / {r['t_factor']:.3f} s = **{r['t_assemble'] / r['t_factor']:.3f}** (target < 0.1).")
 text = "\n".join(lines) + "\n"
-with open(os.path.join(root, "docs", "performance.md"), "w") as f:
+# keep the section scripts/bench_normal.sh maintains
+perf_path = os.path.join(root, "docs", "performance.md")
+if os.path.exists(perf_path):
+    old = open(perf_path).read()
+    begin, end = old.find("<!-- normal-bench:begin -->"), old.find("<!-- normal-bench:end -->")
+    if 0 <= begin < end:
+        text += "\n" + old[begin:end + len("<!-- normal-bench:end -->")] + "\n"
+with open(perf_path, "w") as f:
     f.write(text)
 print(text)
 shutil.rmtree(work, ignore_errors=True)

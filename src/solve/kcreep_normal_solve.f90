@@ -13,7 +13,10 @@
 !> to zero, cells that interpenetrate without pressure added to the active
 !> set (and the conjugation restarted). A p is a 2-D linear convolution with
 !> the offset table, done with zero-padded real FFTs (FFTW), so memory and
-!> work per iteration are O(grid) and O(grid log grid).
+!> work per iteration are O(grid) and O(grid log grid). Each step needs
+!> r = A t; u = A p is updated along the step (u - tau r) when the active set
+!> did not change and recomputed otherwise, every 25 steps, and before
+!> convergence is accepted.
 !>
 !> Stopping: the complementarity residual
 !>   max( max_{p>0} |g|, max_{p=0} max(-g, 0) ) / max(u)
@@ -45,6 +48,7 @@ module kcreep_normal_solve
     real(real64) :: pmax = 0
     real(real64) :: residual = huge(1.0_real64)   !< final complementarity residual (relative)
     integer :: iterations = 0
+    integer :: products = 0                       !< FFT products A x (about 1 per iteration)
     integer :: n_contact = 0                      !< cells with p > 0
     logical :: converged = .false.
     logical :: touches_edge = .false.             !< pressure on the grid's outer cells
@@ -53,6 +57,7 @@ module kcreep_normal_solve
   !> A p on an mx x my grid by FFT (the kernel is even: its spectrum is real).
   type :: normal_operator_t
     integer :: mx = 0, my = 0, nx = 0, ny = 0
+    integer :: applications = 0                 !< products A p done
     type(c_ptr) :: p_real = c_null_ptr, p_spec = c_null_ptr
     real(c_double), pointer :: grid(:, :) => null()
     complex(c_double_complex), pointer :: spec(:, :) => null()
@@ -137,6 +142,7 @@ contains
     real(real64), intent(in) :: p(:, :)
     real(real64), intent(out) :: u(:, :)
     integer :: j
+    op%applications = op%applications + 1
     op%grid = 0
     do j = 1, op%my
       op%grid(1:op%mx, j) = p(:, j)
@@ -161,9 +167,13 @@ contains
     real(real64), intent(in), optional :: approach, normal_force
 
     type(normal_operator_t) :: op
-    real(real64), allocatable :: p(:, :), g(:, :), t(:, :), u(:, :)
+    real(real64), allocatable :: p(:, :), g(:, :), t(:, :), u(:, :), r(:, :)
     logical, allocatable :: active(:, :)
-    logical :: force_given, restart
+    logical :: force_given, restart, fresh, changed
+    integer :: since_fresh
+    real(real64) :: factor
+    !> steps between recomputations of u = A p (round-off drift of the update)
+    integer, parameter :: refresh_every = 25
     real(real64) :: delta, fn, gg, gg_old, tau, num, den, mean, scale, cell_area
     integer :: mx, my, it, nc
 
@@ -183,7 +193,7 @@ contains
       return
     end if
     cell_area = dx * dy
-    allocate (p(mx, my), g(mx, my), t(mx, my), u(mx, my), active(mx, my))
+    allocate (p(mx, my), g(mx, my), t(mx, my), u(mx, my), r(mx, my), active(mx, my))
     delta = 0
     fn = 0
     if (force_given) then
@@ -222,19 +232,31 @@ contains
     gg_old = 1
     restart = .true.
     t = 0
+    fresh = .false.
+    since_fresh = 0
     do it = 0, options%max_iterations
-      call apply_normal_operator(op, p, u)
-      g = h + u
-      if (.not. force_given) g = g - delta
-      active = p > 0
-      nc = count(active)
-      if (force_given .and. nc > 0) then
-        mean = sum(g, mask=active) / nc
-        g = g - mean
-        delta = mean
+      ! u = A p: updated along the CG step when the active set did not change,
+      ! recomputed otherwise, every refresh_every steps, and before accepting convergence
+      if (.not. fresh .or. since_fresh >= refresh_every) then
+        call apply_normal_operator(op, p, u)
+        since_fresh = 0
       end if
-      scale = max(maxval(u), tiny(1.0_real64))
-      res%residual = max(maxval(abs(g), mask=active), maxval(-g, mask=.not. active), 0.0_real64) / scale
+      do
+        g = h + u
+        if (.not. force_given) g = g - delta
+        active = p > 0
+        nc = count(active)
+        if (force_given .and. nc > 0) then
+          mean = sum(g, mask=active) / nc
+          g = g - mean
+          delta = mean
+        end if
+        scale = max(maxval(u), tiny(1.0_real64))
+        res%residual = max(maxval(abs(g), mask=active), maxval(-g, mask=.not. active), 0.0_real64) / scale
+        if (res%residual > options%tolerance .or. since_fresh == 0) exit
+        call apply_normal_operator(op, p, u)
+        since_fresh = 0
+      end do
       res%iterations = it
       if (res%residual <= options%tolerance) then
         res%converged = .true.
@@ -247,6 +269,7 @@ contains
         call apply_normal_operator(op, t, u)
         p = t * (sum(t * t) / sum(t * u))
         restart = .true.
+        fresh = .false.
         cycle
       end if
       gg = sum(g * g, mask=active)
@@ -264,23 +287,33 @@ contains
         end where
       end if
       gg_old = gg
-      call apply_normal_operator(op, t, u)     ! u now holds r = A t
-      if (force_given) u = u - sum(u, mask=active) / nc
+      call apply_normal_operator(op, t, r)
       num = sum(g * t, mask=active)
-      den = sum(u * t, mask=active)
+      den = sum(r * t, mask=active)
+      if (force_given) den = den - sum(r, mask=active) / nc * sum(t, mask=active)
       if (.not. (den > 0)) then
         tau = 0
       else
         tau = num / den
       end if
       where (active) p = p - tau * t
+      changed = any(p < 0)
       p = max(p, 0.0_real64)
       ! cells without pressure that interpenetrate join the active set
       active = p <= 0 .and. g < 0
       restart = any(active)
+      changed = changed .or. restart
       where (active) p = p - tau * g
-      if (force_given) p = p * (fn / (cell_area * sum(p)))
+      factor = 1
+      if (force_given) factor = fn / (cell_area * sum(p))
+      if (force_given) p = p * factor
+      fresh = .not. changed
+      if (fresh) then
+        u = factor * (u - tau * r)
+        since_fresh = since_fresh + 1
+      end if
     end do
+    res%products = op%applications
     call destroy_normal_operator(op)
 
     if (.not. res%converged) then
