@@ -22,7 +22,7 @@ program test_normal
   use kcreep_gap, only: gap_t, polynomial_gap_t, gap_from_polynomial, auto_grid
   use kcreep_gap_file, only: parse_gap_text
   use kcreep_contact_input, only: contact_input_t, read_contact_input
-  use contact_reader, only: contact_case_t, read_contact_case
+  use kcreep_contact_reader, only: contact_case_t, read_contact_case
   use unit_checks, only: checker_t
   implicit none
   type(checker_t) :: t

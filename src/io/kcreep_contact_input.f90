@@ -13,7 +13,7 @@ module kcreep_contact_input
   use, intrinsic :: iso_fortran_env, only: real64
   use kcreep_status, only: status_t, fail, exit_bad_input
   use kcreep_strings, only: itoa, rtoa
-  use file_checks, only: read_input_file
+  use kcreep_file_checks, only: read_input_file
   use kcreep_gap, only: gap_t, gap_from_array, max_gap_cells
   implicit none
   private
