@@ -632,7 +632,12 @@ contains
                    2 * (abs(cfg%poly%lx) * cfg%poly%rx + abs(cfg%poly%ly) * cfg%poly%ry)
           call auto_grid(cfg%poly, level, extent, cfg%cells_across, cfg%margin, mx, my, dx, dy, x0, y0, status)
           if (status%failed()) then
-            status%message = where//'&normal approach = '//rtoa(cfg%approach)//': '//status%message
+            if (cfg%force_given) then
+              status%message = where//'&normal: '//status%message
+            else
+              status%message = where//'&normal approach = '//rtoa(cfg%approach)//': the surfaces do not '// &
+                               'interpenetrate (the undeformed distance from rx, ry, lx, ly, cx, cy is larger everywhere)'
+            end if
             return
           end if
         end if
