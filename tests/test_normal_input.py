@@ -127,6 +127,14 @@ if samples and os.path.isdir(samples):
 else:
     kc.check(False, "CONTACT samples folder given as argument 2")
 
+# --estimate-memory on a gap case: a positive byte count (normal solve + tangential bound)
+import subprocess
+with open(os.path.join(folder, "est.nml"), "w") as f:
+    f.write("&patch shape='gap' /\n&normal rx=1, ry=2, approach=0.01 /\n")
+proc = subprocess.run([kc.KCREEP, "--estimate-memory", "est.nml"], cwd=folder, capture_output=True, text=True)
+kc.check(proc.returncode == 0 and int(proc.stdout.split()[0]) > 0,
+         f"--estimate-memory of a gap case: exit {proc.returncode}, {proc.stdout.strip()} bytes")
+
 # 4. bad input
 GOOD = "&patch shape='gap' /\n&material g=1, nu=0.25 /\n"
 OUT = "&output pressure_file='bad.p', contact_mask_file='bad.mask' /\n"
