@@ -1,6 +1,7 @@
 !> The namelist input: reading, defaults and validation.
 !>
-!> Groups &patch, &material, &solver, &output, each optional. Anything out of
+!> Groups &patch, &material, &solver, &output, &normal, each optional
+!> (&normal describes the normal contact problem of shape = 'gap'). Anything out of
 !> range or inconsistent is reported through status with the file, group,
 !> variable, value and what is allowed, before any computation or output.
 module kcreep_namelist
@@ -17,14 +18,23 @@ module kcreep_namelist
   use kcreep_limits, only: check_grid_size, length_in_range, offset_in_range, modulus_in_range
   use kcreep_solver_options, only: solver_options_t, validate_solver_options
   use kcreep_dense, only: refine_modes
-  use kcreep_problem, only: problem_t
+  use kcreep_problem, only: problem_t, normal_problem_t
+  use kcreep_gap, only: gap_t, polynomial_gap_t, gap_from_polynomial, auto_grid
+  use kcreep_gap_file, only: read_gap_file
+  use kcreep_contact_input, only: contact_input_t, read_contact_input
+  use kcreep_hertz, only: hertz_t, hertz_from_force
+  use kcreep_normal_influence, only: compliance_from_g_nu, compliance_from_e_nu, combined_g_nu_from_e_nu
   implicit none
   private
   public :: config_t, read_config, build_patch, problem_of, max_inline_rows, max_row_length
 
   integer, parameter :: max_inline_rows = 2048, max_row_length = 2048
   integer, parameter :: default_cells = 60
-  character(len=*), parameter :: group_names(4) = [character(len=8) :: 'patch', 'material', 'solver', 'output']
+  character(len=*), parameter :: group_names(5) = [character(len=8) :: 'patch', 'material', 'solver', 'output', &
+                                                    'normal']
+  !> &normal: the number of cells across the automatic grid's larger side, its margin
+  integer, parameter :: default_cells_across = 60
+  real(real64), parameter :: default_margin = 0.2_real64
 
   type :: config_t
     character(len=:), allocatable :: input_path
@@ -49,6 +59,17 @@ module kcreep_namelist
     type(solver_options_t) :: solve           !< method, tolerance, splits
     ! &output
     character(len=:), allocatable :: table_file, traction_file
+    character(len=:), allocatable :: pressure_file, contact_mask_file   !< shape 'gap' only
+    ! &normal (shape 'gap')
+    character(len=:), allocatable :: gap_file, contact_inp
+    integer :: contact_inp_case = 1
+    type(polynomial_gap_t) :: poly              !< rx, ry (+ linear, cubic terms)
+    logical :: approach_given = .false., force_given = .false.
+    real(real64) :: approach = 0, normal_force = 0
+    integer :: cells_across = default_cells_across
+    real(real64) :: margin = default_margin
+    real(real64) :: e(2) = 0, poisson(2) = 0    !< per body, when given (e(1) > 0)
+    type(normal_problem_t) :: normal            !< built by read_config
   end type config_t
 
 contains
@@ -73,6 +94,10 @@ contains
     character(len=max_row_length), allocatable :: mask_rows(:)
     character(len=4096) :: contact_file
     integer :: contact_case
+    ! &normal
+    character(len=4096) :: gap_file, contact_inp, pressure_file, contact_mask_file
+    integer :: contact_inp_case, cells_across, normal_max_iterations
+    real(real64) :: rx, ry, lx, ly, cx, cy, approach, normal_force, margin, e1, nu1, e2, nu2, normal_tolerance
     !> "not given": g, nu and spin_shift default differently for shape = 'contact'
     real(real64), parameter :: unset = -huge(1.0_real64)
     logical :: material_given
@@ -80,7 +105,9 @@ contains
     namelist /material/ g, nu
     namelist /solver/ scheme, alpha, spin_shift, load_cases, extrapolate, extrapolate_levels, refine_ratio, refine, &
                       method, tolerance, max_iterations, restart, split_systems
-    namelist /output/ table_file, traction_file
+    namelist /output/ table_file, traction_file, pressure_file, contact_mask_file
+    namelist /normal/ gap_file, contact_inp, contact_inp_case, rx, ry, lx, ly, cx, cy, approach, normal_force, &
+                      cells_across, margin, e1, nu1, e2, nu2, normal_tolerance, normal_max_iterations
 
     integer :: unit, ios, nrows
     logical :: group_present(size(group_names))
@@ -118,6 +145,27 @@ contains
     split_systems = cfg%solve%split_systems
     table_file = ''
     traction_file = ''
+    pressure_file = ''
+    contact_mask_file = ''
+    gap_file = ''
+    contact_inp = ''
+    contact_inp_case = 1
+    rx = 0
+    ry = 0
+    lx = 0
+    ly = 0
+    cx = 0
+    cy = 0
+    approach = unset
+    normal_force = unset
+    cells_across = default_cells_across
+    margin = default_margin
+    e1 = unset
+    nu1 = unset
+    e2 = unset
+    nu2 = unset
+    normal_tolerance = cfg%normal%options%tolerance
+    normal_max_iterations = cfg%normal%options%max_iterations
 
     cfg%input_path = path
     ! the whole file first: a folder, a binary file, text outside the groups,
@@ -143,6 +191,9 @@ contains
     rewind (unit)
     if (group_present(4)) read (unit, nml=output, iostat=ios, iomsg=msg)
     call check_read('output', group_present(4))
+    rewind (unit)
+    if (group_present(5)) read (unit, nml=normal, iostat=ios, iomsg=msg)
+    call check_read('normal', group_present(5))
     close (unit)
     if (status%failed()) return
 
@@ -183,7 +234,25 @@ contains
     cfg%table_file = trim(table_file)
     if (len(cfg%table_file) == 0) cfg%table_file = default_table_name(path)
     cfg%traction_file = trim(traction_file)
+    cfg%pressure_file = trim(pressure_file)
+    cfg%contact_mask_file = trim(contact_mask_file)
+    cfg%gap_file = trim(gap_file)
+    cfg%contact_inp = trim(contact_inp)
+    cfg%contact_inp_case = contact_inp_case
+    cfg%poly = polynomial_gap_t(rx=rx, ry=ry, lx=lx, ly=ly, cx=cx, cy=cy)
+    cfg%approach_given = approach /= unset
+    cfg%force_given = normal_force /= unset
+    if (cfg%approach_given) cfg%approach = approach
+    if (cfg%force_given) cfg%normal_force = normal_force
+    cfg%cells_across = cells_across
+    cfg%margin = margin
+    cfg%normal%options%tolerance = normal_tolerance
+    cfg%normal%options%max_iterations = normal_max_iterations
     if (present(base_folder)) then
+      cfg%gap_file = resolve_path(cfg%gap_file, base_folder)
+      cfg%contact_inp = resolve_path(cfg%contact_inp, base_folder)
+      cfg%pressure_file = resolve_path(cfg%pressure_file, base_folder)
+      cfg%contact_mask_file = resolve_path(cfg%contact_mask_file, base_folder)
       cfg%mask_file = resolve_path(cfg%mask_file, base_folder)
       cfg%contact_file = resolve_path(cfg%contact_file, base_folder)
       cfg%table_file = resolve_path(cfg%table_file, base_folder)
@@ -192,6 +261,9 @@ contains
 
     call validate(cfg, mask_rows, nrows, load_cases, status)
     if (cfg%shape == 'contact' .and. .not. status%failed()) call load_contact_case(cfg, material_given, status)
+    if (.not. status%failed()) call validate_normal(cfg, group_present(5), material_given, [e1, nu1, e2, nu2], &
+                                                    unset, status)
+    if (cfg%shape == 'gap' .and. .not. status%failed()) call load_gap(cfg, status)
 
   contains
 
@@ -276,9 +348,13 @@ contains
           cfg%dy /= 0 .or. cfg%x0 /= 0 .or. cfg%y0 /= 0) call fail(status, exit_bad_input, where// &
           '&patch shape = ''contact'' takes its grid and mask from contact_file (leave out mask_file, '// &
           'mask_rows, mx, my, dx, dy, x0, y0)')
+    case ('gap')
+      if (len(cfg%mask_file) > 0 .or. nrows > 0 .or. len(cfg%contact_file) > 0) call fail(status, exit_bad_input, &
+          where//'&patch shape = ''gap'' takes no mask_file, mask_rows or contact_file (the patch is the '// &
+          'contact area the &normal group finds)')
     case default
       call fail(status, exit_bad_input, where//'&patch shape = '''//cfg%shape// &
-                ''' (allowed: ''ellipse'', ''mask'', ''contact'')')
+                ''' (allowed: ''ellipse'', ''mask'', ''contact'', ''gap'')')
     end select
 
     if (.not. modulus_in_range(cfg%g)) call fail(status, exit_bad_input, where// &
@@ -370,6 +446,9 @@ contains
         if (status%failed()) return
         call mask_patch(inside, cfg%dx, cfg%dy, cfg%x0, cfg%y0, where, patch, status)
       end if
+    case ('gap')
+      ! found by the normal solve (kcreep_solve): nothing to build here
+      patch%kind = 'gap'
     case ('contact')
       ! CONTACT's grid: corner (XL, YL), so the first cell centre is half a cell in
       call mask_patch(cfg%contact%inside, cfg%contact%dx, cfg%contact%dy, cfg%contact%xl + cfg%contact%dx / 2, &
@@ -411,7 +490,179 @@ contains
     problem%extrapolate = cfg%extrapolate
     problem%extrapolate_levels = cfg%extrapolate_levels
     problem%refine_ratio = cfg%refine_ratio
+    if (cfg%shape == 'gap') problem%normal = cfg%normal
   end function problem_of
+
+  !> The &normal group: only with shape = 'gap', one gap source, one of
+  !> approach and normal_force, the material either in &material or per body.
+  subroutine validate_normal(cfg, normal_present, material_given, body, unset, status)
+    type(config_t), intent(inout) :: cfg
+    logical, intent(in) :: normal_present, material_given
+    real(real64), intent(in) :: body(4)      !< e1, nu1, e2, nu2 as read
+    real(real64), intent(in) :: unset
+    type(status_t), intent(inout) :: status
+    character(len=:), allocatable :: where
+    integer :: sources
+
+    where = 'input '''//cfg%input_path//''': '
+    if (cfg%shape /= 'gap') then
+      if (normal_present) call fail(status, exit_bad_input, where//'&normal is only read with &patch shape = '// &
+                                    '''gap'' (shape = '''//cfg%shape//''')')
+      if (len(cfg%pressure_file) > 0 .or. len(cfg%contact_mask_file) > 0) call fail(status, exit_bad_input, &
+          where//'&output pressure_file and contact_mask_file need &patch shape = ''gap''')
+      return
+    end if
+    sources = count([len(cfg%gap_file) > 0, len(cfg%contact_inp) > 0, cfg%poly%rx /= 0 .or. cfg%poly%ry /= 0])
+    if (sources /= 1) then
+      call fail(status, exit_bad_input, where//'&normal: give exactly one undeformed distance: gap_file, '// &
+                'contact_inp, or the principal radii rx and ry (given: '//itoa(sources)//')')
+      return
+    end if
+    if (len(cfg%contact_inp) > 0) then
+      if (cfg%approach_given .or. cfg%force_given) call fail(status, exit_bad_input, where// &
+          '&normal: approach and normal_force come from contact_inp (PEN or FN; leave them out)')
+      if (material_given .or. body(1) /= unset) call fail(status, exit_bad_input, where// &
+          '&material g, nu and &normal e1, nu1, e2, nu2 are not allowed with contact_inp (its GG and POISS are used)')
+      if (cfg%contact_inp_case < 1) call fail(status, exit_bad_input, where//'&normal contact_inp_case = '// &
+          itoa(cfg%contact_inp_case)//' (must be >= 1)')
+      return
+    end if
+    if (cfg%approach_given .eqv. cfg%force_given) then
+      call fail(status, exit_bad_input, where//'&normal: give exactly one of approach and normal_force')
+    else if (cfg%force_given .and. .not. (cfg%normal_force > 0 .and. cfg%normal_force < 1e300_real64)) then
+      call fail(status, exit_bad_input, where//'&normal normal_force = '//rtoa(cfg%normal_force)// &
+                ' (must be > 0)')
+    else if (cfg%approach_given .and. .not. (abs(cfg%approach) < 1e30_real64)) then
+      call fail(status, exit_bad_input, where//'&normal approach = '//rtoa(cfg%approach)//' (|approach| < 1e30)')
+    end if
+    if (len(cfg%gap_file) == 0) then
+      if (.not. (cfg%poly%rx > 0 .and. cfg%poly%ry > 0 .and. cfg%poly%rx < 1e30_real64 .and. &
+                 cfg%poly%ry < 1e30_real64)) call fail(status, exit_bad_input, where//'&normal rx, ry = '// &
+          rtoa(cfg%poly%rx)//', '//rtoa(cfg%poly%ry)//' (principal relative radii: both > 0 and < 1e30)')
+      if (any(abs([cfg%poly%lx, cfg%poly%ly, cfg%poly%cx, cfg%poly%cy]) >= 1e30_real64)) &
+        call fail(status, exit_bad_input, where//'&normal lx, ly, cx, cy: each |value| < 1e30')
+    else if (cfg%mx /= 0 .or. cfg%my /= 0 .or. cfg%dx /= 0 .or. cfg%dy /= 0 .or. cfg%x0 /= 0 .or. cfg%y0 /= 0) then
+      call fail(status, exit_bad_input, where//'&patch mx, my, dx, dy, x0, y0: the grid comes from gap_file''s '// &
+                'header (leave them out)')
+    end if
+    if (cfg%cells_across < 2 .or. cfg%cells_across > 2000) call fail(status, exit_bad_input, where// &
+        '&normal cells_across = '//itoa(cfg%cells_across)//' (allowed: 2 to 2000)')
+    if (.not. (cfg%margin >= 0 .and. cfg%margin <= 10)) call fail(status, exit_bad_input, where// &
+        '&normal margin = '//rtoa(cfg%margin)//' (allowed: 0 to 10, a fraction of the interpenetration size)')
+    if (.not. (cfg%normal%options%tolerance > 0 .and. cfg%normal%options%tolerance < 1)) &
+      call fail(status, exit_bad_input, where//'&normal normal_tolerance = '//rtoa(cfg%normal%options%tolerance)// &
+                ' (allowed: 0 < tolerance < 1)')
+    if (cfg%normal%options%max_iterations < 1) call fail(status, exit_bad_input, where// &
+        '&normal normal_max_iterations = '//itoa(cfg%normal%options%max_iterations)//' (must be >= 1)')
+    if (any(body /= unset)) then
+      if (material_given) then
+        call fail(status, exit_bad_input, where//'give the material either in &material (g, nu) or per body '// &
+                  'in &normal (e1, nu1, e2, nu2), not both')
+      else if (any(body == unset)) then
+        call fail(status, exit_bad_input, where//'&normal e1, nu1, e2, nu2: give all four')
+      else if (.not. (body(1) > 0 .and. body(3) > 0 .and. body(1) < 1e100_real64 .and. body(3) < 1e100_real64)) then
+        call fail(status, exit_bad_input, where//'&normal e1, e2 = '//rtoa(body(1))//', '//rtoa(body(3))// &
+                  ' (Young''s moduli: > 0)')
+      else if (.not. (body(2) >= 0 .and. body(2) <= 0.5_real64 .and. body(4) >= 0 .and. body(4) <= 0.5_real64)) then
+        call fail(status, exit_bad_input, where//'&normal nu1, nu2 = '//rtoa(body(2))//', '//rtoa(body(4))// &
+                  ' (allowed: 0 to 0.5)')
+      else
+        cfg%e = [body(1), body(3)]
+        cfg%poisson = [body(2), body(4)]
+        call combined_g_nu_from_e_nu(body(1), body(2), body(3), body(4), cfg%g, cfg%nu)
+      end if
+    end if
+  end subroutine validate_normal
+
+  !> shape = 'gap': the undeformed distance on its grid (gap_file, contact_inp,
+  !> or the polynomial on the &patch grid or on an automatic one), the load and
+  !> the combined compliance, into cfg%normal.
+  subroutine load_gap(cfg, status)
+    type(config_t), intent(inout) :: cfg
+    type(status_t), intent(inout) :: status
+    character(len=:), allocatable :: where
+    type(contact_input_t) :: inp
+    type(hertz_t) :: hz
+    real(real64) :: level, extent, dx, dy, x0, y0, compliance
+    integer :: mx, my
+
+    where = 'input '''//cfg%input_path//''': '
+    associate (np => cfg%normal)
+      np%active = .true.
+      if (len(cfg%contact_inp) > 0) then
+        call read_contact_input(cfg%contact_inp, cfg%contact_inp_case, inp, status)
+        if (status%failed()) return
+        np%gap = inp%gap
+        call combined_material(inp%gg, inp%poiss, cfg%g, cfg%nu)
+        cfg%force_given = inp%norm == 1
+        cfg%approach_given = .not. cfg%force_given
+        cfg%approach = inp%pen
+        cfg%normal_force = inp%fn
+      else if (len(cfg%gap_file) > 0) then
+        call read_gap_file(cfg%gap_file, np%gap, status)
+        if (status%failed()) return
+      end if
+      if (cfg%e(1) > 0) then
+        compliance = compliance_from_e_nu(cfg%e(1), cfg%poisson(1), cfg%e(2), cfg%poisson(2))
+      else
+        compliance = compliance_from_g_nu(cfg%g, cfg%nu)
+      end if
+      np%compliance = compliance
+      if (len(cfg%contact_inp) == 0 .and. len(cfg%gap_file) == 0) then
+        if (cfg%mx > 0 .and. cfg%my > 0 .and. cfg%dx > 0 .and. cfg%dy > 0) then
+          mx = cfg%mx
+          my = cfg%my
+          dx = cfg%dx
+          dy = cfg%dy
+          x0 = cfg%x0
+          y0 = cfg%y0
+        else if (cfg%mx /= 0 .or. cfg%my /= 0 .or. cfg%dx /= 0 .or. cfg%dy /= 0) then
+          call fail(status, exit_bad_input, where//'&patch mx, my, dx, dy: give all four (a grid for the gap) '// &
+                    'or none (an automatic grid from &normal cells_across and margin)')
+          return
+        else
+          ! the interpenetration area at the approach (or at Hertz's approach for the force)
+          if (cfg%force_given) then
+            hz = hertz_from_force(1 / (2 * cfg%poly%rx), 1 / (2 * cfg%poly%ry), compliance, cfg%normal_force)
+            level = hz%approach
+          else
+            level = cfg%approach
+          end if
+          extent = 4 * sqrt(2 * max(cfg%poly%rx, cfg%poly%ry) * max(abs(level), tiny(level))) + &
+                   2 * (abs(cfg%poly%lx) * cfg%poly%rx + abs(cfg%poly%ly) * cfg%poly%ry)
+          call auto_grid(cfg%poly, level, extent, cfg%cells_across, cfg%margin, mx, my, dx, dy, x0, y0, status)
+          if (status%failed()) then
+            if (cfg%force_given) then
+              status%message = where//'&normal: '//status%message
+            else
+              status%message = where//'&normal approach = '//rtoa(cfg%approach)//': the surfaces do not '// &
+                               'interpenetrate (the undeformed distance from rx, ry, lx, ly, cx, cy is larger everywhere)'
+            end if
+            return
+          end if
+        end if
+        call check_grid_size(mx, my, where//'&normal: the gap grid: ', status)
+        if (status%failed()) return
+        call gap_from_polynomial(cfg%poly, mx, my, dx, dy, x0, y0, np%gap, status)
+        if (status%failed()) return
+      end if
+      call check_grid_size(np%gap%mx, np%gap%my, where//'&normal: the gap grid: ', status)
+      if (status%failed()) return
+      np%force_given = cfg%force_given
+      np%approach = cfg%approach
+      np%normal_force = cfg%normal_force
+      if (.not. np%force_given .and. .not. any(np%gap%h < np%approach)) then
+        call fail(status, exit_bad_input, where//'&normal approach = '//rtoa(np%approach)// &
+                  ': the surfaces do not interpenetrate (the smallest undeformed distance is '// &
+                  rtoa(minval(np%gap%h))//'; the approach must exceed it)')
+        return
+      end if
+      if (np%force_given .and. .not. (np%normal_force > 0)) then
+        call fail(status, exit_bad_input, where//'normal force = '//rtoa(np%normal_force)//' (must be > 0)')
+        return
+      end if
+    end associate
+  end subroutine load_gap
 
   !> '<input name without folder and extension>.tab' in the working folder.
   pure function default_table_name(path) result(name)
