@@ -13,7 +13,7 @@ module kcreep_app_cli
   use kcreep_strings, only: itoa
   use kcreep, only: kcreep_version
   use kcreep_namelist, only: config_t
-  use kcreep_table, only: run_record_t, table_lines, traction_lines
+  use kcreep_table, only: run_record_t, table_lines, traction_lines, pressure_lines, contact_mask_lines
   use kcreep_app_case, only: solve_input
   use kcreep_app_batch, only: run_batch, estimate_memory, default_batch_table, text_t, exit_cases_failed
   use kcreep_app_files, only: write_temporary, commit_temporary, discard_temporary
@@ -93,6 +93,9 @@ contains
     character(len=200), allocatable :: maps(:), fastsim_summary(:), fastsim_warnings(:)
     logical :: with_maps
     integer :: i
+    character(len=4096) :: paths(6)
+    character(len=24) :: variables(6)
+    integer :: k, np
 
     call solve_input(input_path, '', .true., cfg, record, status)
     if (status%failed()) return
@@ -104,22 +107,49 @@ contains
     end if
     ! every output complete in its temporary file before any is renamed into
     ! place: a failure (a full disk) leaves all the previous files as they were
+    np = 1
+    paths(1) = cfg%table_file
+    variables(1) = 'table_file'
     call write_temporary(cfg%table_file, table_lines([record], record%warnings), 'table_file', status)
-    if (.not. status%failed() .and. len(cfg%traction_file) > 0) &
+    if (.not. status%failed() .and. len(cfg%traction_file) > 0) then
+      np = np + 1
+      paths(np) = cfg%traction_file
+      variables(np) = 'traction_file'
       call write_temporary(cfg%traction_file, traction_lines(record%patch, record%traction, cfg%requested), &
                            'traction_file', status)
-    if (.not. status%failed() .and. cfg%fastsim_on) call write_temporary(cfg%creep_file, creep, 'creep_file', status)
-    if (.not. status%failed() .and. with_maps) call write_temporary(cfg%creep_map_file, maps, 'creep_map_file', status)
-    if (.not. status%failed()) call commit_temporary(cfg%table_file, 'table_file', status)
-    if (.not. status%failed() .and. len(cfg%traction_file) > 0) &
-      call commit_temporary(cfg%traction_file, 'traction_file', status)
-    if (.not. status%failed() .and. cfg%fastsim_on) call commit_temporary(cfg%creep_file, 'creep_file', status)
-    if (.not. status%failed() .and. with_maps) call commit_temporary(cfg%creep_map_file, 'creep_map_file', status)
+    end if
+    if (.not. status%failed() .and. len(cfg%pressure_file) > 0 .and. record%normal_solved) then
+      np = np + 1
+      paths(np) = cfg%pressure_file
+      variables(np) = 'pressure_file'
+      call write_temporary(cfg%pressure_file, pressure_lines(record%patch, record%pressure, record%fn, &
+                           record%approach), 'pressure_file', status)
+    end if
+    if (.not. status%failed() .and. len(cfg%contact_mask_file) > 0 .and. record%normal_solved) then
+      np = np + 1
+      paths(np) = cfg%contact_mask_file
+      variables(np) = 'contact_mask_file'
+      call write_temporary(cfg%contact_mask_file, contact_mask_lines(record%patch), 'contact_mask_file', status)
+    end if
+    if (.not. status%failed() .and. cfg%fastsim_on) then
+      np = np + 1
+      paths(np) = cfg%creep_file
+      variables(np) = 'creep_file'
+      call write_temporary(cfg%creep_file, creep, 'creep_file', status)
+    end if
+    if (.not. status%failed() .and. with_maps) then
+      np = np + 1
+      paths(np) = cfg%creep_map_file
+      variables(np) = 'creep_map_file'
+      call write_temporary(cfg%creep_map_file, maps, 'creep_map_file', status)
+    end if
+    do k = 1, np
+      if (.not. status%failed()) call commit_temporary(trim(paths(k)), trim(variables(k)), status)
+    end do
     if (status%failed()) then
-      call discard_temporary(cfg%table_file)
-      if (len(cfg%traction_file) > 0) call discard_temporary(cfg%traction_file)
-      if (cfg%fastsim_on) call discard_temporary(cfg%creep_file)
-      if (with_maps) call discard_temporary(cfg%creep_map_file)
+      do k = 1, np
+        call discard_temporary(trim(paths(k)))
+      end do
       return
     end if
     call print_summary(input_path, cfg, record)

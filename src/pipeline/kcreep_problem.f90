@@ -13,9 +13,23 @@ module kcreep_problem
   use kcreep_solver_options, only: solver_options_t
   use kcreep_verdict, only: verdict_ok, message_length
   use kcreep_equivalent_ellipse, only: equivalent_ellipse_t
+  use kcreep_gap, only: gap_t
+  use kcreep_normal_solve, only: normal_options_t
   implicit none
   private
-  public :: problem_t, result_t, default_problem
+  public :: problem_t, result_t, default_problem, normal_problem_t
+
+  !> The normal contact problem that finds the patch: when active, the patch
+  !> is the set of cells with positive pressure on the gap's grid (cropped
+  !> to its bounding box), and problem%patch is not used.
+  type :: normal_problem_t
+    logical :: active = .false.
+    type(gap_t) :: gap                          !< undeformed distance on its grid
+    real(real64) :: compliance = 0              !< 1/E*; 0: (1 - nu)/g of the problem's material
+    logical :: force_given = .false.            !< normal_force prescribed, else approach
+    real(real64) :: approach = 0, normal_force = 0
+    type(normal_options_t) :: options
+  end type normal_problem_t
 
   type :: problem_t
     type(patch_t) :: patch
@@ -27,6 +41,7 @@ module kcreep_problem
     character(len=:), allocatable :: refine     !< dense refinement: 'auto', 'always', 'never', 'lapack'
     logical :: extrapolate = .false.            !< Richardson extrapolation in the mesh size
     integer :: extrapolate_levels = 3, refine_ratio = 2
+    type(normal_problem_t) :: normal            !< patch from the normal contact problem
   end type problem_t
 
   type :: result_t
@@ -61,6 +76,13 @@ module kcreep_problem
     !> (2 n, 3): px (1:n) and py (n+1:2n) of each load case per unit creepage,
     !> NaN for cases not requested; cells numbered as in the patch
     real(real64), allocatable :: traction(:, :)
+    ! the normal contact problem (problem%normal%active)
+    logical :: normal_solved = .false.
+    real(real64) :: fn = 0, approach = 0, pmax = 0   !< total force, approach, maximum pressure
+    real(real64) :: normal_residual = 0         !< final complementarity residual (relative)
+    integer :: normal_iterations = 0
+    real(real64) :: bbox(4) = 0                 !< xmin xmax ymin ymax of the contact cells (cell edges)
+    real(real64), allocatable :: pressure(:)    !< per patch cell
   end type result_t
 
 contains
