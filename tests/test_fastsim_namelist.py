@@ -10,7 +10,9 @@ sources and bad input.
   - maps: one block per point and source, states 1/2, traction bound |p| <= mu pn;
   - pressure 'contact' from CONTACT's element file (ellipse_a6_b4_slip, mu = 0.3): FX of case 1
     within 2.5 % of mu Fn of CONTACT's (measured 1.9 %);
-  - pressure file on the mask's grid = the same numbers as the parabolic model written out;
+  - pressure 'normal' (shape = 'gap'): fn = the prescribed normal force (the normal solve's
+    tolerance: 1e-6), slopes exact;
+  - pressure file on the mask's grid: fn = sum p dA; a bare mask warns that its pressure is a model;
   - bad input: one error line naming &fastsim and the variable, exit 2, nothing written.
 usage: test_fastsim_namelist.py KCREEP SAMPLES_DIR"""
 import math
@@ -85,6 +87,16 @@ code, out, err, table = kc.run(text, folder, 'cslip')
 cols, rows = creep_rows(os.path.join(folder, 'cslip.creep'))
 kc.check(abs(rows[0]['fx_mufn'] - (-0.3411)) < 0.025, f"CONTACT pressure: fx/(mu fn) {rows[0]['fx_mufn']:.4f} vs CONTACT -0.3411")
 kc.close(rows[0]['fn'], 8.2e4, 1e-3, 'CONTACT pressure: fn = sum PN dA = FN')
+
+# 4b. the normal solve's pressure (shape = 'gap'): fn is the prescribed normal force, slopes exact
+text = ("&patch shape = 'gap' /\n&normal rx = 50, ry = 30, normal_force = 10, cells_across = 30 /\n"
+        "&solver scheme = 'backward' /\n&fastsim mu = 0.3, creepages = 1e-9 0 0, 0 0 1e-9 /\n")
+code, out, err, table = kc.run(text, folder, 'gap')
+cols, rows = creep_rows(os.path.join(folder, 'gap.creep'))
+kc.close(rows[0]['fn'], 10.0, 1e-6, 'normal pressure: fn = normal_force')
+kc.close(-rows[0]['fx'] / 1e-9, table[0]['f11'], 1e-9, 'normal pressure: fx = -f11 xi')
+kc.close(-rows[1]['fy'] / 1e-9, table[0]['f23'], 1e-9, 'normal pressure: fy = -f23 phi')
+kc.check('pressure normal' in out, 'summary names the normal pressure')
 
 # 5. pressure file = the model written out
 mask = "6 4 0.5 0.5 -1.25 -0.75\n.####.\n######\n######\n.####.\n"

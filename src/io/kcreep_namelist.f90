@@ -850,7 +850,11 @@ contains
       case ('all')
         cfg%fastsim%sources(1:3) = .true.
       case default
-        s = findloc(source_names, word, dim=1)
+        ! (a loop: gfortran 12's findloc misses a deferred-length scalar)
+        s = 0
+        do k = 1, size(source_names)
+          if (source_names(k) == word) s = k
+        end do
         if (s == 0) then
           call fail(status, exit_bad_input, where//'flexibility: unknown source '''//word//''' (allowed: '// &
                     '''exact'', ''ellipse-box'', ''ellipse-moments'', ''ellipse'' (both), ''all'', ''user'')')
