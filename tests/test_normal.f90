@@ -273,6 +273,19 @@ contains
     call t%check(abs(res%pmax - pmax_printed) <= half_unit(pmax_printed), name//': PMAX to the printed digits')
     print '(a, es16.9, a, es16.9, a, i0, a, es9.2)', '     '//name//': FN ', res%fn, '  PMAX ', res%pmax, &
       '  iterations ', res%iterations, '  residual ', res%residual
+    ! the force-prescribed variant with CONTACT's force gives back PEN and the same area
+    block
+      type(normal_result_t) :: rf
+      type(contact_input_t) :: inp3
+      call solve_normal(inp%gap%h, inp%dx, inp%dy, compliance_from_g_nu(g, g * sum(inp%poiss / inp%gg) / 2), opt, &
+                        rf, st, normal_force=res%fn)
+      ! both solves stop at residual 1e-10 of max(u): the approach agrees to ~1e-10 of PEN
+      call t%check(abs(rf%approach / inp%pen - 1) < 1e-8_real64 .and. all((rf%pressure > 0) .eqv. cc%inside), &
+                   name//': force prescribed (FN) gives back PEN and the same area')
+      call read_contact_input(trim(samples)//'/'//name//'.inp', 3, inp3, st)
+      call t%check(.not. st%failed() .and. inp3%cphi == 0.001_real64 .and. all(inp3%gap%h == inp%gap%h), &
+                   name//': case 3 of the .inp read (CPHI = 0.001, the same gap)')
+    end block
   end subroutine test_contact_sample
 
   !> Half a unit in the 4th significant digit (CONTACT prints FN and PMAX as 1.964E+04).
