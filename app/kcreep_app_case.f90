@@ -65,7 +65,7 @@ contains
   !> (kcreep_linear_solve%solve_memory_bytes: the dense subsystem matrix or the
   !> iterative solver's storage) and the operator table with its influence
   !> coefficients (about 40 reals per grid cell). The program itself (code,
-  !> OpenBLAS buffers) is not included: a few tens of MiB, see README.
+  !> OpenBLAS buffers) is not included: a few tens of MiB, see docs/cluster.md.
   function case_memory_bytes(cfg, patch) result(bytes)
     type(config_t), intent(in) :: cfg
     type(patch_t), intent(in) :: patch

@@ -68,6 +68,10 @@ int kcreep_get_cells(kcreep_handle handle, int *n, int *mx, int *my);
 /* t: length >= 6 n; px of case j (0 xi, 1 eta, 2 phi) at t[j*2n + k], py at
  * t[j*2n + n + k]; ix, iy (1-based grid indices, n each) may be NULL. */
 int kcreep_get_tractions(kcreep_handle handle, int length, double *t, int *ix, int *iy);
+/* GMRES iterations (0: dense LU), relative residual or backward error,
+ * rcond (NaN on the iterative path), seconds of the solve */
+int kcreep_get_diagnostics(kcreep_handle handle, int *iterations, double *residual, double *rcond,
+                           double *seconds);
 int kcreep_get_reuse_count(kcreep_handle handle, int *count);
 
 #ifdef __cplusplus

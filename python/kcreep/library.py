@@ -68,6 +68,7 @@ _signatures = {
     "kcreep_get_cells": ([_h, ctypes.POINTER(_i), ctypes.POINTER(_i), ctypes.POINTER(_i)], _i),
     "kcreep_get_tractions": ([_h, _i, _p, _p, _p], _i),
     "kcreep_get_reuse_count": ([_h, ctypes.POINTER(_i)], _i),
+    "kcreep_get_diagnostics": ([_h, ctypes.POINTER(_i), ctypes.POINTER(_d), ctypes.POINTER(_d), ctypes.POINTER(_d)], _i),
 }
 for _name, (_args, _res) in _signatures.items():
     _f = getattr(_lib, _name)
@@ -84,7 +85,7 @@ def version():
 class Result:
     """One solve: f (3 x 3), c (C11, C22, C23), fastsim (L1, L2, L3), verdict,
     verdict_flags, warnings, n (cells), ext and ext_error (NaN unless
-    extrapolated) and, with tractions=True, traction (n x 2 x 3: px, py per load
+    extrapolated), iterations, residual, rcond, seconds (diagnostics) and, with tractions=True, traction (n x 2 x 3: px, py per load
     case xi, eta, phi) with the cells' grid indices ix, iy (1-based)."""
 
     def __repr__(self):
@@ -155,6 +156,10 @@ class Solver:
         n, mx, my = _i(), _i(), _i()
         self._check(_lib.kcreep_get_cells(self._handle, ctypes.byref(n), ctypes.byref(mx), ctypes.byref(my)))
         r.n, r.mx, r.my = n.value, mx.value, my.value
+        iterations, residual, rcond, seconds = _i(), _d(), _d(), _d()
+        self._check(_lib.kcreep_get_diagnostics(self._handle, ctypes.byref(iterations), ctypes.byref(residual),
+                                                ctypes.byref(rcond), ctypes.byref(seconds)))
+        r.iterations, r.residual, r.rcond, r.seconds = iterations.value, residual.value, rcond.value, seconds.value
         if tractions:
             t = np.empty(6 * r.n)
             r.ix, r.iy = np.empty(r.n, dtype=np.intc), np.empty(r.n, dtype=np.intc)

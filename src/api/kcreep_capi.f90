@@ -332,6 +332,23 @@ contains
     end if
   end function c_get_tractions
 
+  !> How the last solve went: GMRES iterations (0 for dense LU), the final
+  !> relative residual (iterative) or backward error (dense), LAPACK's rcond
+  !> (NaN for the iterative path) and the seconds it took.
+  integer(c_int) function c_get_diagnostics(handle, iterations, residual, rcond, seconds) &
+    bind(c, name='kcreep_get_diagnostics')
+    type(c_ptr), value :: handle
+    integer(c_int), intent(out) :: iterations
+    real(c_double), intent(out) :: residual, rcond, seconds
+    type(handle_t), pointer :: h
+    c_get_diagnostics = solved(handle, h)
+    if (c_get_diagnostics /= status_ok) return
+    iterations = int(h%result%iterations, c_int)
+    residual = h%result%backward_error
+    rcond = h%result%rcond
+    seconds = h%result%t_total
+  end function c_get_diagnostics
+
   !> Solves on this handle that reused the operator table of an earlier one.
   integer(c_int) function c_get_reuse_count(handle, count) bind(c, name='kcreep_get_reuse_count')
     type(c_ptr), value :: handle
