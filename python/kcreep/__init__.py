@@ -12,12 +12,12 @@ The solver is the shared library libkcreep (found in the build tree
 """
 from . import table  # noqa: F401  (standard library only)
 
-__all__ = ["solve_ellipse", "solve_mask", "solve_gap", "Solver", "Result", "KcreepError", "version", "table"]
+__all__ = ["solve_ellipse", "solve_mask", "Solver", "Result", "KcreepError", "version", "table"]
 
 
 def __getattr__(name):
     # the bindings load numpy and the shared library only when first used
-    if name in ("solve_ellipse", "solve_mask", "solve_gap", "Solver", "Result", "KcreepError", "version"):
+    if name in ("solve_ellipse", "solve_mask", "Solver", "Result", "KcreepError", "version"):
         from . import library
         return getattr(library, name)
     raise AttributeError(name)

@@ -69,12 +69,6 @@ _signatures = {
     "kcreep_get_tractions": ([_h, _i, _p, _p, _p], _i),
     "kcreep_get_reuse_count": ([_h, ctypes.POINTER(_i)], _i),
     "kcreep_get_diagnostics": ([_h, ctypes.POINTER(_i), ctypes.POINTER(_d), ctypes.POINTER(_d), ctypes.POINTER(_d)], _i),
-    "kcreep_set_gap": ([_h, _i, _i, _p, _d, _d, _d, _d], _i),
-    "kcreep_set_normal_load": ([_h, _i, _d], _i),
-    "kcreep_set_bodies": ([_h, _d, _d, _d, _d], _i),
-    "kcreep_get_normal": ([_h, ctypes.POINTER(_d), ctypes.POINTER(_d), ctypes.POINTER(_d), ctypes.POINTER(_i),
-                           ctypes.POINTER(_d)], _i),
-    "kcreep_get_pressure": ([_h, _i, _p], _i),
 }
 for _name, (_args, _res) in _signatures.items():
     _f = getattr(_lib, _name)
@@ -92,9 +86,7 @@ class Result:
     """One solve: f (3 x 3), c (C11, C22, C23), fastsim (L1, L2, L3), verdict,
     verdict_flags, warnings, n (cells), ext and ext_error (NaN unless
     extrapolated), iterations, residual, rcond, seconds (diagnostics) and, with tractions=True, traction (n x 2 x 3: px, py per load
-    case xi, eta, phi) with the cells' grid indices ix, iy (1-based).
-    From solve_gap also fn, approach, pmax, normal_iterations, normal_residual
-    and pressure (per patch cell, the order of ix, iy)."""
+    case xi, eta, phi) with the cells' grid indices ix, iy (1-based)."""
 
     def __repr__(self):
         return f"Result(c={self.c.tolist()}, verdict={self.verdict!r}, n={self.n})"
@@ -138,38 +130,6 @@ class Solver:
         my, mx = cells.shape
         self._check(_lib.kcreep_solve_mask(self._handle, mx, my, cells.ctypes.data, dx, dy, x0, y0))
         return self._result(tractions)
-
-    def set_bodies(self, *, e1, nu1, e2, nu2):
-        """E and nu per body (normal problem: the exact 1/E*; tangential: CONTACT's combined G, nu)."""
-        self._check(_lib.kcreep_set_bodies(self._handle, e1, nu1, e2, nu2))
-
-    def solve_gap(self, gap, dx, dy, x0=0.0, y0=0.0, *, approach=None, normal_force=None, tractions=False):
-        """The patch from the geometry: gap (2-D array, rows in increasing y) is the
-        undeformed distance at the cell centres; exactly one of approach and
-        normal_force. The contact area found (cells with positive pressure) is the patch."""
-        h = np.ascontiguousarray(gap, dtype=np.float64)
-        if h.ndim != 2:
-            raise KcreepError(2, f"gap must be a 2-D array (rows in increasing y), got {h.ndim}-D")
-        if (approach is None) == (normal_force is None):
-            raise KcreepError(2, "solve_gap: give exactly one of approach and normal_force")
-        my, mx = h.shape
-        self._check(_lib.kcreep_set_gap(self._handle, mx, my, h.ctypes.data, dx, dy, x0, y0))
-        if normal_force is not None:
-            self._check(_lib.kcreep_set_normal_load(self._handle, 1, normal_force))
-        else:
-            self._check(_lib.kcreep_set_normal_load(self._handle, 0, approach))
-        self._check(_lib.kcreep_solve(self._handle))
-        r = self._result(True)
-        fn, approach_, pmax, residual, iterations = _d(), _d(), _d(), _d(), _i()
-        self._check(_lib.kcreep_get_normal(self._handle, ctypes.byref(fn), ctypes.byref(approach_), ctypes.byref(pmax),
-                                           ctypes.byref(iterations), ctypes.byref(residual)))
-        r.fn, r.approach, r.pmax = fn.value, approach_.value, pmax.value
-        r.normal_iterations, r.normal_residual = iterations.value, residual.value
-        r.pressure = np.empty(r.n)
-        self._check(_lib.kcreep_get_pressure(self._handle, r.n, r.pressure.ctypes.data))
-        if not tractions:
-            del r.traction
-        return r
 
     @property
     def reuse_count(self):
@@ -222,16 +182,3 @@ def solve_mask(inside, dx, dy, *, x0=0.0, y0=0.0, nu=0.25, g=1.0, scheme="colloc
     with cell sizes dx, dy and the centre (x0, y0) of cell [0, 0]."""
     return Solver(nu=nu, g=g, scheme=scheme, alpha=alpha, method=method).solve_mask(
         inside, dx, dy, x0, y0, tractions)
-
-
-def solve_gap(gap, dx, dy, *, x0=0.0, y0=0.0, approach=None, normal_force=None, nu=0.25, g=1.0, bodies=None,
-              scheme="collocation", alpha=0.5, method="auto", tractions=False):
-    """Normal contact problem, then coefficients of the contact area found: gap
-    (2-D array, rows in increasing y) the undeformed distance at the cell centres,
-    cell sizes dx, dy, centre (x0, y0) of cell [0, 0]; exactly one of approach and
-    normal_force; material g, nu or bodies = (e1, nu1, e2, nu2)."""
-    s = Solver(nu=nu, g=g, scheme=scheme, alpha=alpha, method=method)
-    if bodies is not None:
-        e1, nu1, e2, nu2 = bodies
-        s.set_bodies(e1=e1, nu1=nu1, e2=e2, nu2=nu2)
-    return s.solve_gap(gap, dx, dy, x0, y0, approach=approach, normal_force=normal_force, tractions=tractions)
