@@ -74,24 +74,6 @@ int kcreep_get_diagnostics(kcreep_handle handle, int *iterations, double *residu
                            double *seconds);
 int kcreep_get_reuse_count(kcreep_handle handle, int *count);
 
-/* The patch from the geometry (the normal contact problem, docs/normal.md):
- * the undeformed distance gap[iy * mx + ix] at the cell centres (rows in
- * increasing y), cell sizes dx, dy, centre (x0, y0) of cell (0, 0). The next
- * kcreep_solve finds the contact area (cells with positive pressure) and
- * takes it as the patch; kcreep_set_ellipse / kcreep_set_mask switch back.
- * The load: force_given != 0: value = total normal force (> 0), else the
- * approach. kcreep_set_bodies: E and nu per body (the exact 1/E* for the
- * normal problem, CONTACT's combined G and nu for the tangential one). */
-int kcreep_set_gap(kcreep_handle handle, int mx, int my, const double *gap,
-                   double dx, double dy, double x0, double y0);
-int kcreep_set_normal_load(kcreep_handle handle, int force_given, double value);
-int kcreep_set_bodies(kcreep_handle handle, double e1, double nu1, double e2, double nu2);
-/* total force, approach, maximum pressure, iterations, complementarity residual */
-int kcreep_get_normal(kcreep_handle handle, double *fn, double *approach, double *pmax, int *iterations,
-                      double *residual);
-/* p: length >= n, the pressure per patch cell in the order of kcreep_get_tractions */
-int kcreep_get_pressure(kcreep_handle handle, int length, double *p);
-
 #ifdef __cplusplus
 }
 #endif

@@ -14,8 +14,7 @@ module kcreep_capi
   use kcreep_status, only: status_t, fail, exit_bad_input
   use kcreep_strings, only: itoa
   use kcreep, only: kcreep_solve, kcreep_version_number, problem_t, result_t, default_problem, solve_cache_t, &
-                    ellipse_patch, mask_patch, n_load_cases, gap_from_array
-  use kcreep_normal_influence, only: compliance_from_e_nu, combined_g_nu_from_e_nu
+                    ellipse_patch, mask_patch, n_load_cases
   implicit none
   private
 
@@ -152,7 +151,6 @@ contains
       call fail(h%last, exit_bad_input, 'kcreep_set_ellipse: mx, my must be >= 1')
     else
       call ellipse_patch(real(semi_a, wp), real(semi_b, wp), int(mx), int(my), h%problem%patch, h%last)
-      h%problem%normal%active = .false.
     end if
     c_set_ellipse = finish(h)
   end function c_set_ellipse
@@ -181,7 +179,6 @@ contains
       call c_f_pointer(inside, cells, [mx, my])
       call mask_patch(cells /= 0, real(dx, wp), real(dy, wp), real(x0, wp), real(y0, wp), 'kcreep_set_mask', &
                       h%problem%patch, h%last)
-      h%problem%normal%active = .false.
     end if
     c_set_mask = finish(h)
   end function c_set_mask
@@ -361,130 +358,6 @@ contains
     if (c_get_reuse_count /= status_ok) return
     count = int(h%cache%reused, c_int)
   end function c_get_reuse_count
-
-  ! --- the normal contact problem -------------------------------------------
-
-  !> The patch from the geometry: the undeformed distance h[iy * mx + ix] at
-  !> the cell centres (rows in increasing y), cell sizes dx, dy, centre (x0,
-  !> y0) of cell (0, 0). kcreep_solve then solves the normal problem first
-  !> and takes the cells with positive pressure as the patch (until the next
-  !> kcreep_set_ellipse or kcreep_set_mask). Needs kcreep_set_normal_load.
-  integer(c_int) function c_set_gap(handle, mx, my, gap, dx, dy, x0, y0) bind(c, name='kcreep_set_gap')
-    type(c_ptr), value :: handle
-    integer(c_int), value :: mx, my
-    type(c_ptr), value :: gap
-    real(c_double), value :: dx, dy, x0, y0
-    type(handle_t), pointer :: h
-    real(c_double), pointer :: values(:, :)
-    c_set_gap = begin(handle, h)
-    if (c_set_gap /= status_ok) return
-    if (.not. c_associated(gap)) then
-      call fail(h%last, exit_bad_input, 'kcreep_set_gap: gap is NULL')
-    else if (mx < 1 .or. my < 1) then
-      call fail(h%last, exit_bad_input, 'kcreep_set_gap: mx, my must be >= 1')
-    else if (.not. (abs(x0) < huge(1.0_wp) .and. abs(y0) < huge(1.0_wp))) then
-      call fail(h%last, exit_bad_input, 'kcreep_set_gap: x0, y0 must be finite')
-    else
-      call c_f_pointer(gap, values, [mx, my])
-      call gap_from_array(real(values, wp), real(dx, wp), real(dy, wp), real(x0, wp), real(y0, wp), &
-                          'kcreep_set_gap', h%problem%normal%gap, h%last)
-      h%problem%normal%active = .not. h%last%failed()
-    end if
-    c_set_gap = finish(h)
-  end function c_set_gap
-
-  !> The load of the normal problem: force_given != 0: value is the total
-  !> normal force (> 0); else value is the approach (penetration).
-  integer(c_int) function c_set_normal_load(handle, force_given, value) bind(c, name='kcreep_set_normal_load')
-    type(c_ptr), value :: handle
-    integer(c_int), value :: force_given
-    real(c_double), value :: value
-    type(handle_t), pointer :: h
-    c_set_normal_load = begin(handle, h)
-    if (c_set_normal_load /= status_ok) return
-    if (force_given /= 0 .and. .not. (value > 0 .and. value < huge(1.0_wp))) then
-      call fail(h%last, exit_bad_input, 'kcreep_set_normal_load: the normal force must be finite and > 0')
-    else if (.not. (abs(value) < huge(1.0_wp))) then
-      call fail(h%last, exit_bad_input, 'kcreep_set_normal_load: the approach must be finite')
-    else
-      h%problem%normal%force_given = force_given /= 0
-      if (force_given /= 0) then
-        h%problem%normal%normal_force = real(value, wp)
-      else
-        h%problem%normal%approach = real(value, wp)
-      end if
-    end if
-    c_set_normal_load = finish(h)
-  end function c_set_normal_load
-
-  !> Two bodies of Young's moduli e1, e2 and Poisson ratios nu1, nu2: the
-  !> exact 1/E* for the normal problem, CONTACT's combined G and nu for the
-  !> tangential one (replaces kcreep_set_material).
-  integer(c_int) function c_set_bodies(handle, e1, nu1, e2, nu2) bind(c, name='kcreep_set_bodies')
-    type(c_ptr), value :: handle
-    real(c_double), value :: e1, nu1, e2, nu2
-    type(handle_t), pointer :: h
-    real(wp) :: g, nu
-    c_set_bodies = begin(handle, h)
-    if (c_set_bodies /= status_ok) return
-    if (.not. (e1 > 0 .and. e2 > 0 .and. e1 < 1e100_wp .and. e2 < 1e100_wp)) then
-      call fail(h%last, exit_bad_input, 'kcreep_set_bodies: e1, e2 must be finite and > 0')
-    else if (.not. (nu1 >= 0 .and. nu1 <= 0.5_wp .and. nu2 >= 0 .and. nu2 <= 0.5_wp)) then
-      call fail(h%last, exit_bad_input, 'kcreep_set_bodies: nu1, nu2 must be between 0 and 0.5')
-    else
-      call combined_g_nu_from_e_nu(real(e1, wp), real(nu1, wp), real(e2, wp), real(nu2, wp), g, nu)
-      h%problem%g = g
-      h%problem%nu = nu
-      h%problem%normal%compliance = compliance_from_e_nu(real(e1, wp), real(nu1, wp), real(e2, wp), real(nu2, wp))
-    end if
-    c_set_bodies = finish(h)
-  end function c_set_bodies
-
-  !> The normal problem of the last solve: total force, approach, maximum
-  !> pressure, constrained-CG iterations and final complementarity residual.
-  integer(c_int) function c_get_normal(handle, fn, approach, pmax, iterations, residual) &
-    bind(c, name='kcreep_get_normal')
-    type(c_ptr), value :: handle
-    real(c_double), intent(out) :: fn, approach, pmax, residual
-    integer(c_int), intent(out) :: iterations
-    type(handle_t), pointer :: h
-    c_get_normal = solved(handle, h)
-    if (c_get_normal /= status_ok) return
-    if (.not. h%result%normal_solved) then
-      call fail(h%last, int(status_no_result), 'kcreep_get_normal: the last solve had no normal problem '// &
-                '(kcreep_set_gap)')
-      c_get_normal = finish(h)
-      return
-    end if
-    fn = h%result%fn
-    approach = h%result%approach
-    pmax = h%result%pmax
-    iterations = int(h%result%normal_iterations, c_int)
-    residual = h%result%normal_residual
-  end function c_get_normal
-
-  !> The pressure per patch cell (the order of kcreep_get_tractions); length >= n.
-  integer(c_int) function c_get_pressure(handle, length, p) bind(c, name='kcreep_get_pressure')
-    type(c_ptr), value :: handle
-    integer(c_int), value :: length
-    type(c_ptr), value :: p
-    type(handle_t), pointer :: h
-    real(c_double), pointer :: values(:)
-    c_get_pressure = solved(handle, h)
-    if (c_get_pressure /= status_ok) return
-    if (.not. h%result%normal_solved) then
-      call fail(h%last, int(status_no_result), 'kcreep_get_pressure: the last solve had no normal problem '// &
-                '(kcreep_set_gap)')
-    else if (length < h%result%n) then
-      call fail(h%last, exit_bad_input, 'kcreep_get_pressure: length must be at least n = '//itoa(h%result%n))
-    end if
-    if (h%last%failed()) then
-      c_get_pressure = finish(h)
-      return
-    end if
-    c_get_pressure = output_array(h, p, h%result%n, 'kcreep_get_pressure: p', values)
-    if (c_get_pressure == status_ok) values = h%result%pressure
-  end function c_get_pressure
 
   ! --- helpers -------------------------------------------------------------
 
