@@ -53,6 +53,16 @@ contains
       end do
     end if
     write (output_unit, '(2x, a, 3es12.4)') 'FASTSIM L1 L2 L3:', record%fastsim
+    if (patch%kind /= 'ellipse') then
+      do i = 1, 2
+        associate (e => record%ellipse(i))
+          write (output_unit, '(2x, a, f7.4, a, 3f8.4, a, 3f7.2, a)') 'equivalent ellipse ('//trim(e%kind)// &
+            '): a/b =', e%semi_a / e%semi_b, ', Kalker C11 C22 C23 =', e%c, ' (', 100 * (e%c / record%cn - 1), ' %)'
+          write (output_unit, '(4x, a, 3es12.4, a, 3f7.2, a)') 'its L1 L2 L3:', e%flex, ' (', &
+            100 * (e%flex / record%fastsim - 1), ' % against the exact L)'
+        end associate
+      end do
+    end if
     if (record%method == 'dense') then
       write (output_unit, '(2x, a)') 'method: dense LU (LAPACK)'
       write (output_unit, '(2x, a, es9.2, a, es9.2)') 'rcond ', record%rcond, ', backward error ', record%backward_error

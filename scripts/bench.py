@@ -219,4 +219,6 @@ for path in ("dense", "dense-unsplit"):
 text = "\n".join(lines) + "\n"
 docsection.replace_section(os.path.join(root, "docs", "performance.md"), "solvers", text)
 print(text)
+# the FASTSIM section (creep curves) after the solver table
+subprocess.run([sys.executable, os.path.join(root, "scripts", "bench_fastsim.py"), build, root], check=True)
 shutil.rmtree(work, ignore_errors=True)

@@ -23,10 +23,12 @@ module kcreep
   use kcreep_gap, only: gap_t, polynomial_gap_t, gap_from_array, gap_from_polynomial, auto_grid
   use kcreep_check, only: check_problem
   use kcreep_run, only: run_case, solve_cache_t
+  use kcreep_creep_curve, only: creep_request_t, creep_point_t, creep_map_t, creep_curve
   use kcreep_extrapolation, only: run_extrapolated
   implicit none
   private
   public :: kcreep_solve, kcreep_version, kcreep_version_number
+  public :: creep_request_t, creep_point_t, creep_map_t, creep_curve
   public :: normal_problem_t, normal_options_t, gap_t, polynomial_gap_t, gap_from_array, gap_from_polynomial, auto_grid
   public :: problem_t, result_t, default_problem, solve_cache_t, status_t, patch_t, scheme_t, solver_options_t
   public :: ellipse_patch, mask_patch, n_load_cases, load_case_names, message_length

@@ -16,12 +16,16 @@ module kcreep_table
     character(len=:), allocatable :: case_name   !< the input's name, the row's first word
   end type run_record_t
 
-  integer, parameter :: line_length = 1024
+  integer, parameter :: line_length = 2048
   character(len=*), parameter :: table_columns = &
     'case scheme mx my n alpha nu g c f11 f12 f13 f21 f22 f23 f31 f32 f33 c11 c22 c23 '// &
     'klt11 klt22 klt23 t_assemble t_factor t_solve t_total rcond berr verdict '// &
     'ext11 ext22 ext23 exterr11 exterr22 exterr23 extp11 extp22 extp23 iterations L1 L2 L3 '// &
-    'fn approach pmax normal_iterations normal_residual'
+    'fn approach pmax normal_iterations normal_residual '// &
+    'ebox_a ebox_b ebox_c11 ebox_c22 ebox_c23 ebox_L1 ebox_L2 ebox_L3 '// &
+    'ebox_err11 ebox_err22 ebox_err23 ebox_errL1 ebox_errL2 ebox_errL3 '// &
+    'emom_a emom_b emom_c11 emom_c22 emom_c23 emom_L1 emom_L2 emom_L3 '// &
+    'emom_err11 emom_err22 emom_err23 emom_errL1 emom_errL2 emom_errL3'
 
 
 contains
@@ -32,10 +36,12 @@ contains
     type(run_record_t), intent(in) :: records(:)
     character(len=*), intent(in) :: warnings(:)
     character(len=line_length), allocatable :: lines(:)
-    character(len=*), parameter :: fixed(5) = [character(len=104) :: &
+    character(len=*), parameter :: fixed(6) = [character(len=160) :: &
       '# kcreep: creep coefficients of full-adhesion steady rolling', &
       '# (Fx, Fy, Mz) = -[fij] (xi, eta, phi); rigid slip (xi - phi*y, eta + phi*x), leading edge at +x', &
       '# c11 = f11/(g c^2), c22 = f22/(g c^2), c23 = f23/(g c^3); kltij: Kalker table E3 (ellipses)', &
+      '# ebox_*, emom_*: equivalent ellipses (same area; a/b of the bounding box, of the second moments): '// &
+      'Kalker''s C and L, err = ellipse / exact - 1', &
       '# times in s; rcond: LAPACK 1-norm estimate; berr: backward error (iterative: relative residual)', &
       '# shape gap: fn approach pmax of the normal problem (n = cells in contact), its iterations and residual']
     integer :: k, nw
@@ -57,6 +63,7 @@ contains
     character(len=:), allocatable :: line
     character(len=1024) :: buf
     real(real64) :: ext(9)
+    integer :: k
     write (buf, '(a, 1x, a, 3(1x, i0), 4(1x, es23.15e3), 9(1x, es23.15e3), 6(1x, es23.15e3), &
                 & 4(1x, es10.3e2), 2(1x, es10.3e3), 1x, a)') &
       r%case_name, r%scheme, r%mx, r%my, r%n, r%alpha, r%nu, r%g, r%c, &
@@ -74,6 +81,11 @@ contains
       write (buf, '(3(1x, es23.15e3), 1x, i0, 1x, es10.3e3)') ieee_nan(), ieee_nan(), ieee_nan(), 0, ieee_nan()
     end if
     line = line//trim(buf)
+    do k = 1, 2
+      write (buf, '(14(1x, es23.15e3))') r%ellipse(k)%semi_a, r%ellipse(k)%semi_b, r%ellipse(k)%c, &
+        r%ellipse(k)%flex, r%ellipse(k)%c / r%cn - 1, r%ellipse(k)%flex / r%fastsim - 1
+      line = line//trim(buf)
+    end do
   end function table_row
 
   !> Lines of the traction file: per cell, px and py of each load case for a unit creepage.

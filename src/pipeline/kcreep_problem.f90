@@ -14,6 +14,7 @@ module kcreep_problem
   use kcreep_verdict, only: verdict_ok, message_length
   use kcreep_gap, only: gap_t
   use kcreep_normal_solve, only: normal_options_t
+  use kcreep_equivalent_ellipse, only: equivalent_ellipse_t
   implicit none
   private
   public :: problem_t, result_t, default_problem, normal_problem_t
@@ -53,6 +54,9 @@ module kcreep_problem
     real(real64) :: klt(3) = 0                  !< Kalker's table E3 for an ellipse, NaN otherwise
     real(real64) :: fastsim(3) = 0              !< FASTSIM flexibilities L1, L2, L3
     real(real64) :: centroid(2) = 0             !< centre of area of the patch cells
+    !> the equivalent ellipses (same area; a/b of the bounding box, of the second moments) with
+    !> Kalker's coefficients and flexibilities (kcreep_equivalent_ellipse)
+    type(equivalent_ellipse_t) :: ellipse(2)
     ! Richardson extrapolation (problem%extrapolate): limits, error estimates, orders used
     logical :: extrapolated = .false.
     real(real64) :: ext(3) = 0, ext_error(3) = 0, ext_order(3) = 0

@@ -11,6 +11,7 @@ module kcreep_run
   use kcreep_creep_matrix, only: creep_matrix, normalised
   use kcreep_kalker_table, only: kalker_coefficients
   use kcreep_fastsim, only: fastsim_flexibilities
+  use kcreep_equivalent_ellipse, only: equivalent_ellipses
   use kcreep_verdict, only: judge
   use kcreep_problem, only: problem_t, result_t
   implicit none
@@ -96,6 +97,8 @@ contains
       result%f = creep_matrix(patch, result%traction, problem%requested)
       result%cn = normalised(result%f, problem%g, result%c)
       result%fastsim = fastsim_flexibilities(patch, result%f(1, 1), result%f(2, 2), result%f(2, 3))
+      result%ellipse = equivalent_ellipses(patch%inside, patch%dx, patch%dy, patch%x0, patch%y0, &
+                                           problem%nu, problem%g)
       if (patch%kind == 'ellipse') then
         result%klt = kalker_coefficients(patch%semi_a / patch%semi_b, problem%nu)
       else
