@@ -50,14 +50,14 @@ contains
     if (check_table .and. .not. status%failed()) call check_output_path(cfg%table_file, 'table_file', status)
     if (.not. status%failed() .and. len(cfg%traction_file) > 0) &
       call check_output_path(cfg%traction_file, 'traction_file', status)
-    if (check_table .and. cfg%fastsim_on .and. .not. status%failed()) &
-      call check_output_path(cfg%creep_file, 'creep_file', status)
-    if (check_table .and. cfg%fastsim_on .and. len(cfg%creep_map_file) > 0 .and. .not. status%failed()) &
-      call check_output_path(cfg%creep_map_file, 'creep_map_file', status)
     if (.not. status%failed() .and. len(cfg%pressure_file) > 0) &
       call check_output_path(cfg%pressure_file, 'pressure_file', status)
     if (.not. status%failed() .and. len(cfg%contact_mask_file) > 0) &
       call check_output_path(cfg%contact_mask_file, 'contact_mask_file', status)
+    if (check_table .and. cfg%fastsim_on .and. .not. status%failed()) &
+      call check_output_path(cfg%creep_file, 'creep_file', status)
+    if (check_table .and. cfg%fastsim_on .and. len(cfg%creep_map_file) > 0 .and. .not. status%failed()) &
+      call check_output_path(cfg%creep_map_file, 'creep_map_file', status)
     if (status%failed()) return
     problem = problem_of(cfg, patch)
     problem%solve%memory_limit = memory_limit_bytes()

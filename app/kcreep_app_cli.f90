@@ -91,11 +91,10 @@ contains
     type(run_record_t) :: record
     character(len=400), allocatable :: creep(:)
     character(len=200), allocatable :: maps(:), fastsim_summary(:), fastsim_warnings(:)
-    logical :: with_maps
-    integer :: i
     character(len=4096) :: paths(6)
     character(len=24) :: variables(6)
-    integer :: k, np
+    logical :: with_maps
+    integer :: i, k, np
 
     call solve_input(input_path, '', .true., cfg, record, status)
     if (status%failed()) return
@@ -107,42 +106,17 @@ contains
     end if
     ! every output complete in its temporary file before any is renamed into
     ! place: a failure (a full disk) leaves all the previous files as they were
-    np = 1
-    paths(1) = cfg%table_file
-    variables(1) = 'table_file'
-    call write_temporary(cfg%table_file, table_lines([record], record%warnings), 'table_file', status)
-    if (.not. status%failed() .and. len(cfg%traction_file) > 0) then
-      np = np + 1
-      paths(np) = cfg%traction_file
-      variables(np) = 'traction_file'
-      call write_temporary(cfg%traction_file, traction_lines(record%patch, record%traction, cfg%requested), &
-                           'traction_file', status)
-    end if
-    if (.not. status%failed() .and. len(cfg%pressure_file) > 0 .and. record%normal_solved) then
-      np = np + 1
-      paths(np) = cfg%pressure_file
-      variables(np) = 'pressure_file'
-      call write_temporary(cfg%pressure_file, pressure_lines(record%patch, record%pressure, record%fn, &
-                           record%approach), 'pressure_file', status)
-    end if
-    if (.not. status%failed() .and. len(cfg%contact_mask_file) > 0 .and. record%normal_solved) then
-      np = np + 1
-      paths(np) = cfg%contact_mask_file
-      variables(np) = 'contact_mask_file'
-      call write_temporary(cfg%contact_mask_file, contact_mask_lines(record%patch), 'contact_mask_file', status)
-    end if
-    if (.not. status%failed() .and. cfg%fastsim_on) then
-      np = np + 1
-      paths(np) = cfg%creep_file
-      variables(np) = 'creep_file'
-      call write_temporary(cfg%creep_file, creep, 'creep_file', status)
-    end if
-    if (.not. status%failed() .and. with_maps) then
-      np = np + 1
-      paths(np) = cfg%creep_map_file
-      variables(np) = 'creep_map_file'
-      call write_temporary(cfg%creep_map_file, maps, 'creep_map_file', status)
-    end if
+    np = 0
+    call stage(cfg%table_file, 'table_file', table_lines([record], record%warnings))
+    if (len(cfg%traction_file) > 0) &
+      call stage(cfg%traction_file, 'traction_file', traction_lines(record%patch, record%traction, cfg%requested))
+    if (len(cfg%pressure_file) > 0 .and. record%normal_solved) &
+      call stage(cfg%pressure_file, 'pressure_file', &
+                 pressure_lines(record%patch, record%pressure, record%fn, record%approach))
+    if (len(cfg%contact_mask_file) > 0 .and. record%normal_solved) &
+      call stage(cfg%contact_mask_file, 'contact_mask_file', contact_mask_lines(record%patch))
+    if (cfg%fastsim_on) call stage(cfg%creep_file, 'creep_file', creep)
+    if (with_maps) call stage(cfg%creep_map_file, 'creep_map_file', maps)
     do k = 1, np
       if (.not. status%failed()) call commit_temporary(trim(paths(k)), trim(variables(k)), status)
     end do
@@ -166,6 +140,20 @@ contains
     if (profile_requested() .and. record%method == 'iterative') write (error_unit, '(a, 3f9.3)') &
       'kcreep: GMRES seconds in operator, preconditioner, orthogonalisation:', &
       record%t_operator, record%t_preconditioner, record%t_orthogonalise
+
+  contains
+
+    !> Write one output to its temporary file and remember it for the commit.
+    subroutine stage(path, variable, lines)
+      character(len=*), intent(in) :: path, variable
+      character(len=*), intent(in) :: lines(:)
+      if (status%failed()) return
+      np = np + 1
+      paths(np) = path
+      variables(np) = variable
+      call write_temporary(path, lines, variable, status)
+    end subroutine stage
+
   end subroutine single_mode
 
   !> kcreep --batch LIST [OUT_TABLE]

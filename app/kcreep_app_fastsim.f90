@@ -26,10 +26,10 @@ contains
       label = 'hertz (semi-ellipsoid, Fn given)'
     case ('contact')
       label = 'contact (PN of the element file)'
-    case ('normal')
-      label = 'normal (the pressure of the normal solve)'
     case ('file')
-      label = 'file '''//cfg%fastsim_pressure_file//''''
+      label = 'file '''//cfg%pressure_input_file//''''
+    case ('normal')
+      label = 'normal (the pressure of the normal contact problem)'
     case default
       label = 'parabolic (MODEL: a parabola per strip segment scaled to Fn, not a normal solve)'
     end select
@@ -61,15 +61,16 @@ contains
         pn = hertz_pressure(p%inside, p%dx, p%dy, p%x0, p%y0, p%semi_a, p%semi_b, cfg%fn)
       case ('contact')
         pn = cfg%contact%pn
+      case ('file')
+        call read_pressure_file(cfg%pressure_input_file, p, pn, status)
+        if (status%failed()) return
       case ('normal')
+        ! the normal solve's pressure, per patch cell, onto the patch's grid
         allocate (pn(p%mx, p%my))
         pn = 0
         do k = 1, p%n
           pn(p%ix(k), p%iy(k)) = record%pressure(k)
         end do
-      case ('file')
-        call read_pressure_file(cfg%fastsim_pressure_file, p, pn, status)
-        if (status%failed()) return
       case default
         pn = strip_parabolic_pressure(p%inside, p%dx, p%dy, cfg%fn)
         warnings = [character(len=200) :: 'FASTSIM pressure: the parabolic strip MODEL (no normal solve, '// &

@@ -26,11 +26,12 @@ for n in $sizes; do
   [[ $n == 1000 ]] && { t1000=$secs; m1000=$mib; }
 done
 threads=${OMP_NUM_THREADS:-$(nproc)}
+load=$(cut -d" " -f1-3 /proc/loadavg)
 section=$(cat <<MD
 <!-- normal-bench:begin -->
 ## Normal contact solve
 
-\`scripts/bench_normal.sh\` ($(date -u +%Y-%m-%d), $(nproc) cores, FFTW threads: $threads; best of 3 runs below 700 x 700, one run above).
+\`scripts/bench_normal.sh\` ($(date -u +%Y-%m-%d), $(nproc) cores, FFTW threads: $threads, load average at the end $load (the machine is shared); best of 3 runs below 700 x 700, one run above).
 Hertz's sphere, the contact circle across 80 % of the grid, total force prescribed, constrained
 conjugate gradient (Polonsky and Keer) to a complementarity residual of 1e-10; one FFT product
 (zero-padded 2n x 2n real transforms) per iteration, a second one when the active set changed. Errors against Hertz's closed forms.

@@ -103,7 +103,7 @@ mask = "6 4 0.5 0.5 -1.25 -0.75\n.####.\n######\n######\n.####.\n"
 p = [[0, 1, 2, 2, 1, 0], [1, 2, 3, 3, 2, 1], [1, 2, 3, 3, 2, 1], [0, 1, 2, 2, 1, 0]]
 pfile = "6 4 0.5 0.5 -1.25 -0.75\n" + "\n".join(" ".join(str(v) for v in r) for r in p) + "\n"
 text = ("&patch shape = 'mask', mask_file = 'm.mask' /\n"
-        "&fastsim mu = 0.3, pressure_file = 'p.txt', creepages = 1 0 0 /\n")
+        "&fastsim mu = 0.3, pressure_input_file = 'p.txt', creepages = 1 0 0 /\n")
 code, out, err, table = kc.run(text, folder, 'pf', files={'m.mask': mask, 'p.txt': pfile})
 cols, rows = creep_rows(os.path.join(folder, 'pf.creep'))
 kc.close(rows[0]['fn'], sum(map(sum, p)) * 0.25, 1e-12, 'pressure file: fn = sum p dA')
@@ -122,19 +122,19 @@ bad = [("&fastsim creepages = 1 0 0 /", "mu is required"),
        ("&fastsim mu = 0.3, creepages = 1 0 0, pressure = 'contact' /", "pressure = 'contact' needs"),
        ("&fastsim mu = 0.3, sweep_direction = 1 0 0, sweep_points = 1 /", "sweep_points = 1"),
        ("&fastsim mu = 0.3, sweep_direction = 1 0 0, sweep_points = 3, sweep_spacing = 'log' /", "needs 0 < value"),
-       ("&fastsim mu = 0.3, creepages = 1 0 0, pressure = 'file', pressure_file = 'nope.txt' /", "nope.txt")]
+       ("&fastsim mu = 0.3, creepages = 1 0 0, pressure = 'file', pressure_input_file = 'nope.txt' /", "nope.txt")]
 for k, (group, expect) in enumerate(bad):
     name = f'bad{k}'
     code, out, err, table = kc.run("&patch mx = 10, my = 10 /\n" + group + "\n", folder, name, expect_ok=False)
     lines = err.strip().splitlines()
     kc.check(code == 2 and len(lines) == 1 and expect in lines[0] and
-             ('&fastsim' in lines[0] or 'pressure_file' in lines[0]),
+             ('&fastsim' in lines[0] or 'pressure_input_file' in lines[0]),
              f'bad input {group!r}: exit {code}, {lines}')
     kc.check(not os.path.exists(os.path.join(folder, name + '.creep')) and
              not os.path.exists(os.path.join(folder, name + '.tab')), f'{name}: nothing written')
 wrong = "6 4 0.5 0.5 -1.0 -0.75\n" + "\n".join(" ".join(str(v) for v in r) for r in p) + "\n"
 code, out, err, table = kc.run("&patch shape = 'mask', mask_file = 'm.mask' /\n"
-                               "&fastsim mu = 0.3, pressure_file = 'w.txt', creepages = 1 0 0 /\n",
+                               "&fastsim mu = 0.3, pressure_input_file = 'w.txt', creepages = 1 0 0 /\n",
                                folder, 'wrong', expect_ok=False, files={'w.txt': wrong})
 kc.check(code == 2 and "is not the patch's grid" in err and not os.path.exists(os.path.join(folder, 'wrong.creep')),
          f'pressure file on another grid: {err.strip()}')

@@ -273,6 +273,19 @@ contains
     call t%check(abs(res%pmax - pmax_printed) <= half_unit(pmax_printed), name//': PMAX to the printed digits')
     print '(a, es16.9, a, es16.9, a, i0, a, es9.2)', '     '//name//': FN ', res%fn, '  PMAX ', res%pmax, &
       '  iterations ', res%iterations, '  residual ', res%residual
+    ! the force-prescribed variant with CONTACT's force gives back PEN and the same area
+    block
+      type(normal_result_t) :: rf
+      type(contact_input_t) :: inp3
+      call solve_normal(inp%gap%h, inp%dx, inp%dy, compliance_from_g_nu(g, g * sum(inp%poiss / inp%gg) / 2), opt, &
+                        rf, st, normal_force=res%fn)
+      ! both solves stop at residual 1e-10 of max(u): the approach agrees to ~1e-10 of PEN
+      call t%check(abs(rf%approach / inp%pen - 1) < 1e-8_real64 .and. all((rf%pressure > 0) .eqv. cc%inside), &
+                   name//': force prescribed (FN) gives back PEN and the same area')
+      call read_contact_input(trim(samples)//'/'//name//'.inp', 3, inp3, st)
+      call t%check(.not. st%failed() .and. inp3%cphi == 0.001_real64 .and. all(inp3%gap%h == inp%gap%h), &
+                   name//': case 3 of the .inp read (CPHI = 0.001, the same gap)')
+    end block
   end subroutine test_contact_sample
 
   !> Half a unit in the 4th significant digit (CONTACT prints FN and PMAX as 1.964E+04).
@@ -369,6 +382,21 @@ contains
     hz = hertz_from_approach(0.05_real64, 0.05_real64, c, 0.01_real64)
     ! n ~ 2a/dx = 18 cells across: measured force error about 1e-3 (first order in the area)
     call t%check(abs(res%fn / hz%fn - 1) < 5e-3_real64, 'CONTACT .inp, IBASE = 1: force near Hertz''s')
+    ! IPLAN = 3: the potential contact restricted to a rectangle (x <= 0.01: the cells up to x = 0)
+    open (newunit=u, file=path, status='replace', action='write')
+    write (u, '(a)') ' 3 MODULE', '  203000', '  022020', ' 0501331', ' 9999 100 30 1 1e-09', &
+      ' 1.0 0.1 1 1.0 1.0 1.0 1.0 0.9', ' 0.01 0.001 0.0 0.0', ' 100.0 100.0', ' 0.0 0.05 1.0', &
+      ' 0.28 0.28 82000.0 82000.0', ' 1', ' 41 41 -1.025 -1.025 0.05 0.05', ' 1 3', ' 0.05 0.0 0.05 0.0 0.0 0.0', &
+      ' -2 0.01 -2 2  -2 0.01 -2 2', ' 0 MODULE'
+    close (u)
+    call read_contact_input(path, 1, inp, st)
+    call t%check(.not. st%failed() .and. all(inp%gap%h(22:, :) >= 1e29_real64) .and. all(inp%gap%h(:21, :) < 1), &
+                 'CONTACT .inp, IPLAN = 3: cells outside the rectangles excluded (h = 1e30)')
+    if (.not. st%failed()) then
+      call solve_normal(inp%gap%h, inp%dx, inp%dy, c, opt, res, st, approach=inp%pen)
+      call t%check(.not. st%failed() .and. all(res%pressure(22:, :) == 0) .and. res%n_contact > 0, &
+                   'CONTACT .inp, IPLAN = 3: no pressure outside the planform')
+    end if
     open (newunit=u, file=path, status='old')
     close (u, status='delete')
     call read_contact_input(trim(samples)//'/kidney_nu25.inp', 4, inp, st)

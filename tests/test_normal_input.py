@@ -9,7 +9,10 @@
    same row.
 3. The contact mask file written on request is a valid mask: shape = 'mask'
    on it gives the same coefficients.
-4. Bad input: one line naming file, variable and value, a non-zero exit,
+4. Dissimilar bodies (e1, nu1, e2, nu2): Hertz with the exact 1/E*, CONTACT's
+   combined G and nu; a contact area reaching the grid's edge warns; no
+   convergence within normal_max_iterations exits 3; --estimate-memory works.
+5. Bad input: one line naming file, variable and value, a non-zero exit,
    nothing written (table, pressure or mask file)."""
 import math
 import os
@@ -127,6 +130,32 @@ if samples and os.path.isdir(samples):
 else:
     kc.check(False, "CONTACT samples folder given as argument 2")
 
+# dissimilar bodies (E, nu per body): the exact 1/E* in the normal problem, CONTACT's combined
+# G, nu in the tangential one; sphere of relative radius 1 at approach 1e-3, automatic grid
+E1, N1, E2, N2, D = 210000.0, 0.3, 70000.0, 0.33, 1e-3
+r = kc.coefficients(f"&patch shape='gap' /\n&normal rx=1, ry=1, approach={D}, e1={E1}, nu1={N1}, e2={E2}, nu2={N2} /\n",
+                    folder, "dissimilar")
+c = (1 - N1**2) / E1 + (1 - N2**2) / E2
+f_hertz, p_hertz = 4 / (3 * c) * D**1.5, 2 / (math.pi * c) * math.sqrt(D)
+g1, g2 = E1 / (2 * (1 + N1)), E2 / (2 * (1 + N2))
+g = 2 / (1 / g1 + 1 / g2)
+nu = g * (N1 / g1 + N2 / g2) / 2
+kc.check(abs(r["g"] / g - 1) < 1e-14 and abs(r["nu"] / nu - 1) < 1e-14, f"dissimilar bodies: combined G = {r['g']:.6g}, nu = {r['nu']:.6g}")
+# measured on the default automatic grid (60 cells across, contact ~30): force +3.6e-4, pmax -8.4e-4
+kc.check(abs(r["fn"] / f_hertz - 1) < 1e-3 and abs(r["pmax"] / p_hertz - 1) < 1.5e-3,
+         f"dissimilar bodies: fn {r['fn'] / f_hertz - 1:+.1e}, pmax {r['pmax'] / p_hertz - 1:+.1e} against Hertz with the exact 1/E*")
+
+# a contact area that reaches the grid's edge: solved, with a warning
+code, out, err, table = kc.run("&patch shape='gap' /\n&normal gap_file='flat.gap', approach=0.1 /\n", folder, "edge",
+                               expect_ok=False, files={"flat.gap": "12 10 1 1 0 0\n" + "0 " * 12 + "\n" + ("0 " * 12 + "\n") * 9})
+kc.check(code == 0 and "reaches the edge of the gap's grid" in err, "contact up to the grid's edge: exit 0 and a warning")
+
+# no convergence within normal_max_iterations: exit 3, one line
+code, out, err, table = kc.run("&patch shape='gap' /\n&normal rx=1, ry=1, approach=0.01, normal_max_iterations=2 /\n",
+                               folder, "noconv", expect_ok=False)
+kc.check(code == 3 and len(err.strip().split("\n")) == 1 and "no convergence in 2 iterations" in err,
+         f"normal_max_iterations = 2: exit {code}, {err.strip()!r}")
+
 # --estimate-memory on a gap case: a positive byte count (normal solve + tangential bound)
 import subprocess
 with open(os.path.join(folder, "est.nml"), "w") as f:
@@ -135,7 +164,7 @@ proc = subprocess.run([kc.KCREEP, "--estimate-memory", "est.nml"], cwd=folder, c
 kc.check(proc.returncode == 0 and int(proc.stdout.split()[0]) > 0,
          f"--estimate-memory of a gap case: exit {proc.returncode}, {proc.stdout.strip()} bytes")
 
-# 4. bad input
+# 5. bad input
 GOOD = "&patch shape='gap' /\n&material g=1, nu=0.25 /\n"
 OUT = "&output pressure_file='bad.p', contact_mask_file='bad.mask' /\n"
 bad_cases = [

@@ -82,6 +82,29 @@ e = kcreep.Solver(nu=0.25, scheme="backward", extrapolate_levels=2).solve_ellips
 kc.check(np.all(np.isfinite(e.ext_error)) and np.all(e.ext_error > 0), f"error estimate {e.ext_error}")
 kc.check(np.all(np.isnan(r.ext_error)), "no estimate without extrapolation: NaN")
 
+# the normal problem from a gap (Hertz: a sphere-like quadratic gap) and FASTSIM on its pressure
+gy, gx = np.mgrid[0:64, 0:64]
+xs, ys = -1.6 + (gx + 0.5) * 0.05, -1.6 + (gy + 0.5) * 0.05
+quadratic = xs ** 2 / (2 * 10.0) + ys ** 2 / (2 * 10.0)
+hs = kcreep.Solver(nu=0.28, g=82000.0, scheme="backward")
+rg = hs.solve_gap(quadratic, 0.05, 0.05, -1.6 + 0.025, -1.6 + 0.025, normal_force=5000.0)
+kc.close(rg.fn, 5000.0, 1e-8, "normal_force prescribed through Python")
+# Hertz: a = (3 F R / (4 E*))^(1/3), R = 10 the relative radius of the gap, E* = g / (1 - nu)
+# for identical bodies; a is 14 cells here and the staircase area was measured 1.6 % above
+# pi a^2, so 5 %
+estar = 82000.0 / (1 - 0.28)
+a_hertz = (3 * 5000.0 * 10.0 / (4 * estar)) ** (1 / 3)
+kc.close(rg.n * 0.05 ** 2, np.pi * a_hertz ** 2, 0.05, "contact area near Hertz's")
+forces, adhesion = hs.fastsim(0.3, [[1e-7, 0, 0], [1e-1, 0, 0]])
+kc.close(-forces[0, 0] / 1e-7, rg.f[0, 0], 1e-3, "FASTSIM slope on the normal pressure = f11")
+kc.close(-forces[1, 0], 0.3 * rg.fn, 1e-3, "FASTSIM saturates at mu Fn")
+kc.check(adhesion[0] > 0.99 and adhesion[1] < 0.05, f"adhesion {adhesion}")
+try:
+    kcreep.Solver().solve_gap(quadratic, 0.05, 0.05, approach=0.01, normal_force=10.0)
+    kc.check(False, "approach and normal_force together refused")
+except kcreep.KcreepError as e:
+    kc.check("exactly one" in str(e), f"KcreepError: {e}")
+
 # kcreep.table reads the command line's table
 rows = kcreep.table.read(os.path.join(folder, "circle.tab"))
 kc.check(len(rows) == 1 and rows[0]["case"] == "circle" and rows[0]["f11"] == row["f11"], "kcreep.table.read")

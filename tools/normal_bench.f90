@@ -45,7 +45,7 @@ program normal_bench
     print '(a)', st%message
     error stop 1
   end if
-  print '(i0, 1x, i0, 1x, i0, 1x, i0, 1x, es9.2, 1x, f0.3, 1x, f0.1, 2(1x, es9.2))', n, n * n, res%iterations, &
+  print '(i0, 1x, i0, 1x, i0, 1x, i0, 1x, es9.2, 1x, f9.3, 1x, f9.1, 2(1x, es9.2))', n, n * n, res%iterations, &
     res%products, res%residual, &
     best, peak_mib(), res%approach / hz%approach - 1, res%pmax / hz%p0 - 1
 

@@ -1,8 +1,7 @@
 !> The namelist input: reading, defaults and validation.
 !>
-!> Groups &patch, &material, &solver, &output, &normal, &fastsim, each optional
-!> (&normal describes the normal contact problem of shape = 'gap'; &fastsim the
-!> creep-force curves with friction). Anything out of
+!> Groups &patch, &material, &solver, &output, &normal, each optional
+!> (&normal describes the normal contact problem of shape = 'gap'). Anything out of
 !> range or inconsistent is reported through status with the file, group,
 !> variable, value and what is allowed, before any computation or output.
 module kcreep_namelist
@@ -33,9 +32,9 @@ module kcreep_namelist
 
   integer, parameter :: max_inline_rows = 2048, max_row_length = 2048
   integer, parameter :: default_cells = 60
+  integer, parameter :: max_creepages = 100000   !< creepage points of &fastsim (list and sweep together)
   character(len=*), parameter :: group_names(6) = [character(len=8) :: 'patch', 'material', 'solver', 'output', &
                                                     'normal', 'fastsim']
-  integer, parameter :: max_creepages = 100000   !< creepage points of &fastsim (list and sweep together)
   !> &normal: the number of cells across the automatic grid's larger side, its margin
   integer, parameter :: default_cells_across = 60
   real(real64), parameter :: default_margin = 0.2_real64
@@ -61,8 +60,14 @@ module kcreep_namelist
     integer :: extrapolate_levels = 3, refine_ratio = 2
     character(len=:), allocatable :: refine     !< see dense_solver refine_modes
     type(solver_options_t) :: solve           !< method, tolerance, splits
+    ! &fastsim (group absent: fastsim_on false, nothing of it runs)
+    logical :: fastsim_on = .false.
+    type(creep_request_t) :: fastsim
+    character(len=:), allocatable :: pressure       !< 'hertz', 'contact', 'file', 'parabolic' (after 'auto')
+    character(len=:), allocatable :: pressure_input_file   !< pressure = 'file': the pressure per cell
+    real(real64) :: fn = 1                          !< load of the 'hertz' and 'parabolic' pressures
     ! &output
-    character(len=:), allocatable :: table_file, traction_file
+    character(len=:), allocatable :: table_file, traction_file, creep_file, creep_map_file
     character(len=:), allocatable :: pressure_file, contact_mask_file   !< shape 'gap' only
     ! &normal (shape 'gap')
     character(len=:), allocatable :: gap_file, contact_inp
@@ -74,14 +79,6 @@ module kcreep_namelist
     real(real64) :: margin = default_margin
     real(real64) :: e(2) = 0, poisson(2) = 0    !< per body, when given (e(1) > 0)
     type(normal_problem_t) :: normal            !< built by read_config
-    ! &fastsim (group absent: fastsim_on false, nothing of it runs)
-    logical :: fastsim_on = .false.
-    type(creep_request_t) :: fastsim
-    character(len=:), allocatable :: pressure       !< 'hertz', 'contact', 'normal', 'file', 'parabolic' (after 'auto')
-    character(len=:), allocatable :: fastsim_pressure_file   !< &fastsim pressure_file (an input)
-    real(real64) :: fn = 1                          !< load of the 'hertz' and 'parabolic' pressures
-    logical :: fn_given = .false.
-    character(len=:), allocatable :: creep_file, creep_map_file   !< &output
   end type config_t
 
 contains
@@ -110,6 +107,14 @@ contains
     character(len=4096) :: gap_file, contact_inp, pressure_file, contact_mask_file
     integer :: contact_inp_case, cells_across, normal_max_iterations
     real(real64) :: rx, ry, lx, ly, cx, cy, approach, normal_force, margin, e1, nu1, e2, nu2, normal_tolerance
+    ! &fastsim
+    real(real64) :: mu, fn, l1, l2, l3, sweep_direction(3), sweep_from, sweep_to
+    real(real64), allocatable :: creepages(:)
+    integer :: sweep_points
+    character(len=16) :: sweep_spacing, rule, pressure
+    character(len=128) :: flexibility
+    character(len=4096) :: pressure_input_file, creep_file, creep_map_file
+    logical :: maps
     !> "not given": g, nu and spin_shift default differently for shape = 'contact'
     real(real64), parameter :: unset = -huge(1.0_real64)
     logical :: material_given
@@ -117,10 +122,12 @@ contains
     namelist /material/ g, nu
     namelist /solver/ scheme, alpha, spin_shift, load_cases, extrapolate, extrapolate_levels, refine_ratio, refine, &
                       method, tolerance, max_iterations, restart, split_systems
-    character(len=4096) :: creep_file, creep_map_file
-    namelist /output/ table_file, traction_file, pressure_file, contact_mask_file, creep_file, creep_map_file
+    namelist /output/ table_file, traction_file, pressure_file, contact_mask_file, creep_file, &
+                      creep_map_file
     namelist /normal/ gap_file, contact_inp, contact_inp_case, rx, ry, lx, ly, cx, cy, approach, normal_force, &
                       cells_across, margin, e1, nu1, e2, nu2, normal_tolerance, normal_max_iterations
+    namelist /fastsim/ mu, creepages, sweep_direction, sweep_from, sweep_to, sweep_points, sweep_spacing, &
+                       pressure, pressure_input_file, fn, flexibility, l1, l2, l3, rule, maps
 
     integer :: unit, ios, nrows
     logical :: group_present(size(group_names))
@@ -160,8 +167,6 @@ contains
     traction_file = ''
     pressure_file = ''
     contact_mask_file = ''
-    creep_file = ''
-    creep_map_file = ''
     gap_file = ''
     contact_inp = ''
     contact_inp_case = 1
@@ -181,10 +186,27 @@ contains
     nu2 = unset
     normal_tolerance = cfg%normal%options%tolerance
     normal_max_iterations = cfg%normal%options%max_iterations
+    creep_file = ''
+    creep_map_file = ''
+    mu = unset
+    allocate (creepages(3 * max_creepages + 1))
+    creepages = unset
+    sweep_direction = 0
+    sweep_from = 0
+    sweep_to = 0
+    sweep_points = 0
+    sweep_spacing = 'linear'
+    pressure = 'auto'
+    pressure_input_file = ''
+    fn = unset
+    flexibility = 'exact'
+    l1 = 0
+    l2 = 0
+    l3 = 0
+    rule = 'separate'
+    maps = .false.
 
     cfg%input_path = path
-    cfg%pressure = 'auto'
-    cfg%fastsim_pressure_file = ''
     ! the whole file first: a folder, a binary file, text outside the groups,
     ! unknown or repeated groups are errors the namelist read would not report
     call read_input_file(path, 'input '''//path//'''', text, status)
@@ -211,8 +233,8 @@ contains
     rewind (unit)
     if (group_present(5)) read (unit, nml=normal, iostat=ios, iomsg=msg)
     call check_read('normal', group_present(5))
-    cfg%fastsim_on = group_present(6)
-    if (cfg%fastsim_on .and. .not. status%failed()) call read_fastsim(unit, path, cfg, status)
+    if (group_present(6)) read (unit, nml=fastsim, iostat=ios, iomsg=msg)
+    call check_read('fastsim', group_present(6))
     close (unit)
     if (status%failed()) return
 
@@ -278,29 +300,225 @@ contains
       cfg%traction_file = resolve_path(cfg%traction_file, base_folder)
     end if
 
+    cfg%fastsim_on = group_present(6)
     cfg%creep_file = trim(creep_file)
     if (len(cfg%creep_file) == 0) cfg%creep_file = default_output_name(path, '.creep')
     cfg%creep_map_file = trim(creep_map_file)
-    if (cfg%fastsim%maps .and. len(cfg%creep_map_file) == 0) cfg%creep_map_file = default_output_name(path, '.creepmap')
-    cfg%fastsim%maps = cfg%fastsim%maps .or. (cfg%fastsim_on .and. len(cfg%creep_map_file) > 0)
+    if (maps .and. len(cfg%creep_map_file) == 0) cfg%creep_map_file = default_output_name(path, '.creepmap')
+    cfg%pressure_input_file = trim(pressure_input_file)
     if (present(base_folder)) then
       cfg%creep_file = resolve_path(cfg%creep_file, base_folder)
       cfg%creep_map_file = resolve_path(cfg%creep_map_file, base_folder)
-      cfg%fastsim_pressure_file = resolve_path(cfg%fastsim_pressure_file, base_folder)
+      cfg%pressure_input_file = resolve_path(cfg%pressure_input_file, base_folder)
     end if
 
     call validate(cfg, mask_rows, nrows, load_cases, status)
-    if (cfg%fastsim_on .and. .not. status%failed()) call validate_fastsim_pressure(cfg, status)
+    if (cfg%fastsim_on .and. .not. status%failed()) call validate_fastsim(status)
     if (cfg%shape == 'contact' .and. .not. status%failed()) call load_contact_case(cfg, material_given, status)
+    if (.not. status%failed()) call validate_normal(cfg, group_present(5), material_given, [e1, nu1, e2, nu2], &
+                                                    unset, status)
+    if (cfg%shape == 'gap' .and. .not. status%failed()) call load_gap(cfg, status)
     if (cfg%fastsim_on .and. cfg%pressure == 'contact' .and. .not. status%failed()) then
       if (.not. allocated(cfg%contact%pn)) call fail(status, exit_bad_input, 'input '''//path// &
           ''': &fastsim pressure = ''contact'' needs the element file (.mat) of the case with its PN column')
     end if
-    if (.not. status%failed()) call validate_normal(cfg, group_present(5), material_given, [e1, nu1, e2, nu2], &
-                                                    unset, status)
-    if (cfg%shape == 'gap' .and. .not. status%failed()) call load_gap(cfg, status)
 
   contains
+
+    !> &fastsim: friction, creepages (list and sweep), pressure, flexibility sources, rule.
+    subroutine validate_fastsim(status)
+      type(status_t), intent(inout) :: status
+      character(len=:), allocatable :: where, word
+      character(len=len(flexibility)) :: rest
+      integer :: n_values, n_list, k, cut, s
+      real(real64) :: t
+
+      where = 'input '''//path//''': &fastsim '
+      if (mu == unset) then
+        call fail(status, exit_bad_input, where//'mu is required (the friction coefficient, > 0)')
+        return
+      end if
+      if (.not. (mu > 0 .and. mu <= 1e3_real64)) then
+        call fail(status, exit_bad_input, where//'mu = '//rtoa(mu)//' (allowed: 0 < mu <= 1000)')
+        return
+      end if
+      cfg%fastsim%mu = mu
+      ! the list: numbers up to the last one given, three per point
+      n_values = size(creepages)
+      do while (n_values > 0)
+        if (creepages(n_values) /= unset) exit
+        n_values = n_values - 1
+      end do
+      if (n_values > 3 * max_creepages) then
+        call fail(status, exit_bad_input, where//'creepages: more than '//itoa(max_creepages)//' points')
+        return
+      end if
+      if (mod(n_values, 3) /= 0) then
+        call fail(status, exit_bad_input, where//'creepages: '//itoa(n_values)//' numbers given (allowed: '// &
+                  '(xi, eta, phi) triples, a multiple of 3)')
+        return
+      end if
+      if (any(creepages(1:n_values) == unset) .or. .not. all(abs(creepages(1:n_values)) <= 1e6_real64)) then
+        call fail(status, exit_bad_input, where//'creepages: a value is missing or not finite (allowed: '// &
+                  'finite numbers, |value| <= 1e6)')
+        return
+      end if
+      n_list = n_values / 3
+      if (sweep_points /= 0) then
+        if (sweep_points < 2 .or. sweep_points > max_creepages - n_list) then
+          call fail(status, exit_bad_input, where//'sweep_points = '//itoa(sweep_points)//' (allowed: 0 for '// &
+                    'no sweep, or 2 to '//itoa(max_creepages - n_list)//')')
+          return
+        end if
+        if (.not. any(sweep_direction /= 0) .or. .not. all(abs(sweep_direction) <= 1e6_real64)) then
+          call fail(status, exit_bad_input, where//'sweep_direction = '//rtoa(sweep_direction(1))//', '// &
+                    rtoa(sweep_direction(2))//', '//rtoa(sweep_direction(3))//' (a finite (xi, eta, phi), not all 0)')
+          return
+        end if
+        select case (lower(trim(adjustl(sweep_spacing))))
+        case ('linear')
+          if (.not. (abs(sweep_from) <= 1e6_real64 .and. abs(sweep_to) <= 1e6_real64)) call fail(status, &
+              exit_bad_input, where//'sweep_from, sweep_to = '//rtoa(sweep_from)//', '//rtoa(sweep_to)// &
+              ' (allowed: finite, |value| <= 1e6)')
+        case ('log')
+          if (.not. (sweep_from > 0 .and. sweep_to > 0 .and. sweep_from <= 1e6_real64 .and. &
+                     sweep_to <= 1e6_real64)) call fail(status, exit_bad_input, where//'sweep_from, sweep_to = '// &
+              rtoa(sweep_from)//', '//rtoa(sweep_to)//' (sweep_spacing = ''log'' needs 0 < value <= 1e6)')
+        case default
+          call fail(status, exit_bad_input, where//'sweep_spacing = '''//trim(sweep_spacing)// &
+                    ''' (allowed: ''linear'', ''log'')')
+        end select
+        if (status%failed()) return
+      end if
+      if (n_list + sweep_points == 0) then
+        call fail(status, exit_bad_input, where//'no creepage: give creepages (xi, eta, phi triples) or a sweep '// &
+                  '(sweep_direction, sweep_from, sweep_to, sweep_points)')
+        return
+      end if
+      allocate (cfg%fastsim%creepages(3, n_list + sweep_points))
+      cfg%fastsim%creepages(:, 1:n_list) = reshape(creepages(1:n_values), [3, n_list])
+      do k = 1, sweep_points
+        t = real(k - 1, real64) / (sweep_points - 1)
+        if (lower(trim(adjustl(sweep_spacing))) == 'log') then
+          t = sweep_from * (sweep_to / sweep_from)**t
+        else
+          t = sweep_from + (sweep_to - sweep_from) * t
+        end if
+        cfg%fastsim%creepages(:, n_list + k) = t * sweep_direction
+      end do
+
+      select case (lower(trim(adjustl(rule))))
+      case ('separate')
+        cfg%fastsim%rule = flexibility_separate
+      case ('weighted')
+        cfg%fastsim%rule = flexibility_weighted
+      case default
+        call fail(status, exit_bad_input, where//'rule = '''//trim(rule)//''' (allowed: ''separate'', ''weighted'')')
+        return
+      end select
+
+      cfg%fastsim%sources = .false.
+      rest = lower(flexibility)
+      do
+        rest = adjustl(rest)
+        if (len_trim(rest) == 0) exit
+        cut = scan(rest, ' ,')
+        if (cut == 0) cut = len(rest) + 1
+        word = trim(rest(1:cut - 1))
+        rest = rest(min(cut + 1, len(rest) + 1):)
+        if (len(word) == 0) cycle
+        select case (word)
+        case ('ellipse')
+          cfg%fastsim%sources(2:3) = .true.
+        case ('all')
+          cfg%fastsim%sources(1:3) = .true.
+        case default
+          ! (a loop: gfortran 12's findloc can miss a deferred-length scalar)
+          s = 0
+          do k = 1, size(source_names)
+            if (source_names(k) == word) s = k
+          end do
+          if (s == 0) then
+            call fail(status, exit_bad_input, where//'flexibility: unknown source '''//word//''' (allowed: '// &
+                      '''exact'', ''ellipse-box'', ''ellipse-moments'', ''ellipse'' (both), ''all'', ''user'')')
+            return
+          end if
+          cfg%fastsim%sources(s) = .true.
+        end select
+      end do
+      if (.not. any(cfg%fastsim%sources)) then
+        call fail(status, exit_bad_input, where//'flexibility is empty (allowed: exact, ellipse-box, '// &
+                  'ellipse-moments, ellipse, all, user)')
+        return
+      end if
+      if (cfg%fastsim%sources(4)) then
+        if (.not. (l1 > 0 .and. l2 > 0 .and. l3 > 0 .and. max(l1, l2, l3) <= huge(1.0_real64))) then
+          call fail(status, exit_bad_input, where//'flexibility = ''user'' needs l1, l2, l3 > 0 (given '// &
+                    rtoa(l1)//', '//rtoa(l2)//', '//rtoa(l3)//')')
+          return
+        end if
+        cfg%fastsim%user_flex = [l1, l2, l3]
+      else if (l1 /= 0 .or. l2 /= 0 .or. l3 /= 0) then
+        call fail(status, exit_bad_input, where//'l1, l2, l3 are used by flexibility = ''user'' only')
+        return
+      end if
+      cfg%fastsim%maps = maps .or. len(cfg%creep_map_file) > 0
+
+      cfg%pressure = lower(trim(adjustl(pressure)))
+      if (cfg%pressure == 'auto') then
+        select case (cfg%shape)
+        case ('ellipse')
+          cfg%pressure = 'hertz'
+        case ('contact')
+          cfg%pressure = 'contact'
+        case ('gap')
+          cfg%pressure = 'normal'
+        case default
+          cfg%pressure = trim(merge('file     ', 'parabolic', len(cfg%pressure_input_file) > 0))
+        end select
+      end if
+      select case (cfg%pressure)
+      case ('hertz')
+        if (cfg%shape /= 'ellipse') call fail(status, exit_bad_input, where//'pressure = ''hertz'' needs '// &
+            '&patch shape = ''ellipse'' (for other patches: ''file'', ''contact'' or ''parabolic'')')
+      case ('contact')
+        if (cfg%shape /= 'contact') call fail(status, exit_bad_input, where//'pressure = ''contact'' needs '// &
+            '&patch shape = ''contact''')
+      case ('normal')
+        if (cfg%shape /= 'gap') call fail(status, exit_bad_input, where//'pressure = ''normal'' needs '// &
+            '&patch shape = ''gap'' (the normal problem gives the pressure)')
+      case ('file')
+        if (len(cfg%pressure_input_file) == 0) call fail(status, exit_bad_input, where//'pressure = ''file'' needs '// &
+            'pressure_input_file')
+      case ('parabolic')
+      case default
+        call fail(status, exit_bad_input, where//'pressure = '''//cfg%pressure//''' (allowed: ''auto'', '// &
+                  '''hertz'', ''contact'', ''normal'', ''file'', ''parabolic'')')
+      end select
+      if (status%failed()) return
+      if (len(cfg%pressure_input_file) > 0 .and. cfg%pressure /= 'file') then
+        call fail(status, exit_bad_input, where//'pressure_input_file is read with pressure = ''file'' only (pressure = '''// &
+                  cfg%pressure//''')')
+        return
+      end if
+      if (fn /= unset) then
+        if (cfg%pressure /= 'hertz' .and. cfg%pressure /= 'parabolic') then  ! contact, normal, file: their own load
+          call fail(status, exit_bad_input, where//'fn applies to pressure = ''hertz'' or ''parabolic'' only '// &
+                    '(the pressure '''//cfg%pressure//''' carries its own load)')
+          return
+        end if
+        if (.not. (fn > 0 .and. fn <= 1e30_real64)) then
+          call fail(status, exit_bad_input, where//'fn = '//rtoa(fn)//' (allowed: 0 < fn <= 1e30)')
+          return
+        end if
+        cfg%fn = fn
+      end if
+      if (cfg%extrapolate .and. (cfg%pressure == 'file' .or. cfg%pressure == 'contact')) then
+        call fail(status, exit_bad_input, where//'pressure = '''//cfg%pressure//''' is given on the patch''s '// &
+                  'own grid: not with &solver extrapolate = .true. (FASTSIM runs on the finest level)')
+        return
+      end if
+    end subroutine validate_fastsim
 
     subroutine check_read(group, was_present)
       character(len=*), intent(in) :: group
@@ -699,252 +917,12 @@ contains
     end associate
   end subroutine load_gap
 
-  !> The &fastsim group (read from the open unit): friction, creepages (list and sweep),
-  !> pressure source, flexibility sources and rule into cfg%fastsim. Its own variables: the
-  !> group's pressure_file is an input, unlike &output's (the normal solve's pressure).
-  subroutine read_fastsim(unit, path, cfg, status)
-    integer, intent(in) :: unit
+  !> '<input name without folder and extension>.tab' in the working folder.
+  pure function default_table_name(path) result(name)
     character(len=*), intent(in) :: path
-    type(config_t), intent(inout) :: cfg
-    type(status_t), intent(inout) :: status
-    real(real64), parameter :: unset = -huge(1.0_real64)
-    real(real64) :: mu, fn, l1, l2, l3, sweep_direction(3), sweep_from, sweep_to
-    real(real64), allocatable :: creepages(:)
-    integer :: sweep_points
-    character(len=16) :: sweep_spacing, rule, pressure
-    character(len=128) :: flexibility
-    character(len=4096) :: pressure_file
-    logical :: maps
-    namelist /fastsim/ mu, creepages, sweep_direction, sweep_from, sweep_to, sweep_points, sweep_spacing, &
-                       pressure, pressure_file, fn, flexibility, l1, l2, l3, rule, maps
-    character(len=:), allocatable :: where, word
-    character(len=len(flexibility)) :: rest
-    character(len=512) :: msg
-    integer :: ios, n_values, n_list, k, cut, s
-    real(real64) :: t
-
-    mu = unset
-    allocate (creepages(3 * max_creepages + 1))
-    creepages = unset
-    sweep_direction = 0
-    sweep_from = 0
-    sweep_to = 0
-    sweep_points = 0
-    sweep_spacing = 'linear'
-    pressure = 'auto'
-    pressure_file = ''
-    fn = unset
-    flexibility = 'exact'
-    l1 = 0
-    l2 = 0
-    l3 = 0
-    rule = 'separate'
-    maps = .false.
-    rewind (unit)
-    read (unit, nml=fastsim, iostat=ios, iomsg=msg)
-    if (ios == iostat_end) then
-      call fail(status, exit_bad_input, 'input '''//path//''': namelist &fastsim: end of file before the closing /')
-      return
-    else if (ios /= 0) then
-      call fail(status, exit_bad_input, 'input '''//path//''': namelist &fastsim: '//trim(msg))
-      return
-    end if
-
-    where = 'input '''//path//''': &fastsim '
-    if (mu == unset) then
-      call fail(status, exit_bad_input, where//'mu is required (the friction coefficient, > 0)')
-      return
-    end if
-    if (.not. (mu > 0 .and. mu <= 1e3_real64)) then
-      call fail(status, exit_bad_input, where//'mu = '//rtoa(mu)//' (allowed: 0 < mu <= 1000)')
-      return
-    end if
-    cfg%fastsim%mu = mu
-    ! the list: numbers up to the last one given, three per point
-    n_values = size(creepages)
-    do while (n_values > 0)
-      if (creepages(n_values) /= unset) exit
-      n_values = n_values - 1
-    end do
-    if (n_values > 3 * max_creepages) then
-      call fail(status, exit_bad_input, where//'creepages: more than '//itoa(max_creepages)//' points')
-      return
-    end if
-    if (mod(n_values, 3) /= 0) then
-      call fail(status, exit_bad_input, where//'creepages: '//itoa(n_values)//' numbers given (allowed: '// &
-                '(xi, eta, phi) triples, a multiple of 3)')
-      return
-    end if
-    if (any(creepages(1:n_values) == unset) .or. .not. all(abs(creepages(1:n_values)) <= 1e6_real64)) then
-      call fail(status, exit_bad_input, where//'creepages: a value is missing or not finite (allowed: '// &
-                'finite numbers, |value| <= 1e6)')
-      return
-    end if
-    n_list = n_values / 3
-    if (sweep_points /= 0) then
-      if (sweep_points < 2 .or. sweep_points > max_creepages - n_list) then
-        call fail(status, exit_bad_input, where//'sweep_points = '//itoa(sweep_points)//' (allowed: 0 for '// &
-                  'no sweep, or 2 to '//itoa(max_creepages - n_list)//')')
-        return
-      end if
-      if (.not. any(sweep_direction /= 0) .or. .not. all(abs(sweep_direction) <= 1e6_real64)) then
-        call fail(status, exit_bad_input, where//'sweep_direction = '//rtoa(sweep_direction(1))//', '// &
-                  rtoa(sweep_direction(2))//', '//rtoa(sweep_direction(3))//' (a finite (xi, eta, phi), not all 0)')
-        return
-      end if
-      select case (lower(trim(adjustl(sweep_spacing))))
-      case ('linear')
-        if (.not. (abs(sweep_from) <= 1e6_real64 .and. abs(sweep_to) <= 1e6_real64)) call fail(status, &
-            exit_bad_input, where//'sweep_from, sweep_to = '//rtoa(sweep_from)//', '//rtoa(sweep_to)// &
-            ' (allowed: finite, |value| <= 1e6)')
-      case ('log')
-        if (.not. (sweep_from > 0 .and. sweep_to > 0 .and. sweep_from <= 1e6_real64 .and. &
-                   sweep_to <= 1e6_real64)) call fail(status, exit_bad_input, where//'sweep_from, sweep_to = '// &
-            rtoa(sweep_from)//', '//rtoa(sweep_to)//' (sweep_spacing = ''log'' needs 0 < value <= 1e6)')
-      case default
-        call fail(status, exit_bad_input, where//'sweep_spacing = '''//trim(sweep_spacing)// &
-                  ''' (allowed: ''linear'', ''log'')')
-      end select
-      if (status%failed()) return
-    end if
-    if (n_list + sweep_points == 0) then
-      call fail(status, exit_bad_input, where//'no creepage: give creepages (xi, eta, phi triples) or a sweep '// &
-                '(sweep_direction, sweep_from, sweep_to, sweep_points)')
-      return
-    end if
-    allocate (cfg%fastsim%creepages(3, n_list + sweep_points))
-    cfg%fastsim%creepages(:, 1:n_list) = reshape(creepages(1:n_values), [3, n_list])
-    do k = 1, sweep_points
-      t = real(k - 1, real64) / (sweep_points - 1)
-      if (lower(trim(adjustl(sweep_spacing))) == 'log') then
-        t = sweep_from * (sweep_to / sweep_from)**t
-      else
-        t = sweep_from + (sweep_to - sweep_from) * t
-      end if
-      cfg%fastsim%creepages(:, n_list + k) = t * sweep_direction
-    end do
-
-    select case (lower(trim(adjustl(rule))))
-    case ('separate')
-      cfg%fastsim%rule = flexibility_separate
-    case ('weighted')
-      cfg%fastsim%rule = flexibility_weighted
-    case default
-      call fail(status, exit_bad_input, where//'rule = '''//trim(rule)//''' (allowed: ''separate'', ''weighted'')')
-      return
-    end select
-
-    cfg%fastsim%sources = .false.
-    rest = lower(flexibility)
-    do
-      rest = adjustl(rest)
-      if (len_trim(rest) == 0) exit
-      cut = scan(rest, ' ,')
-      if (cut == 0) cut = len(rest) + 1
-      word = trim(rest(1:cut - 1))
-      rest = rest(min(cut + 1, len(rest) + 1):)
-      if (len(word) == 0) cycle
-      select case (word)
-      case ('ellipse')
-        cfg%fastsim%sources(2:3) = .true.
-      case ('all')
-        cfg%fastsim%sources(1:3) = .true.
-      case default
-        ! (a loop: gfortran 12's findloc misses a deferred-length scalar)
-        s = 0
-        do k = 1, size(source_names)
-          if (source_names(k) == word) s = k
-        end do
-        if (s == 0) then
-          call fail(status, exit_bad_input, where//'flexibility: unknown source '''//word//''' (allowed: '// &
-                    '''exact'', ''ellipse-box'', ''ellipse-moments'', ''ellipse'' (both), ''all'', ''user'')')
-          return
-        end if
-        cfg%fastsim%sources(s) = .true.
-      end select
-    end do
-    if (.not. any(cfg%fastsim%sources)) then
-      call fail(status, exit_bad_input, where//'flexibility is empty (allowed: exact, ellipse-box, '// &
-                'ellipse-moments, ellipse, all, user)')
-      return
-    end if
-    if (cfg%fastsim%sources(4)) then
-      if (.not. (l1 > 0 .and. l2 > 0 .and. l3 > 0 .and. max(l1, l2, l3) <= huge(1.0_real64))) then
-        call fail(status, exit_bad_input, where//'flexibility = ''user'' needs l1, l2, l3 > 0 (given '// &
-                  rtoa(l1)//', '//rtoa(l2)//', '//rtoa(l3)//')')
-        return
-      end if
-      cfg%fastsim%user_flex = [l1, l2, l3]
-    else if (l1 /= 0 .or. l2 /= 0 .or. l3 /= 0) then
-      call fail(status, exit_bad_input, where//'l1, l2, l3 are used by flexibility = ''user'' only')
-      return
-    end if
-    cfg%fastsim%maps = maps
-    cfg%pressure = lower(trim(adjustl(pressure)))
-    cfg%fastsim_pressure_file = trim(pressure_file)
-    if (fn /= unset) then
-      if (.not. (fn > 0 .and. fn <= 1e30_real64)) then
-        call fail(status, exit_bad_input, where//'fn = '//rtoa(fn)//' (allowed: 0 < fn <= 1e30)')
-        return
-      end if
-      cfg%fn = fn
-    end if
-    cfg%fn_given = fn /= unset
-  end subroutine read_fastsim
-
-  !> &fastsim's pressure source against the patch's shape ('auto' resolved here).
-  subroutine validate_fastsim_pressure(cfg, status)
-    type(config_t), intent(inout) :: cfg
-    type(status_t), intent(inout) :: status
-    character(len=:), allocatable :: where
-    where = 'input '''//cfg%input_path//''': &fastsim '
-    if (cfg%pressure == 'auto') then
-      select case (cfg%shape)
-      case ('ellipse')
-        cfg%pressure = 'hertz'
-      case ('contact')
-        cfg%pressure = 'contact'
-      case ('gap')
-        cfg%pressure = 'normal'
-      case default
-        cfg%pressure = trim(merge('file     ', 'parabolic', len(cfg%fastsim_pressure_file) > 0))
-      end select
-    end if
-    select case (cfg%pressure)
-    case ('hertz')
-      if (cfg%shape /= 'ellipse') call fail(status, exit_bad_input, where//'pressure = ''hertz'' needs '// &
-          '&patch shape = ''ellipse'' (for other patches: ''file'', ''contact'', ''normal'' or ''parabolic'')')
-    case ('contact')
-      if (cfg%shape /= 'contact') call fail(status, exit_bad_input, where//'pressure = ''contact'' needs '// &
-          '&patch shape = ''contact''')
-    case ('normal')
-      if (cfg%shape /= 'gap') call fail(status, exit_bad_input, where//'pressure = ''normal'' needs '// &
-          '&patch shape = ''gap'' (the pressure of the normal solve)')
-    case ('file')
-      if (len(cfg%fastsim_pressure_file) == 0) call fail(status, exit_bad_input, where//'pressure = ''file'' '// &
-          'needs pressure_file')
-    case ('parabolic')
-    case default
-      call fail(status, exit_bad_input, where//'pressure = '''//cfg%pressure//''' (allowed: ''auto'', '// &
-                '''hertz'', ''contact'', ''normal'', ''file'', ''parabolic'')')
-    end select
-    if (status%failed()) return
-    if (len(cfg%fastsim_pressure_file) > 0 .and. cfg%pressure /= 'file') then
-      call fail(status, exit_bad_input, where//'pressure_file is read with pressure = ''file'' only (pressure = '''// &
-                cfg%pressure//''')')
-      return
-    end if
-    if (cfg%fn_given .and. cfg%pressure /= 'hertz' .and. cfg%pressure /= 'parabolic') then
-      call fail(status, exit_bad_input, where//'fn applies to pressure = ''hertz'' or ''parabolic'' only '// &
-                '(the pressure '''//cfg%pressure//''' carries its own load)')
-      return
-    end if
-    if (cfg%extrapolate .and. any(cfg%pressure == [character(len=8) :: 'file', 'contact', 'normal'])) then
-      call fail(status, exit_bad_input, where//'pressure = '''//cfg%pressure//''' is given on the patch''s '// &
-                'own grid: not with &solver extrapolate = .true. (FASTSIM runs on the finest level)')
-      return
-    end if
-  end subroutine validate_fastsim_pressure
+    character(len=:), allocatable :: name
+    name = default_output_name(path, '.tab')
+  end function default_table_name
 
   !> '<input name without folder and extension><extension>' in the working folder.
   pure function default_output_name(path, extension) result(name)
@@ -957,17 +935,5 @@ contains
     if (dot > 1) name = name(1:dot - 1)
     name = name//extension
   end function default_output_name
-
-  !> '<input name without folder and extension>.tab' in the working folder.
-  pure function default_table_name(path) result(name)
-    character(len=*), intent(in) :: path
-    character(len=:), allocatable :: name
-    integer :: slash, dot
-    slash = index(path, '/', back=.true.)
-    name = path(slash + 1:)
-    dot = index(name, '.', back=.true.)
-    if (dot > 1) name = name(1:dot - 1)
-    name = name//'.tab'
-  end function default_table_name
 
 end module kcreep_namelist

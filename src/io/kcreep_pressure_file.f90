@@ -1,4 +1,4 @@
-!> Pressure files: the normal pressure on the grid of the patch, for FASTSIM.
+!> Pressure files (&fastsim pressure_input_file): the normal pressure on the grid of the patch, for FASTSIM.
 !> Format: the mask file's header line 'mx my dx dy x0 y0', then my rows of
 !> mx numbers (row iy: cells of y = y0 + (iy-1) dy in order of increasing x).
 !> Blank lines and lines starting with '!' or '%' after the header are
@@ -27,8 +27,8 @@ contains
     character(len=:), allocatable :: line, text, label
     character(len=512) :: msg
 
-    label = 'pressure_file '''//trim(path)//''': '
-    call read_input_file(path, 'pressure_file '''//trim(path)//'''', text, status)
+    label = 'pressure_input_file '''//trim(path)//''': '
+    call read_input_file(path, 'pressure_input_file '''//trim(path)//'''', text, status)
     if (status%failed()) return
     deallocate (text)
     open (newunit=unit, file=path, status='old', action='read', iostat=ios, iomsg=msg)

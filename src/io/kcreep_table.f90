@@ -40,10 +40,10 @@ contains
       '# kcreep: creep coefficients of full-adhesion steady rolling', &
       '# (Fx, Fy, Mz) = -[fij] (xi, eta, phi); rigid slip (xi - phi*y, eta + phi*x), leading edge at +x', &
       '# c11 = f11/(g c^2), c22 = f22/(g c^2), c23 = f23/(g c^3); kltij: Kalker table E3 (ellipses)', &
-      '# times in s; rcond: LAPACK 1-norm estimate; berr: backward error (iterative: relative residual)', &
-      '# shape gap: fn approach pmax of the normal problem (n = cells in contact), its iterations and residual', &
       '# ebox_*, emom_*: equivalent ellipses (same area; a/b of the bounding box, of the second moments): '// &
-      'Kalker''s C and L, err = ellipse / exact - 1']
+      'Kalker''s C and L, err = ellipse / exact - 1', &
+      '# times in s; rcond: LAPACK 1-norm estimate; berr: backward error (iterative: relative residual)', &
+      '# shape gap: fn approach pmax of the normal problem (n = cells in contact), its iterations and residual']
     integer :: k, nw
 
     nw = size(warnings)

@@ -12,9 +12,9 @@ module kcreep_problem
   use kcreep_assembly, only: scheme_t, n_load_cases
   use kcreep_solver_options, only: solver_options_t
   use kcreep_verdict, only: verdict_ok, message_length
-  use kcreep_equivalent_ellipse, only: equivalent_ellipse_t
   use kcreep_gap, only: gap_t
   use kcreep_normal_solve, only: normal_options_t
+  use kcreep_equivalent_ellipse, only: equivalent_ellipse_t
   implicit none
   private
   public :: problem_t, result_t, default_problem, normal_problem_t

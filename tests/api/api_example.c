@@ -130,6 +130,32 @@ int main(int argc, char **argv) {
     must(h, kcreep_set_scheme(h, "backward", 0, 0), "kcreep_set_scheme");
     must(h, kcreep_solve(h), "kcreep_solve after errors");
     expect(kcreep_get_matrix(h, NULL) == KCREEP_BAD_INPUT, "NULL output array refused");
+    /* the normal problem and FASTSIM: bad calls refused, a good one checked */
+    double fn, approach, pmax, creep[6] = {1e-7, 0, 0, 1, 0, 0}, force[6], adhesion[2];
+    int cells, iterations;
+    expect(kcreep_get_normal(h, &fn, &approach, &pmax, &cells, &iterations) == KCREEP_NO_RESULT,
+           "no normal problem solved yet");
+    expect(kcreep_fastsim(h, 0.3, 2, creep, NULL, "separate", force, adhesion) == KCREEP_BAD_INPUT,
+           "FASTSIM without a pressure refused");
+    double gap[40 * 40];
+    for (int iy = 0; iy < 40; iy++)
+      for (int ix = 0; ix < 40; ix++) {
+        double x = -1 + (ix + 0.5) / 20, y = -1 + (iy + 0.5) / 20;
+        gap[iy * 40 + ix] = (x * x + y * y) / (2 * 10.0);
+      }
+    expect(kcreep_set_gap(h, 40, 40, NULL, 0.05, 0.05, -0.975, -0.975, 0, 1000) == KCREEP_BAD_INPUT, "NULL gap refused");
+    expect(kcreep_set_gap(h, 40, 40, gap, 0.05, 0.05, -0.975, -0.975, 0.01, 1000) == KCREEP_BAD_INPUT,
+           "approach and normal_force together refused");
+    must(h, kcreep_set_material(h, 82000.0, 0.28), "kcreep_set_material");
+    must(h, kcreep_set_gap(h, 40, 40, gap, 0.05, 0.05, -0.975, -0.975, 0, 1000.0), "kcreep_set_gap");
+    must(h, kcreep_solve(h), "kcreep_solve (gap)");
+    must(h, kcreep_get_normal(h, &fn, &approach, &pmax, &cells, &iterations), "kcreep_get_normal");
+    expect(fabs(fn - 1000.0) < 1e-8 * 1000.0 && approach > 0 && pmax > 0 && cells > 100, "normal problem solved");
+    expect(kcreep_fastsim(h, 0.3, 2, creep, NULL, "sideways", force, adhesion) == KCREEP_BAD_INPUT,
+           "unknown FASTSIM rule refused");
+    must(h, kcreep_fastsim(h, 0.3, 2, creep, NULL, "separate", force, adhesion), "kcreep_fastsim");
+    expect(fabs(-force[3] - 0.3 * fn) < 1e-3 * 0.3 * fn && adhesion[0] > 0.99, "FASTSIM saturates at mu Fn");
+    printf("errors gap fn %.6e cells %d fx_full_slip %.6e\n", fn, cells, force[3]);
     int flags;
     expect(kcreep_get_verdict(h, &flags, NULL, 10) == KCREEP_BAD_INPUT, "NULL verdict buffer refused");
     kcreep_handle gone = h;
