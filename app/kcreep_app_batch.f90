@@ -22,7 +22,8 @@ module kcreep_app_batch
   use kcreep_namelist, only: config_t
   use kcreep_app_case, only: solve_input, load_input, case_memory_bytes
   use kcreep_strings, only: folder_of, resolve_path
-  use kcreep_table, only: run_record_t, table_lines, table_row, traction_lines, case_name
+  use kcreep_table, only: run_record_t, table_lines, table_row, traction_lines, case_name, pressure_lines, &
+                          contact_mask_lines, line_length
   use kcreep_app_files, only: write_text_file, check_output_path
   implicit none
   private
@@ -102,6 +103,11 @@ contains
     if (.not. case_status%failed() .and. len(cfg%traction_file) > 0) &
       call write_text_file(cfg%traction_file, traction_lines(record%patch, record%traction, cfg%requested), &
                            'traction_file', case_status)
+    if (.not. case_status%failed() .and. len(cfg%pressure_file) > 0 .and. record%normal_solved) &
+      call write_text_file(cfg%pressure_file, pressure_lines(record%patch, record%pressure, record%fn, &
+                           record%approach), 'pressure_file', case_status)
+    if (.not. case_status%failed() .and. len(cfg%contact_mask_file) > 0 .and. record%normal_solved) &
+      call write_text_file(cfg%contact_mask_file, contact_mask_lines(record%patch), 'contact_mask_file', case_status)
 
     if (case_status%failed()) then
       n_failed = n_failed + 1
@@ -211,7 +217,7 @@ contains
     type(status_t), intent(inout) :: status
     type(text_t), allocatable :: partial(:), lines(:)
     character(len=:), allocatable :: tail
-    character(len=1024), allocatable :: head(:)
+    character(len=line_length), allocatable :: head(:)
     character(len=0) :: no_warnings(0)
     integer :: k, nh, unit, ios
 

@@ -4,7 +4,8 @@
 module kcreep_app_case
   use, intrinsic :: iso_fortran_env, only: int64
   use kcreep_status, only: status_t
-  use kcreep, only: problem_t, patch_t, kcreep_solve
+  use, intrinsic :: iso_fortran_env, only: real64
+  use kcreep, only: problem_t, patch_t, kcreep_solve, mask_patch
   use kcreep_namelist, only: config_t, read_config, build_patch, problem_of
   use kcreep_linear_solve, only: solve_memory_bytes
   use kcreep_table, only: run_record_t, case_name
@@ -49,6 +50,14 @@ contains
     if (check_table .and. .not. status%failed()) call check_output_path(cfg%table_file, 'table_file', status)
     if (.not. status%failed() .and. len(cfg%traction_file) > 0) &
       call check_output_path(cfg%traction_file, 'traction_file', status)
+    if (.not. status%failed() .and. len(cfg%pressure_file) > 0) &
+      call check_output_path(cfg%pressure_file, 'pressure_file', status)
+    if (.not. status%failed() .and. len(cfg%contact_mask_file) > 0) &
+      call check_output_path(cfg%contact_mask_file, 'contact_mask_file', status)
+    if (check_table .and. cfg%fastsim_on .and. .not. status%failed()) &
+      call check_output_path(cfg%creep_file, 'creep_file', status)
+    if (check_table .and. cfg%fastsim_on .and. len(cfg%creep_map_file) > 0 .and. .not. status%failed()) &
+      call check_output_path(cfg%creep_map_file, 'creep_map_file', status)
     if (status%failed()) return
     problem = problem_of(cfg, patch)
     problem%solve%memory_limit = memory_limit_bytes()
@@ -60,14 +69,33 @@ contains
   !> (kcreep_linear_solve%solve_memory_bytes: the dense subsystem matrix or the
   !> iterative solver's storage) and the operator table with its influence
   !> coefficients (about 40 reals per grid cell). The program itself (code,
-  !> OpenBLAS buffers) is not included: a few tens of MiB, see README.
+  !> OpenBLAS buffers) is not included: a few tens of MiB, see docs/cluster.md.
   function case_memory_bytes(cfg, patch) result(bytes)
     type(config_t), intent(in) :: cfg
     type(patch_t), intent(in) :: patch
     integer(int64) :: bytes
     type(problem_t) :: problem
+    type(patch_t) :: bound
+    type(status_t) :: status
     problem = problem_of(cfg, patch)
     problem%solve%memory_limit = memory_limit_bytes()
+    if (cfg%shape == 'gap') then
+      ! the contact area lies inside the interpenetration area {h < approach}
+      ! (the whole grid when the force is given): the tangential solve on that
+      ! bound, plus the normal solve's ~15 doubles per grid cell
+      associate (gap => cfg%normal%gap)
+        if (cfg%normal%force_given) then
+          call mask_patch(gap%h < huge(1.0_real64), gap%dx, gap%dy, gap%x0, gap%y0, 'gap', bound, status)
+        else
+          call mask_patch(gap%h < cfg%normal%approach, gap%dx, gap%dy, gap%x0, gap%y0, 'gap', bound, status)
+        end if
+        bytes = 120 * int(gap%mx, int64) * gap%my
+      end associate
+      if (status%failed()) return
+      bytes = bytes + solve_memory_bytes(problem%solve, cfg%nu, bound, cfg%requested) + &
+              320 * int(bound%mx, int64) * bound%my
+      return
+    end if
     bytes = solve_memory_bytes(problem%solve, cfg%nu, patch, cfg%requested) + 320 * int(patch%mx, int64) * patch%my
   end function case_memory_bytes
 

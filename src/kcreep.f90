@@ -10,6 +10,7 @@
 !> those belong to its callers (the command line in app/, the C API in
 !> src/api, the Python package on top of it).
 module kcreep
+  use, intrinsic :: ieee_arithmetic, only: ieee_value, ieee_quiet_nan
   use kcreep_status, only: status_t, fail, exit_bad_input, exit_numerical, exit_io
   use kcreep_patch, only: patch_t, ellipse_patch, mask_patch
   use kcreep_assembly, only: scheme_t, n_load_cases, load_case_names
@@ -18,14 +19,25 @@ module kcreep
                             verdict_coarse, verdict_ill_conditioned, verdict_inaccurate, verdict_uncertain, &
                             verdict_words, &
                             message_length
-  use kcreep_problem, only: problem_t, result_t, default_problem
+  use kcreep_problem, only: problem_t, result_t, default_problem, normal_problem_t
+  use kcreep_normal_stage, only: normal_patch, store_normal
+  use kcreep_normal_solve, only: normal_result_t, normal_options_t
+  use kcreep_gap, only: gap_t, polynomial_gap_t, gap_from_array, gap_from_polynomial, auto_grid
   use kcreep_check, only: check_problem
   use kcreep_run, only: run_case, solve_cache_t
+  use kcreep_creep_curve, only: creep_request_t, creep_point_t, creep_map_t, creep_curve, source_names
+  use kcreep_fastsim_forces, only: fastsim_forces, fastsim_result_t, flexibility_weighted, flexibility_separate
+  use kcreep_pressure_models, only: hertz_pressure, strip_parabolic_pressure
+  use kcreep_equivalent_ellipse, only: equivalent_ellipse_t, equivalent_ellipses
   use kcreep_extrapolation, only: run_extrapolated
   use kcreep_error_run, only: run_controlled
   implicit none
   private
   public :: kcreep_solve, kcreep_version, kcreep_version_number
+  public :: creep_request_t, creep_point_t, creep_map_t, creep_curve, source_names
+  public :: fastsim_forces, fastsim_result_t, flexibility_weighted, flexibility_separate
+  public :: hertz_pressure, strip_parabolic_pressure, equivalent_ellipse_t, equivalent_ellipses
+  public :: normal_problem_t, normal_options_t, gap_t, polynomial_gap_t, gap_from_array, gap_from_polynomial, auto_grid
   public :: problem_t, result_t, default_problem, solve_cache_t, status_t, patch_t, scheme_t, solver_options_t
   public :: ellipse_patch, mask_patch, n_load_cases, load_case_names, message_length
   public :: exit_bad_input, exit_numerical, exit_io
@@ -40,7 +52,9 @@ contains
 
   !> Check the problem, then solve it under error control (kcreep_error_run:
   !> on the levels kcreep chooses, or on the grid given with an error estimate),
-  !> or on the levels of the older Richardson extrapolation when problem%extrapolate is set.
+  !> or on the levels of the older Richardson extrapolation when problem%extrapolate
+  !> is set. With problem%normal%active the normal contact problem is solved first
+  !> and its contact area is the patch (the pressure comes back in result%pressure).
   !> cache: kept by the caller between solves on the same grid (the C API's
   !> handle does), so that the operator table is built once.
   subroutine kcreep_solve(problem, result, status, cache)
@@ -49,6 +63,23 @@ contains
     type(status_t), intent(inout) :: status
     type(solve_cache_t), intent(inout), optional :: cache
 
+    type(problem_t) :: found
+    type(normal_result_t) :: nres
+
+    if (problem%normal%active) then
+      ! the patch is the contact area of the normal problem
+      found = problem
+      call normal_patch(problem, found%patch, nres, status)
+      if (status%failed()) return
+      call check_problem(found, status)
+      if (status%failed()) return
+      call run_case(found, result, status, cache)
+      if (status%failed()) return
+      call store_normal(nres, found%patch, result)
+      ! no error control on the contact area of the normal problem (yet): no estimate
+      result%err = ieee_value(1.0d0, ieee_quiet_nan)
+      return
+    end if
     call check_problem(problem, status)
     if (status%failed()) return
     if (problem%extrapolate) then

@@ -12,10 +12,24 @@ module kcreep_problem
   use kcreep_assembly, only: scheme_t, n_load_cases
   use kcreep_solver_options, only: solver_options_t
   use kcreep_verdict, only: verdict_ok, message_length
-  use kcreep_error_control, only: default_target_error
+  use kcreep_gap, only: gap_t
+  use kcreep_normal_solve, only: normal_options_t
+  use kcreep_equivalent_ellipse, only: equivalent_ellipse_t
   implicit none
   private
-  public :: problem_t, result_t, default_problem
+  public :: problem_t, result_t, default_problem, normal_problem_t
+
+  !> The normal contact problem that finds the patch: when active, the patch
+  !> is the set of cells with positive pressure on the gap's grid (cropped
+  !> to its bounding box), and problem%patch is not used.
+  type :: normal_problem_t
+    logical :: active = .false.
+    type(gap_t) :: gap                          !< undeformed distance on its grid
+    real(real64) :: compliance = 0              !< 1/E*; 0: (1 - nu)/g of the problem's material
+    logical :: force_given = .false.            !< normal_force prescribed, else approach
+    real(real64) :: approach = 0, normal_force = 0
+    type(normal_options_t) :: options
+  end type normal_problem_t
 
   type :: problem_t
     type(patch_t) :: patch
@@ -33,6 +47,7 @@ module kcreep_problem
     !> kcreep may choose the grids (ellipse: near-square cells) or split the
     !> cells (mask) to meet target_error; false: the grid is solved as given.
     logical :: refine_grid = .false.
+    type(normal_problem_t) :: normal            !< patch from the normal contact problem
   end type problem_t
 
   type :: result_t
@@ -45,6 +60,9 @@ module kcreep_problem
     real(real64) :: klt(3) = 0                  !< Kalker's table E3 for an ellipse, NaN otherwise
     real(real64) :: fastsim(3) = 0              !< FASTSIM flexibilities L1, L2, L3
     real(real64) :: centroid(2) = 0             !< centre of area of the patch cells
+    !> the equivalent ellipses (same area; a/b of the bounding box, of the second moments) with
+    !> Kalker's coefficients and flexibilities (kcreep_equivalent_ellipse)
+    type(equivalent_ellipse_t) :: ellipse(2)
     ! Richardson extrapolation (problem%extrapolate): limits, error estimates, orders used
     logical :: extrapolated = .false.
     real(real64) :: ext(3) = 0, ext_error(3) = 0, ext_order(3) = 0
@@ -66,6 +84,13 @@ module kcreep_problem
     !> (2 n, 3): px (1:n) and py (n+1:2n) of each load case per unit creepage,
     !> NaN for cases not requested; cells numbered as in the patch
     real(real64), allocatable :: traction(:, :)
+    ! the normal contact problem (problem%normal%active)
+    logical :: normal_solved = .false.
+    real(real64) :: fn = 0, approach = 0, pmax = 0   !< total force, approach, maximum pressure
+    real(real64) :: normal_residual = 0         !< final complementarity residual (relative)
+    integer :: normal_iterations = 0
+    real(real64) :: bbox(4) = 0                 !< xmin xmax ymin ymax of the contact cells (cell edges)
+    real(real64), allocatable :: pressure(:)    !< per patch cell
   end type result_t
 
 contains
@@ -75,7 +100,9 @@ contains
   pure function default_problem() result(problem)
     type(problem_t) :: problem
     problem%scheme%name = 'backward'
-    problem%target_error = default_target_error
+    ! the library takes the grid it is given (target 0: estimate made, never
+    ! 'uncertain'); the command line's namelist default is default_target_error
+    problem%target_error = 0
     problem%solve%method = 'auto'
     problem%refine = 'auto'
   end function default_problem
