@@ -14,8 +14,9 @@ import subprocess
 import tempfile
 
 KCREEP = os.environ.get("KCREEP", os.path.join(os.path.dirname(__file__), "..", "build", "kcreep"))
-# kcreep versions with error control need target_error = 0 to take the grid as given
-TARGET_ZERO = os.environ.get("KCREEP_TARGET_ZERO", "")
+# the grid exactly as given, without the one-grid error estimate's extra grid
+# (set KCREEP_TARGET_ZERO='' for a kcreep older than &solver target_error)
+TARGET_ZERO = os.environ.get("KCREEP_TARGET_ZERO", ", target_error = 0")
 COEFFS = ("c11", "c22", "c23", "c33", "c32")
 # powers of c in each normalised coefficient (c11 = f11/(G c^2), c23 = f23/(G c^3), c33 = f33/(G c^4))
 POWERS = {"c11": 2, "c22": 2, "c23": 3, "c33": 4, "c32": 3}
