@@ -46,6 +46,9 @@ int kcreep_set_material(kcreep_handle handle, double g, double nu);
 int kcreep_set_scheme(kcreep_handle handle, const char *name, double alpha, double spin_shift);
 int kcreep_set_solver(kcreep_handle handle, const char *method, double tolerance);
 int kcreep_set_extrapolation(kcreep_handle handle, int levels, int ratio);   /* levels 0: off */
+/* Error control: relative target for C11, C22 (C23: 3 times it; 0: none);
+ * refine_grid != 0 lets kcreep choose the grids (ellipse) or split cells (mask). */
+int kcreep_set_error_control(kcreep_handle handle, double target_error, int refine_grid);
 
 /* Geometry: an ellipse on an mx x my grid over [-a, a] x [-b, b], or a mask
  * inside[iy * mx + ix] != 0 (rows in increasing y) with cell sizes dx, dy and
@@ -71,6 +74,7 @@ int kcreep_get_matrix(kcreep_handle handle, double f[9]);          /* f[3 i + j]
 int kcreep_get_normalised(kcreep_handle handle, double c[3]);      /* C11, C22, C23 */
 int kcreep_get_error_estimate(kcreep_handle handle, double limit[3], double error[3]); /* NaN if none */
 int kcreep_get_fastsim(kcreep_handle handle, double l[3]);         /* L1, L2, L3 */
+int kcreep_get_relative_error(kcreep_handle handle, double error[3]); /* estimated, of C11 C22 C23; NaN: none */
 int kcreep_get_verdict(kcreep_handle handle, int *flags, char *buffer, int buffer_length);
 int kcreep_get_cells(kcreep_handle handle, int *n, int *mx, int *my);
 /* t: length >= 6 n; px of case j (0 xi, 1 eta, 2 phi) at t[j*2n + k], py at

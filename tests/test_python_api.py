@@ -82,6 +82,17 @@ e = kcreep.Solver(nu=0.25, scheme="backward", extrapolate_levels=2).solve_ellips
 kc.check(np.all(np.isfinite(e.ext_error)) and np.all(e.ext_error > 0), f"error estimate {e.ext_error}")
 kc.check(np.all(np.isnan(r.ext_error)), "no estimate without extrapolation: NaN")
 
+# error control through the API: kcreep chooses the grids for the target and
+# the estimate comes back (the circle: C11 of the refined table 4.11199, docs/data/kalker_refined.dat)
+controlled = kcreep.Solver(nu=0.25, target_error=1e-3, refine_grid=True).solve_ellipse(1.0, 1.0)
+kc.check(np.all(np.isfinite(controlled.err)) and np.all(controlled.err > 0), f"relative error estimate {controlled.err}")
+kc.check(abs(controlled.c[0] / 4.11199 - 1) <= controlled.err[0], "the estimate bounds the error of C11")
+try:
+    kcreep.Solver(target_error=2.0)
+    kc.check(False, "target_error 2 refused")
+except kcreep.KcreepError as e:
+    kc.check("target_error" in str(e), f"KcreepError: {e}")
+
 # the normal problem from a gap (Hertz: a sphere-like quadratic gap) and FASTSIM on its pressure
 gy, gx = np.mgrid[0:64, 0:64]
 xs, ys = -1.6 + (gx + 0.5) * 0.05, -1.6 + (gy + 0.5) * 0.05

@@ -68,6 +68,8 @@ _signatures = {
     "kcreep_get_cells": ([_h, ctypes.POINTER(_i), ctypes.POINTER(_i), ctypes.POINTER(_i)], _i),
     "kcreep_get_tractions": ([_h, _i, _p, _p, _p], _i),
     "kcreep_get_reuse_count": ([_h, ctypes.POINTER(_i)], _i),
+    "kcreep_set_error_control": ([_h, _d, _i], _i),
+    "kcreep_get_relative_error": ([_h, _p], _i),
     "kcreep_set_gap": ([_h, _i, _i, _p, _d, _d, _d, _d, _d, _d], _i),
     "kcreep_get_normal": ([_h, ctypes.POINTER(_d), ctypes.POINTER(_d), ctypes.POINTER(_d), ctypes.POINTER(_i),
                            ctypes.POINTER(_i)], _i),
@@ -88,8 +90,8 @@ def version():
 
 class Result:
     """One solve: f (3 x 3), c (C11, C22, C23), fastsim (L1, L2, L3), verdict,
-    verdict_flags, warnings, n (cells), ext and ext_error (NaN unless
-    extrapolated), iterations, residual, rcond, seconds (diagnostics) and, with tractions=True, traction (n x 2 x 3: px, py per load
+    verdict_flags, warnings, n (cells), err (estimated relative errors of c,
+    NaN when there is none), ext and ext_error (NaN unless extrapolated), iterations, residual, rcond, seconds (diagnostics) and, with tractions=True, traction (n x 2 x 3: px, py per load
     case xi, eta, phi) with the cells' grid indices ix, iy (1-based)."""
 
     def __repr__(self):
@@ -101,8 +103,10 @@ class Solver:
     reuse the operator table when grid, scheme and material stay the same."""
 
     def __init__(self, *, nu=0.25, g=1.0, scheme="backward", alpha=0.5, spin_shift=0.0,
-                 method="auto", tolerance=0.0, extrapolate_levels=0, refine_ratio=2):
+                 method="auto", tolerance=0.0, extrapolate_levels=0, refine_ratio=2,
+                 target_error=0.0, refine_grid=False):
         self._handle = _h(_lib.kcreep_new())
+        self._check(_lib.kcreep_set_error_control(self._handle, target_error, int(bool(refine_grid))))
         self._check(_lib.kcreep_set_material(self._handle, g, nu))
         self._check(_lib.kcreep_set_scheme(self._handle, scheme.encode(), alpha, spin_shift))
         self._check(_lib.kcreep_set_solver(self._handle, method.encode(), tolerance))
@@ -183,6 +187,8 @@ class Solver:
         self._check(_lib.kcreep_get_normalised(self._handle, r.c.ctypes.data))
         r.fastsim = np.empty(3)
         self._check(_lib.kcreep_get_fastsim(self._handle, r.fastsim.ctypes.data))
+        r.err = np.empty(3)
+        self._check(_lib.kcreep_get_relative_error(self._handle, r.err.ctypes.data))
         r.ext, r.ext_error = np.empty(3), np.empty(3)
         self._check(_lib.kcreep_get_error_estimate(self._handle, r.ext.ctypes.data, r.ext_error.ctypes.data))
         flags = _i()

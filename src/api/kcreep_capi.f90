@@ -139,6 +139,40 @@ contains
     end if
   end function c_set_extrapolation
 
+  !> Error control: target_error (relative, for C11 and C22; C23 gets 3 times
+  !> it; 0: none) and whether kcreep may choose the grids (ellipse: near-square
+  !> cells) or split the cells (mask) to meet it (refine_grid != 0); with
+  !> refine_grid 0 the grid is solved as given and only judged.
+  integer(c_int) function c_set_error_control(handle, target_error, refine_grid) &
+    bind(c, name='kcreep_set_error_control')
+    type(c_ptr), value :: handle
+    real(c_double), value :: target_error
+    integer(c_int), value :: refine_grid
+    type(handle_t), pointer :: h
+    c_set_error_control = begin(handle, h)
+    if (c_set_error_control /= status_ok) return
+    if (.not. (target_error >= 0 .and. target_error < 1)) then
+      call fail(h%last, exit_bad_input, 'kcreep_set_error_control: target_error must be in [0, 1)')
+    else
+      h%problem%target_error = target_error
+      h%problem%refine_grid = refine_grid /= 0
+    end if
+    c_set_error_control = finish(h)
+  end function c_set_error_control
+
+  !> The estimated relative errors of C11, C22, C23 of the last solve (every
+  !> run makes one; NaN when the grid is too coarse to judge itself).
+  integer(c_int) function c_get_relative_error(handle, error) bind(c, name='kcreep_get_relative_error')
+    type(c_ptr), value :: handle, error
+    type(handle_t), pointer :: h
+    real(c_double), pointer :: values(:)
+    c_get_relative_error = solved(handle, h)
+    if (c_get_relative_error == status_ok) &
+      c_get_relative_error = output_array(h, error, 3, 'kcreep_get_relative_error: error', values)
+    if (c_get_relative_error /= status_ok) return
+    values = h%result%err
+  end function c_get_relative_error
+
   !> The ellipse of semi-axes a (along x, rolling) and b on an mx x my grid over [-a, a] x [-b, b].
   integer(c_int) function c_set_ellipse(handle, semi_a, semi_b, mx, my) bind(c, name='kcreep_set_ellipse')
     type(c_ptr), value :: handle
