@@ -1,7 +1,12 @@
 """Driver of scripts/bench.sh (standard-library Python): runs kcreep on a
 ladder of unit-circle grids per solution path under /usr/bin/time -v, takes
 medians of repeats, measures dgemm/dgetrf with kcreep_blas_bench, checks the
-targets of issue 4 and writes docs/performance.md with a gnuplot figure."""
+performance targets and writes docs/performance.md with a gnuplot figure.
+
+    scripts/bench.py BUILD_DIR REPOSITORY_ROOT   (scripts/bench.sh builds first, then calls this)
+    scripts/bench.py --help                      this text
+Environment: REPEATS (runs per point, default 3), QUICK=1 (small sizes only).
+"""
 import math
 import os
 import platform
@@ -13,6 +18,11 @@ import sys
 import tempfile
 import time
 
+if any(a in ("-h", "--help") for a in sys.argv[1:]):
+    print(__doc__.strip())
+    sys.exit(0)
+if len(sys.argv) != 3:
+    sys.exit("usage: bench.py BUILD_DIR REPOSITORY_ROOT (see --help)")
 build, root = sys.argv[1], sys.argv[2]
 KCREEP = os.path.join(build, "kcreep")
 BLAS = os.path.join(build, "kcreep_blas_bench")

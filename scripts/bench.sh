@@ -1,11 +1,14 @@
 #!/usr/bin/env bash
 # kcreep benchmark: a ladder of grid sizes per solution path, the dgemm and
-# dgetrf rates of this machine, and the issue-4 targets. Prints the table and
-# writes docs/performance.md and docs/figures/performance.png.
+# dgetrf rates of this machine, and the performance targets. Prints the table
+# and writes docs/performance.md and docs/figures/performance.png.
 #   scripts/bench.sh                 full ladder, 3 repeats (medians), ~10 min on 2 cores
 #   REPEATS=1 scripts/bench.sh       one run per point
 #   QUICK=1 scripts/bench.sh         small sizes only (checks the script, not the targets)
 #   KCREEP_BUILD_DIR=dir             build somewhere else (default build/)
+#   scripts/bench.sh --help          this text (nothing is built or run)
+usage() { awk 'NR > 1 && /^#/ { sub(/^# ?/, ""); print; next } NR > 1 { exit }' "${BASH_SOURCE[0]}"; }
+for arg in "$@"; do case $arg in -h | --help) usage; exit 0 ;; --) break ;; esac; done
 set -euo pipefail
 here=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
 build_dir=${KCREEP_BUILD_DIR:-$here/build}

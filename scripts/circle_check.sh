@@ -3,6 +3,10 @@
 # both schemes: C11, C22, C23 against Kalker's table and the wall time
 # (median of --repeats runs, default 3) with the chosen solver method.
 #   scripts/circle_check.sh [--repeats N] [--grids "40 60 80"] [--method auto|dense|iterative]
+#   scripts/circle_check.sh --help    this text
+# KCREEP: the binary (default build/kcreep of this repository).
+usage() { awk 'NR > 1 && /^#/ { sub(/^# ?/, ""); print; next } NR > 1 { exit }' "${BASH_SOURCE[0]}"; }
+for arg in "$@"; do case $arg in -h | --help) usage; exit 0 ;; --) break ;; esac; done
 set -euo pipefail
 here=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
 kcreep=${KCREEP:-$here/build/kcreep}
@@ -11,6 +15,8 @@ grids="40 60 80"
 method=auto
 while (($#)); do
   case $1 in
+    --repeats | --grids | --method)
+      (($# >= 2)) || { echo "circle_check.sh: error: $1 needs a value (see --help)" >&2; exit 2; } ;;&
     --repeats) repeats=$2; shift 2 ;;
     --grids) grids=$2; shift 2 ;;
     --method) method=$2; shift 2 ;;

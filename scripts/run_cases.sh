@@ -3,6 +3,7 @@
 #
 #   scripts/run_cases.sh [--jobs N] LIST OUT_TABLE
 #   scripts/run_cases.sh --slurm [options for the SLURM back-end] LIST OUT_TABLE
+#   scripts/run_cases.sh --help
 #
 # LIST: one namelist path per line (blank lines and '#' lines skipped;
 # relative paths are relative to LIST's folder). Each case runs in its own
@@ -21,7 +22,7 @@ set -uo pipefail
 here=$(cd "$(dirname "${BASH_SOURCE[0]}")" && pwd)
 repo=$(cd "$here/.." && pwd)
 
-usage() { sed -n '2,20p' "${BASH_SOURCE[0]}" | sed 's/^# \{0,1\}//'; exit "${1:-2}"; }
+usage() { awk 'NR > 1 && /^#/ { sub(/^# ?/, ""); print; next } NR > 1 { exit }' "${BASH_SOURCE[0]}"; }
 die() { echo "run_cases: error: $*" >&2; exit 2; }
 
 jobs=$(nproc 2>/dev/null || echo 1)
@@ -37,13 +38,13 @@ fi
 while (($#)); do
   case $1 in
     -j | --jobs) [[ ${2:-} =~ ^[1-9][0-9]*$ ]] || die "--jobs needs a positive integer (got '${2:-}')"; jobs=$2; shift 2 ;;
-    -h | --help) usage 0 ;;
+    -h | --help) usage; exit 0 ;;
     --slurm) die "--slurm must come first: run_cases.sh --slurm [options] LIST OUT_TABLE" ;;
     -*) die "unknown option '$1' (see --help)" ;;
     *) break ;;
   esac
 done
-(($# == 2)) || usage 2
+(($# == 2)) || { usage >&2; exit 2; }
 list=$1
 out=$2
 [[ -r $list ]] || die "case list '$list' cannot be read"

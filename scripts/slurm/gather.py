@@ -2,7 +2,8 @@
 """Gather step of run_cases_slurm.sh: merge the chunk tables of a sweep into
 one table, checking that every case of the list is present exactly once.
 
-    gather.py WORKDIR OUT_TABLE
+    scripts/slurm/gather.py WORKDIR OUT_TABLE
+    scripts/slurm/gather.py --help    this text
 
 WORKDIR holds cases.list (one absolute namelist path per line), chunk_size
 and chunks/NNNNN.{list,tab,tab.partial}. Every row must stand at its place
@@ -49,8 +50,12 @@ def read_chunk(path):
 
 
 def main():
+    if any(a in ("-h", "--help") for a in sys.argv[1:]):
+        print(__doc__.strip())
+        return 0
     if len(sys.argv) != 3:
-        sys.exit("usage: gather.py WORKDIR OUT_TABLE")
+        print("usage: gather.py WORKDIR OUT_TABLE (see --help)", file=sys.stderr)
+        return 2
     workdir, out = sys.argv[1], sys.argv[2]
     try:
         cases = [l.rstrip("\n") for l in open(os.path.join(workdir, "cases.list")) if l.strip()]

@@ -5,6 +5,7 @@
 # checks that every case is there exactly once and names the missing ones.
 #
 #   scripts/slurm/run_cases_slurm.sh LIST OUT_TABLE [options]
+#   scripts/slurm/run_cases_slurm.sh --help
 #
 # LIST: one namelist path per line, relative to LIST's folder; blank lines
 # and lines starting with # are skipped (as for kcreep --batch).
@@ -43,7 +44,7 @@ here=$(cd "$(dirname "${BASH_SOURCE[0]}")" && pwd)
 repo=$(cd "$here/../.." && pwd)
 
 die() { echo "run_cases_slurm: error: $*" >&2; exit "${2:-2}"; }
-usage() { sed -n '2,/^set -euo/p' "${BASH_SOURCE[0]}" | sed -e '$d' -e 's/^# \{0,1\}//'; exit "${1:-2}"; }
+usage() { awk 'NR > 1 && /^#/ { sub(/^# ?/, ""); print; next } NR > 1 { exit }' "${BASH_SOURCE[0]}"; }
 
 partition= cpus=1 mem_mb= time_limit=01:00:00 chunk= max_running= workdir= wait=0
 kcreep=${KCREEP:-$repo/build/kcreep} job_name=kcreep retry_failed=0
@@ -73,7 +74,7 @@ while (($#)); do
     --sbatch-arg) extra+=("${2:?--sbatch-arg needs a value}"); shift ;;
     --wait) wait=1 ;;
     --retry-failed) retry_failed=1 ;;
-    -h | --help) usage 0 ;;
+    -h | --help) usage; exit 0 ;;
     -*) die "unknown option $1 (see --help)" ;;
     *) positional+=("$1") ;;
   esac
