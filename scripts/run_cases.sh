@@ -9,8 +9,12 @@
 # relative paths are relative to LIST's folder). Each case runs in its own
 # folder, so its default table <name>.tab lands next to the namelist.
 # Cases run in parallel, N at a time (default: the number of cores; each
-# kcreep gets one BLAS thread then). A case whose .tab exists and is newer
-# than its .nml is skipped, so running again resumes an interrupted study.
+# kcreep gets one BLAS thread then). A case is skipped when its .tab exists
+# and nothing it reads has changed since that table was made: the namelist,
+# its mask_file, contact_file (with the .mat files beside it) and the kcreep
+# binary, compared by content (SHA-256, kept in <name>.tab.stamp; see
+# scripts/case_stamps.py). So running again resumes an interrupted study and
+# reruns exactly the cases whose inputs changed.
 # A failed case is reported and the others go on; the summary counts them.
 # Finally all rows are merged into OUT_TABLE (header of the first table,
 # rows in LIST order). Exit status: 0 all done, 1 some cases failed,
@@ -64,6 +68,9 @@ while IFS= read -r line || [[ -n $line ]]; do
 done <"$list"
 n=${#cases[@]}
 ((n > 0)) || die "case list '$list' names no cases"
+# what each case reads, fingerprinted (one line per case, in list order)
+mapfile -t stamps < <(printf '%s\n' "${cases[@]}" | python3 "$here/case_stamps.py" "$kcreep")
+((${#stamps[@]} == n)) || die "could not fingerprint the inputs of the cases (scripts/case_stamps.py failed)"
 
 # One BLAS thread per case when several cases share the cores.
 if ((jobs > 1)); then
@@ -84,14 +91,20 @@ interrupted() {  # stop the running cases (their kcreep children by id), keep wh
 trap interrupted INT TERM HUP
 
 table_of() { local nml=$1; echo "${nml%.*}.tab"; }
+stamp_of() { echo "$(table_of "$1").stamp"; }
 
 run_one() {  # k nml: run in the namelist's folder, leave k.rc and k.err in $state
-  local k=$1 nml=$2 dir base rc
+  local k=$1 nml=$2 dir base rc stamp
   dir=$(dirname "$nml")
   base=$(basename "$nml")
+  stamp=$(stamp_of "$nml")
+  # no fingerprint while the case runs: a table left by a killed run is not trusted
+  rm -f "$stamp"
   # runs in its own background subshell: cd is local, kcreep is its direct child
   cd "$dir" && "$kcreep" "$base" >"${base%.*}.log" 2>"$state/$k.err"
   rc=$?
+  # the fingerprint of the inputs as they were when the case started
+  if ((rc == 0)); then echo "${stamps[k]}" >"$stamp.tmp" && mv "$stamp.tmp" "$stamp"; fi
   echo "$rc" >"$state/$k.rc"
 }
 
@@ -134,7 +147,8 @@ for ((k = 0; k < n; k++)); do
     continue
   fi
   tab=$(table_of "$nml")
-  if [[ -s $tab && $tab -nt $nml ]]; then
+  stamp=$(stamp_of "$nml")
+  if [[ -s $tab && -f $stamp && $(<"$stamp") == "${stamps[k]}" ]]; then
     echo 0 >"$state/$k.rc"; touch "$state/$k.seen"
     finished=$((finished + 1)); skipped=$((skipped + 1))
     continue

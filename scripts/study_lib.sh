@@ -37,7 +37,7 @@ ellipse_nml() {
 &material nu = $nu /
 &solver $solver /
 EOF
-  # keep the old file (and its timestamp) when nothing changed, so a rerun resumes
+  # keep the old file when nothing changed (run_cases.sh skips a case whose inputs are unchanged)
   if [[ -f $file ]] && cmp -s "$file" "$file.new"; then rm -f "$file.new"; else mv "$file.new" "$file"; fi
 }
 
