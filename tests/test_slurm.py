@@ -179,6 +179,21 @@ try:
     compare(local_rows, kc.read_table(os.path.join(folder, "full.tab")), "whole SLURM sweep vs local")
     print(f"timing (not asserted): {n_cases} cases locally with kcreep --batch {t_local:.2f} s, "
           f"through SLURM (5 array tasks + gather, --wait) {t_slurm:.2f} s")
+
+    # --- an input of one case changes (its mtime set back): only its chunk runs again
+    changed = os.path.join(folder, sweep[2])
+    old = os.path.getmtime(changed)
+    with open(changed, "w") as f:
+        f.write("&patch semi_a=1, semi_b=0.5, mx=14, my=14 /\n")
+    os.utime(changed, (old - 3600, old - 3600))
+    redo = run([run_cases, "sweep.list", "full.tab", "--chunk", "2", "--wait"], env=env, cwd=folder, timeout=150)
+    kc.check(redo.returncode == 5 and "submitted 1 array task(s)" in redo.stdout
+             and "chunk 2: its cases' inputs changed" in redo.stdout,
+             f"a changed namelist: its chunk alone runs again ({redo.returncode}) {redo.stdout.strip()}")
+    redo_rows = kc.read_table(os.path.join(folder, "full.tab"))
+    ratio = redo_rows[2]["c"] ** 2 if redo_rows else None       # c^2 = a b = 0.5 now
+    kc.check(ratio is not None and abs(ratio - 0.5) < 1e-9, f"the gathered row is the new case's (c^2 = {ratio})")
+    compare(local_rows[:2] + local_rows[3:], redo_rows[:2] + redo_rows[3:], "the other cases after the rerun")
 finally:
     stop = subprocess.run([local_cluster, "stop", cluster], capture_output=True, text=True, timeout=90)
     if stop.returncode != 0:

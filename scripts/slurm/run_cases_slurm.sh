@@ -34,6 +34,10 @@
 # Restart: run the same command again. Chunks whose table exists are not
 # resubmitted; a chunk that was killed (time-out, node failure, scancel)
 # resumes after its last finished case (its kcreep --batch .partial table).
+# Unless something its cases read changed since it was submitted (namelist,
+# mask_file, contact_file and its .mat files, the kcreep binary; compared by
+# content, see scripts/case_stamps.py): then the chunk runs again from the
+# start (its old table is kept as NNNNN.tab.stale).
 # When every chunk is done, the gather runs at once, here, without SLURM.
 #
 # Exit status: 0 submitted (with --wait: 0 table complete, 5 complete with
@@ -127,15 +131,30 @@ else
   split -l "$chunk" -a 5 --numeric-suffixes=1 --additional-suffix=.list "$workdir/cases.list" "$workdir/chunks/"
 fi
 
+# What each case reads (binary, namelist, mask and CONTACT files), fingerprinted
+# by content; a chunk whose fingerprint changed since it was submitted is stale.
+mapfile -t stamps < <(python3 "$repo/scripts/case_stamps.py" "$kcreep" <"$workdir/cases.list")
+((${#stamps[@]} == n_cases)) || die "could not fingerprint the inputs of the cases (scripts/case_stamps.py failed)"
+chunk_stamp() { printf '%s\n' "${stamps[@]:$((($1 - 1) * chunk)):$chunk}" | sha256sum | cut -d' ' -f1; }
+
 # chunks still to run
 pending=()
 for ((i = 1; i <= n_chunks; i++)); do
   table=$workdir/chunks/$(printf '%05d' "$i").tab
+  stamp=$(chunk_stamp "$i")
+  if [[ -f $table || -f $table.partial ]] && [[ ! -f ${table%.tab}.stamp || $(<"${table%.tab}.stamp") != "$stamp" ]]; then
+    echo "run_cases_slurm: chunk $i: its cases' inputs changed since it ran; running it again"
+    [[ ! -f $table ]] || mv "$table" "$table.stale"
+    rm -f "$table.partial"
+  fi
   if ((retry_failed)) && [[ -f $table ]] && awk '/^#/ {for (i = 2; i <= NF; i++) if ($i == "verdict") col = i - 1; next}
       col && $col ~ /^error:/ {found = 1} END {exit !found}' "$table"; then
     mv "$table" "$table.failed"
   fi
-  [[ -f $table ]] || pending+=("$i")
+  if [[ ! -f $table ]]; then
+    pending+=("$i")
+    echo "$stamp" >"${table%.tab}.stamp"
+  fi
 done
 if ((${#pending[@]} == 0)); then
   echo "run_cases_slurm: all $n_chunks chunk(s) done already: gathering here"
