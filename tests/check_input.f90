@@ -10,9 +10,9 @@ program check_input
   use, intrinsic :: iso_fortran_env, only: error_unit, output_unit
   use, intrinsic :: iso_c_binding, only: c_int
   use kcreep_status, only: status_t, fail, exit_bad_input
-  use patch_grid, only: patch_t
-  use namelist_input, only: config_t, read_config, build_patch
-  use table_output, only: check_output_path
+  use kcreep_patch, only: patch_t
+  use kcreep_namelist, only: config_t, read_config, build_patch
+  use kcreep_app_files, only: check_output_path
   implicit none
   interface
     subroutine c_exit(code) bind(c, name='exit')

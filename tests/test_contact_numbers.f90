@@ -3,8 +3,8 @@
 !> values to the simple fractions they were computed from.
 program test_contact_numbers
   use, intrinsic :: iso_fortran_env, only: real64
-  use contact_reader, only: printed_half_unit, simplest_fraction, combined_material
-  use contact_compare, only: agrees_to_printed
+  use kcreep_contact_reader, only: printed_half_unit, simplest_fraction, combined_material
+  use kcreep_contact_compare, only: agrees_to_printed
   use unit_checks, only: checker_t
   implicit none
   type(checker_t) :: t

@@ -8,7 +8,7 @@
 !>     (relative error O((a/R)^2); at R = 200 cells 1e-4 is generous).
 program test_influence
   use, intrinsic :: iso_fortran_env, only: real64
-  use influence_coefficients, only: influence_t, cell_displacement, cell_displacement_x_derivative
+  use kcreep_influence, only: influence_t, cell_displacement, cell_displacement_x_derivative
   use unit_checks, only: checker_t
   implicit none
   type(checker_t) :: t

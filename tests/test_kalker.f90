@@ -6,7 +6,7 @@
 !>     is monotone in a/b) and, beyond the table, the asymptotes apply.
 program test_kalker
   use, intrinsic :: iso_fortran_env, only: real64
-  use kalker_table, only: kalker_coefficients, table_ratio, table_c11, table_c22, table_c23, n_rows
+  use kcreep_kalker_table, only: kalker_coefficients, table_ratio, table_c11, table_c22, table_c23, n_rows
   use unit_checks, only: checker_t
   implicit none
   type(checker_t) :: t

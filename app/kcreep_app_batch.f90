@@ -1,0 +1,405 @@
+!> Batch mode: many cases in one process, one table.
+!>
+!>   kcreep --batch LIST [OUT_TABLE]
+!>
+!> LIST holds one namelist path per line (relative to LIST's folder; blank
+!> lines and lines starting with # are skipped). The cases run in LIST
+!> order through the same path as a single run (case_driver); each finished
+!> row is appended and flushed to OUT_TABLE.partial, so a batch that is
+!> killed keeps every row it had finished, and running the same command
+!> again resumes after the last complete row. At the end the table is
+!> written whole to OUT_TABLE (temporary file and rename) and the partial
+!> file is removed. A case that fails gets a row all the same: NaN numbers
+!> and the verdict error:bad-input, error:numerical or error:io; its
+!> message goes to standard error and into the table's comments, and the
+!> batch goes on.
+module kcreep_app_batch
+  use, intrinsic :: iso_fortran_env, only: real64, int64, output_unit, error_unit
+  use, intrinsic :: ieee_arithmetic, only: ieee_value, ieee_quiet_nan
+  use kcreep_status, only: status_t, fail, exit_bad_input, exit_numerical, exit_io
+  use kcreep_strings, only: itoa, rtoa
+  use kcreep_patch, only: patch_t
+  use kcreep_namelist, only: config_t
+  use kcreep_app_case, only: solve_input, load_input, case_memory_bytes
+  use kcreep_strings, only: folder_of, resolve_path
+  use kcreep_table, only: run_record_t, table_lines, table_row, traction_lines, case_name
+  use kcreep_app_files, only: write_text_file, check_output_path
+  implicit none
+  private
+  public :: run_batch, read_case_list, estimate_memory, default_batch_table, text_t
+
+  !> Exit status of a batch that finished but in which some cases failed.
+  integer, parameter, public :: exit_cases_failed = 5
+
+  !> A line of text of any length.
+  type :: text_t
+    character(len=:), allocatable :: s
+  end type text_t
+
+contains
+
+  !> Run every case of list_path; n_failed counts the error rows (of this
+  !> run and of a resumed partial table). status fails only when the batch
+  !> itself cannot go on (list unreadable, table not writable).
+  subroutine run_batch(list_path, out_path, n_failed, status)
+    character(len=*), intent(in) :: list_path, out_path
+    integer, intent(out) :: n_failed
+    type(status_t), intent(inout) :: status
+    type(text_t), allocatable :: cases(:), partial(:)
+    character(len=:), allocatable :: partial_path, signature
+    integer :: n_done, k, unit, ios
+    character(len=512) :: msg
+
+    n_failed = 0
+    call read_case_list(list_path, cases, status)
+    if (status%failed()) return
+    call check_output_path(out_path, 'batch table', status)
+    if (status%failed()) return
+    partial_path = out_path//'.partial'
+    signature = '# kcreep batch in progress: '//itoa(size(cases))//' cases, list signature '// &
+                list_signature(cases)
+
+    call resume_partial(partial_path, signature, size(cases), partial, status)
+    if (status%failed()) return
+    n_done = count_rows(partial)
+    n_failed = count_error_rows(partial)
+    if (n_done > 0) write (output_unit, '(a)') 'kcreep: resuming '''//partial_path//''': '// &
+      itoa(n_done)//' of '//itoa(size(cases))//' cases already done'
+
+    open (newunit=unit, file=partial_path, status='old', position='append', action='write', &
+          iostat=ios, iomsg=msg)
+    if (ios /= 0) then
+      call fail(status, exit_io, 'batch table '''//partial_path//''': cannot append ('//trim(msg)//')')
+      return
+    end if
+    do k = n_done + 1, size(cases)
+      call run_one(k, size(cases), cases(k)%s, unit, n_failed, status)
+      if (status%failed()) then
+        close (unit)
+        return
+      end if
+    end do
+    close (unit)
+
+    call finish_table(partial_path, out_path, list_path, size(cases), n_failed, status)
+  end subroutine run_batch
+
+  !> Solve case k and append its row (and any comments) to the partial table.
+  subroutine run_one(k, n, input_path, unit, n_failed, status)
+    integer, intent(in) :: k, n, unit
+    character(len=*), intent(in) :: input_path
+    integer, intent(inout) :: n_failed
+    type(status_t), intent(inout) :: status
+    type(config_t) :: cfg
+    type(run_record_t) :: record
+    type(status_t) :: case_status
+    character(len=:), allocatable :: label
+    integer :: i, ios
+    character(len=512) :: msg
+
+    label = 'case '//itoa(k)//' '''//input_path//''''
+    call solve_input(input_path, folder_of(input_path), .false., cfg, record, case_status)
+    if (.not. case_status%failed() .and. len(cfg%traction_file) > 0) &
+      call write_text_file(cfg%traction_file, traction_lines(record%patch, record%traction, cfg%requested), &
+                           'traction_file', case_status)
+
+    if (case_status%failed()) then
+      n_failed = n_failed + 1
+      record = failed_record(input_path, case_status%code)
+      write (error_unit, '(a)') 'kcreep: '//label//': error: '//case_status%message
+      write (unit, '(a)', iostat=ios, iomsg=msg) '# '//label//': error: '//case_status%message
+    else
+      ios = 0
+      do i = 1, size(record%warnings)
+        write (error_unit, '(a)') 'kcreep: '//label//': warning: '//trim(record%warnings(i))
+        if (ios == 0) write (unit, '(a)', iostat=ios, iomsg=msg) '# '//label//': warning: '//trim(record%warnings(i))
+      end do
+    end if
+    if (ios == 0) write (unit, '(a)', iostat=ios, iomsg=msg) table_row(record)
+    if (ios == 0) flush (unit, iostat=ios, iomsg=msg)
+    if (ios /= 0) then
+      call fail(status, exit_io, 'batch table: cannot append the row of '//label//' ('//trim(msg)//')')
+      return
+    end if
+    if (case_status%failed()) then
+      write (output_unit, '(a)') 'kcreep: '//itoa(k)//'/'//itoa(n)//' '//record%case_name//': '//record%verdict
+    else
+      write (output_unit, '(a)') 'kcreep: '//itoa(k)//'/'//itoa(n)//' '//record%case_name//': '// &
+        record%verdict//' ('//seconds(record%t_total)//' s)'
+    end if
+    flush (output_unit)
+  end subroutine run_one
+
+  !> The row of a case that could not be solved: its name, NaN numbers, the error word.
+  function failed_record(input_path, code) result(record)
+    character(len=*), intent(in) :: input_path
+    integer, intent(in) :: code
+    type(run_record_t) :: record
+    real(real64) :: nan
+    nan = ieee_value(1.0_real64, ieee_quiet_nan)
+    record%case_name = case_name(input_path)
+    record%scheme = '-'
+    record%alpha = nan
+    record%nu = nan
+    record%g = nan
+    record%c = nan
+    record%f = nan
+    record%cn = nan
+    record%klt = nan
+    record%fastsim = nan
+    record%t_assemble = nan
+    record%t_factor = nan
+    record%t_solve = nan
+    record%t_total = nan
+    record%rcond = nan
+    record%backward_error = nan
+    select case (code)
+    case (exit_bad_input)
+      record%verdict = 'error:bad-input'
+    case (exit_numerical)
+      record%verdict = 'error:numerical'
+    case (exit_io)
+      record%verdict = 'error:io'
+    case default
+      record%verdict = 'error:failed'
+    end select
+  end function failed_record
+
+  !> Open (or start) the partial table. An existing one must come from the
+  !> same list (same first line); a torn last line, left by a kill in the
+  !> middle of a write, is dropped so the case is simply run again.
+  subroutine resume_partial(partial_path, signature, n_cases, lines, status)
+    character(len=*), intent(in) :: partial_path, signature
+    integer, intent(in) :: n_cases
+    type(text_t), allocatable, intent(out) :: lines(:)
+    type(status_t), intent(inout) :: status
+    character(len=:), allocatable :: tail
+    logical :: exists
+
+    inquire (file=partial_path, exist=exists)
+    if (exists) then
+      call read_text_file(partial_path, 'batch table', lines, tail, status)
+      if (status%failed()) return
+      if (size(lines) > 0) then
+        if (lines(1)%s /= signature) then
+          call fail(status, exit_bad_input, 'batch table '''//partial_path//''' is left from a batch of '// &
+                    'another list (its first line differs); remove it to start over')
+          return
+        end if
+        if (count_rows(lines) > n_cases) then
+          call fail(status, exit_bad_input, 'batch table '''//partial_path//''' has more rows than the '// &
+                    'list has cases; remove it to start over')
+          return
+        end if
+        if (len(tail) == 0) return      ! clean: append to it as it is
+      end if
+      ! else killed before its first line was complete: start afresh
+    end if
+    if (.not. allocated(lines)) allocate (lines(0))
+    if (size(lines) == 0) then
+      deallocate (lines)
+      allocate (lines(1))
+      lines(1)%s = signature
+    end if
+    call write_text_file(partial_path, joined(lines), 'batch table', status)
+  end subroutine resume_partial
+
+  !> Write the finished table from the partial one, then remove the partial one.
+  subroutine finish_table(partial_path, out_path, list_path, n_cases, n_failed, status)
+    character(len=*), intent(in) :: partial_path, out_path, list_path
+    integer, intent(in) :: n_cases, n_failed
+    type(status_t), intent(inout) :: status
+    type(text_t), allocatable :: partial(:), lines(:)
+    character(len=:), allocatable :: tail
+    character(len=1024), allocatable :: head(:)
+    character(len=0) :: no_warnings(0)
+    integer :: k, nh, unit, ios
+
+    call read_text_file(partial_path, 'batch table', partial, tail, status)
+    if (status%failed()) return
+    if (len(tail) > 0) then
+      call fail(status, exit_io, 'batch table '''//partial_path//''': last line incomplete')
+      return
+    end if
+    head = table_lines([run_record_t ::], no_warnings)   ! fixed comments, then the column names
+    nh = size(head)
+    allocate (lines(0))
+    do k = 1, nh - 1
+      lines = [lines, text_t(trim(head(k)))]
+    end do
+    lines = [lines, text_t('# batch '''//list_path//''': '//itoa(n_cases)//' cases, '// &
+                           itoa(n_failed)//' failed (verdict error:...)')]
+    do k = 2, size(partial)         ! per-case comments first (line 1 is the signature)
+      if (partial(k)%s(1:min(1, len(partial(k)%s))) == '#') lines = [lines, partial(k)]
+    end do
+    lines = [lines, text_t(trim(head(nh)))]
+    do k = 2, size(partial)
+      if (is_row(partial(k)%s)) lines = [lines, partial(k)]
+    end do
+    call write_text_file(out_path, joined(lines), 'batch table', status)
+    if (status%failed()) return
+    open (newunit=unit, file=partial_path, status='old', iostat=ios)
+    if (ios == 0) close (unit, status='delete')
+  end subroutine finish_table
+
+  !> The cases of a list file: one path per line, relative to the list's folder.
+  subroutine read_case_list(list_path, cases, status)
+    character(len=*), intent(in) :: list_path
+    type(text_t), allocatable, intent(out) :: cases(:)
+    type(status_t), intent(inout) :: status
+    type(text_t), allocatable :: lines(:)
+    character(len=:), allocatable :: tail, entry
+    integer :: k
+
+    allocate (cases(0))
+    call read_text_file(list_path, 'batch list', lines, tail, status)
+    if (status%failed()) return
+    if (len(tail) > 0) lines = [lines, text_t(tail)]
+    do k = 1, size(lines)
+      entry = trim(adjustl(lines(k)%s))
+      if (len(entry) == 0) cycle
+      if (entry(1:1) == '#') cycle
+      cases = [cases, text_t(resolve_path(entry, folder_of(list_path)))]
+    end do
+    if (size(cases) == 0) call fail(status, exit_bad_input, 'batch list '''//list_path// &
+        ''': no cases (expected one namelist path per line)')
+  end subroutine read_case_list
+
+  !> Bytes each namelist of paths needs (case_driver%case_memory_bytes);
+  !> relative names inside a namelist are taken from its own folder, as in a batch.
+  subroutine estimate_memory(paths, bytes, status)
+    type(text_t), intent(in) :: paths(:)
+    integer(int64), intent(out) :: bytes(size(paths))
+    type(status_t), intent(inout) :: status
+    type(config_t) :: cfg
+    type(patch_t) :: patch
+    integer :: k
+    bytes = 0
+    do k = 1, size(paths)
+      call load_input(paths(k)%s, folder_of(paths(k)%s), cfg, patch, status)
+      if (status%failed()) return
+      bytes(k) = case_memory_bytes(cfg, patch)
+    end do
+  end subroutine estimate_memory
+
+  !> '<list name without folder and extension>.tab' in the working folder.
+  pure function default_batch_table(list_path) result(name)
+    character(len=*), intent(in) :: list_path
+    character(len=:), allocatable :: name
+    name = case_name(list_path)//'.tab'
+  end function default_batch_table
+
+  !> The whole file as lines; tail is what follows the last newline (a torn line).
+  subroutine read_text_file(path, what, lines, tail, status)
+    character(len=*), intent(in) :: path, what
+    type(text_t), allocatable, intent(out) :: lines(:)
+    character(len=:), allocatable, intent(out) :: tail
+    type(status_t), intent(inout) :: status
+    character(len=:), allocatable :: buffer
+    integer :: unit, ios, size_bytes, first, k, n
+    character(len=512) :: msg
+
+    allocate (lines(0))
+    tail = ''
+    open (newunit=unit, file=path, access='stream', form='unformatted', status='old', action='read', &
+          iostat=ios, iomsg=msg)
+    if (ios /= 0) then
+      call fail(status, exit_bad_input, what//' '''//path//''': cannot open ('//trim(msg)//')')
+      return
+    end if
+    inquire (unit=unit, size=size_bytes)
+    allocate (character(len=max(size_bytes, 0)) :: buffer)
+    if (size_bytes > 0) read (unit, iostat=ios, iomsg=msg) buffer
+    close (unit)
+    if (ios /= 0) then
+      call fail(status, exit_bad_input, what//' '''//path//''': cannot read ('//trim(msg)//')')
+      return
+    end if
+    n = 0
+    do k = 1, len(buffer)
+      if (buffer(k:k) == achar(10)) n = n + 1
+    end do
+    deallocate (lines)
+    allocate (lines(n))
+    first = 1
+    n = 0
+    do k = 1, len(buffer)
+      if (buffer(k:k) /= achar(10)) cycle
+      n = n + 1
+      lines(n)%s = buffer(first:k - 1)
+      first = k + 1
+    end do
+    tail = buffer(first:)
+  end subroutine read_text_file
+
+  !> Lines as one fixed-length array for write_text_file.
+  function joined(lines) result(fixed)
+    type(text_t), intent(in) :: lines(:)
+    character(len=:), allocatable :: fixed(:)
+    integer :: k, width
+    width = 1
+    do k = 1, size(lines)
+      width = max(width, len(lines(k)%s))
+    end do
+    allocate (character(len=width) :: fixed(size(lines)))
+    do k = 1, size(lines)
+      fixed(k) = lines(k)%s
+    end do
+  end function joined
+
+  pure function seconds(t) result(text)
+    real(real64), intent(in) :: t
+    character(len=:), allocatable :: text
+    character(len=24) :: buf
+    write (buf, '(f12.3)') t
+    text = trim(adjustl(buf))
+  end function seconds
+
+  pure logical function is_row(line)
+    character(len=*), intent(in) :: line
+    is_row = len_trim(line) > 0
+    if (is_row) is_row = line(1:1) /= '#'
+  end function is_row
+
+  pure integer function count_rows(lines) result(n)
+    type(text_t), intent(in) :: lines(:)
+    integer :: k
+    n = 0
+    do k = 1, size(lines)
+      if (is_row(lines(k)%s)) n = n + 1
+    end do
+  end function count_rows
+
+  !> Rows whose verdict (last word) starts with 'error:'.
+  pure integer function count_error_rows(lines) result(n)
+    type(text_t), intent(in) :: lines(:)
+    integer :: k, blank
+    n = 0
+    do k = 1, size(lines)
+      if (.not. is_row(lines(k)%s)) cycle
+      blank = index(trim(lines(k)%s), ' ', back=.true.)
+      if (index(lines(k)%s(blank + 1:), 'error:') == 1) n = n + 1
+    end do
+  end function count_error_rows
+
+  !> A short checksum of the case paths, so that a partial table is only
+  !> resumed by the list it was started from.
+  pure function list_signature(cases) result(text)
+    type(text_t), intent(in) :: cases(:)
+    character(len=:), allocatable :: text
+    integer(int64), parameter :: modulus = 2147483647_int64   ! 2^31 - 1, so h * 257 cannot overflow
+    integer(int64) :: h
+    integer :: k, i
+    character(len=16) :: buf
+    h = 1
+    do k = 1, size(cases)
+      do i = 1, len(cases(k)%s)
+        h = mod(h * 257 + iachar(cases(k)%s(i:i)), modulus)
+      end do
+      h = mod(h * 257 + 10, modulus)
+    end do
+    write (buf, '(z8.8)') h
+    text = trim(buf)
+  end function list_signature
+
+end module kcreep_app_batch

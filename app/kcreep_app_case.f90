@@ -1,0 +1,74 @@
+!> One case from namelist file to solved record: the path shared by the
+!> single-case program and the batch driver, so both validate and solve a
+!> namelist in exactly the same way.
+module kcreep_app_case
+  use, intrinsic :: iso_fortran_env, only: int64
+  use kcreep_status, only: status_t
+  use kcreep, only: problem_t, patch_t, kcreep_solve
+  use kcreep_namelist, only: config_t, read_config, build_patch, problem_of
+  use kcreep_linear_solve, only: solve_memory_bytes
+  use kcreep_table, only: run_record_t, case_name
+  use kcreep_app_files, only: check_output_path
+  use kcreep_app_memory, only: memory_limit_bytes
+  implicit none
+  private
+  public :: solve_input, load_input, case_memory_bytes
+
+contains
+
+  !> Read and check the namelist at input_path and build its patch. When
+  !> base_folder is not empty, relative file names inside the namelist
+  !> (mask_file, contact_file, table_file, traction_file) are taken relative to it, as if
+  !> kcreep ran in that folder (the batch's convention); when it is empty
+  !> they stay relative to the working folder (the single-case convention).
+  subroutine load_input(input_path, base_folder, cfg, patch, status)
+    character(len=*), intent(in) :: input_path, base_folder
+    type(config_t), intent(out) :: cfg
+    type(patch_t), intent(out) :: patch
+    type(status_t), intent(inout) :: status
+
+    call read_config(input_path, cfg, status, base_folder)
+    if (status%failed()) return
+    call build_patch(cfg, patch, status)
+  end subroutine load_input
+
+  !> load_input, check that the outputs can be created, then solve with the
+  !> library. With check_table false the namelist's table_file is not checked
+  !> (the batch writes its own table); the traction file, when asked for,
+  !> always is. The record holds the finest grid solved and its tractions.
+  subroutine solve_input(input_path, base_folder, check_table, cfg, record, status)
+    character(len=*), intent(in) :: input_path, base_folder
+    logical, intent(in) :: check_table
+    type(config_t), intent(out) :: cfg
+    type(run_record_t), intent(out) :: record
+    type(status_t), intent(inout) :: status
+    type(patch_t) :: patch
+    type(problem_t) :: problem
+
+    call load_input(input_path, base_folder, cfg, patch, status)
+    if (check_table .and. .not. status%failed()) call check_output_path(cfg%table_file, 'table_file', status)
+    if (.not. status%failed() .and. len(cfg%traction_file) > 0) &
+      call check_output_path(cfg%traction_file, 'traction_file', status)
+    if (status%failed()) return
+    problem = problem_of(cfg, patch)
+    problem%solve%memory_limit = memory_limit_bytes()
+    call kcreep_solve(problem, record%result_t, status)
+    record%case_name = case_name(cfg%input_path)
+  end subroutine solve_input
+
+  !> Bytes a case needs at its peak: what its solve path needs
+  !> (kcreep_linear_solve%solve_memory_bytes: the dense subsystem matrix or the
+  !> iterative solver's storage) and the operator table with its influence
+  !> coefficients (about 40 reals per grid cell). The program itself (code,
+  !> OpenBLAS buffers) is not included: a few tens of MiB, see README.
+  function case_memory_bytes(cfg, patch) result(bytes)
+    type(config_t), intent(in) :: cfg
+    type(patch_t), intent(in) :: patch
+    integer(int64) :: bytes
+    type(problem_t) :: problem
+    problem = problem_of(cfg, patch)
+    problem%solve%memory_limit = memory_limit_bytes()
+    bytes = solve_memory_bytes(problem%solve, cfg%nu, patch, cfg%requested) + 320 * int(patch%mx, int64) * patch%my
+  end function case_memory_bytes
+
+end module kcreep_app_case

@@ -1,0 +1,180 @@
+!> The command line: arguments to a mode, each mode run to its outputs, and
+!> the one place where errors are reported (one line, then the exit code).
+!>
+!>   kcreep INPUT.nml
+!>   kcreep --batch LIST [OUT_TABLE]      (many cases, one table)
+!>   kcreep --estimate-memory INPUT.nml...
+!>
+!> Exit status: 0 done, 2 bad input, 3 numerical failure, 4 output could not
+!> be written, 5 some cases of a batch failed.
+module kcreep_app_cli
+  use, intrinsic :: iso_fortran_env, only: int64, output_unit, error_unit
+  use kcreep_status, only: status_t, fail, exit_bad_input
+  use kcreep_strings, only: itoa
+  use kcreep, only: kcreep_version
+  use kcreep_namelist, only: config_t
+  use kcreep_table, only: run_record_t, table_lines, traction_lines
+  use kcreep_app_case, only: solve_input
+  use kcreep_app_batch, only: run_batch, estimate_memory, default_batch_table, text_t, exit_cases_failed
+  use kcreep_app_files, only: write_temporary, commit_temporary, discard_temporary
+  use kcreep_app_summary, only: print_summary
+  implicit none
+  private
+  public :: command_t, parse_command, run_command, stop_with
+
+  type :: command_t
+    character(len=:), allocatable :: mode     !< 'single', 'batch', 'estimate', 'help' or 'version'
+    type(text_t), allocatable :: args(:)      !< the arguments after the mode's flag
+  end type command_t
+
+contains
+
+  subroutine parse_command(command, status)
+    type(command_t), intent(out) :: command
+    type(status_t), intent(inout) :: status
+    integer :: k, n
+    character(len=:), allocatable :: first, arg
+
+    n = command_argument_count()
+    allocate (command%args(0))
+    command%mode = 'single'
+    first = ''
+    if (n >= 1) first = argument(1)
+    select case (first)
+    case ('-h', '--help')
+      command%mode = 'help'
+    case ('-V', '--version')
+      command%mode = 'version'
+    case ('--batch')
+      command%mode = 'batch'
+      if (n < 2 .or. n > 3) call fail(status, exit_bad_input, 'usage: kcreep --batch LIST [OUT_TABLE]')
+    case ('--estimate-memory')
+      command%mode = 'estimate'
+      if (n < 2) call fail(status, exit_bad_input, 'usage: kcreep --estimate-memory INPUT.nml...')
+    case default
+      if (n /= 1) call fail(status, exit_bad_input, 'usage: kcreep INPUT.nml  (kcreep --help for more)')
+    end select
+    if (status%failed()) return
+    do k = merge(1, 2, command%mode == 'single'), n
+      arg = argument(k)   ! (a temporary: gfortran 12 fails on the function result in the constructor)
+      command%args = [command%args, text_t(arg)]
+    end do
+  end subroutine parse_command
+
+  subroutine run_command(command, status)
+    type(command_t), intent(in) :: command
+    type(status_t), intent(inout) :: status
+    select case (command%mode)
+    case ('help')
+      write (output_unit, '(a)') 'kcreep '//kcreep_version//': creep coefficients of any contact patch', &
+        'usage: kcreep INPUT.nml', &
+        '       kcreep --batch LIST [OUT_TABLE]   (one namelist path per line; table <LIST name>.tab)', &
+        '       kcreep --estimate-memory INPUT.nml...   (bytes each case needs)', &
+        'The namelist groups &patch, &material, &solver and &output are described in docs/input.md.'
+    case ('version')
+      write (output_unit, '(a)') 'kcreep '//kcreep_version
+    case ('batch')
+      call batch_mode(command%args, status)
+    case ('estimate')
+      call estimate_mode(command%args, status)
+    case default
+      call single_mode(command%args(1)%s, status)
+    end select
+  end subroutine run_command
+
+  !> kcreep INPUT.nml: solve, write the table (and tractions), print the summary.
+  subroutine single_mode(input_path, status)
+    character(len=*), intent(in) :: input_path
+    type(status_t), intent(inout) :: status
+    type(config_t) :: cfg
+    type(run_record_t) :: record
+
+    call solve_input(input_path, '', .true., cfg, record, status)
+    if (status%failed()) return
+    ! every output complete in its temporary file before any is renamed into
+    ! place: a failure (a full disk) leaves all the previous files as they were
+    call write_temporary(cfg%table_file, table_lines([record], record%warnings), 'table_file', status)
+    if (.not. status%failed() .and. len(cfg%traction_file) > 0) &
+      call write_temporary(cfg%traction_file, traction_lines(record%patch, record%traction, cfg%requested), &
+                           'traction_file', status)
+    if (.not. status%failed()) call commit_temporary(cfg%table_file, 'table_file', status)
+    if (.not. status%failed() .and. len(cfg%traction_file) > 0) &
+      call commit_temporary(cfg%traction_file, 'traction_file', status)
+    if (status%failed()) then
+      call discard_temporary(cfg%table_file)
+      if (len(cfg%traction_file) > 0) call discard_temporary(cfg%traction_file)
+      return
+    end if
+    call print_summary(input_path, cfg, record)
+    if (profile_requested() .and. record%method == 'iterative') write (error_unit, '(a, 3f9.3)') &
+      'kcreep: GMRES seconds in operator, preconditioner, orthogonalisation:', &
+      record%t_operator, record%t_preconditioner, record%t_orthogonalise
+  end subroutine single_mode
+
+  !> kcreep --batch LIST [OUT_TABLE]
+  subroutine batch_mode(args, status)
+    type(text_t), intent(in) :: args(:)
+    type(status_t), intent(inout) :: status
+    character(len=:), allocatable :: out_path
+    integer :: n_failed
+    if (size(args) == 2) then
+      out_path = args(2)%s
+    else
+      out_path = default_batch_table(args(1)%s)
+    end if
+    call run_batch(args(1)%s, out_path, n_failed, status)
+    if (.not. status%failed() .and. n_failed > 0) call fail(status, exit_cases_failed, &
+        itoa(n_failed)//' case(s) of '''//args(1)%s//''' failed: see the rows with verdict error:... in '''// &
+        out_path//'''')
+    if (status%failed()) return
+    write (output_unit, '(a)') 'kcreep: batch table '//out_path
+  end subroutine batch_mode
+
+  !> kcreep --estimate-memory INPUT.nml...: one number of bytes per input.
+  subroutine estimate_mode(args, status)
+    type(text_t), intent(in) :: args(:)
+    type(status_t), intent(inout) :: status
+    integer(int64), allocatable :: bytes(:)
+    integer :: k
+    allocate (bytes(size(args)))
+    call estimate_memory(args, bytes, status)
+    if (status%failed()) return
+    do k = 1, size(args)
+      write (output_unit, '(i0)') bytes(k)
+    end do
+  end subroutine estimate_mode
+
+  !> The one place where errors are reported: one line, then exit with the code.
+  subroutine stop_with(status)
+    use, intrinsic :: iso_c_binding, only: c_int
+    type(status_t), intent(in) :: status
+    interface
+      subroutine c_exit(code) bind(c, name='exit')
+        import :: c_int
+        integer(c_int), value :: code
+      end subroutine c_exit
+    end interface
+    write (error_unit, '(a)') 'kcreep: error: '//status%message
+    flush (output_unit)
+    flush (error_unit)
+    call c_exit(int(status%code, c_int))   ! STOP n would add a second line
+  end subroutine stop_with
+
+  !> Command-line argument i, whole.
+  function argument(i) result(arg)
+    integer, intent(in) :: i
+    character(len=:), allocatable :: arg
+    integer :: length
+    call get_command_argument(i, length=length)
+    allocate (character(len=length) :: arg)
+    call get_command_argument(i, arg)
+  end function argument
+
+  !> KCREEP_PROFILE set (to anything): print where the GMRES time went (benchmark aid).
+  logical function profile_requested()
+    integer :: stat
+    call get_environment_variable('KCREEP_PROFILE', status=stat)
+    profile_requested = stat == 0
+  end function profile_requested
+
+end module kcreep_app_cli

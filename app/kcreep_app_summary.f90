@@ -1,0 +1,86 @@
+!> The summary a single case prints: patch, scheme, coefficients against
+!> Kalker's table, the CONTACT comparison, extrapolation, solver diagnostics,
+!> times, verdict and warnings.
+module kcreep_app_summary
+  use, intrinsic :: iso_fortran_env, only: output_unit, error_unit
+  use kcreep, only: kcreep_version, patch_t
+  use kcreep_namelist, only: config_t
+  use kcreep_table, only: run_record_t
+  use kcreep_contact_compare, only: comparison_lines, contact_spin_shift
+  implicit none
+  private
+  public :: print_summary
+
+contains
+
+  !> The summary of a single case on standard output; warnings also on standard error.
+  subroutine print_summary(input_path, cfg, record)
+    character(len=*), intent(in) :: input_path
+    type(config_t), intent(in) :: cfg
+    type(run_record_t), intent(in) :: record
+    character(len=*), parameter :: fmt_c = '(2x, a, es12.5, a, f8.4, a, f8.3, a)'
+    type(patch_t) :: patch
+    character(len=3), parameter :: names(3) = ['C11', 'C22', 'C23']
+    integer :: i
+
+    patch = record%patch
+    write (output_unit, '(a)') 'kcreep '//kcreep_version//': '//input_path
+    write (output_unit, '(2x, a, i0, a, i0, a, i0, a, es10.3)') 'patch: '//patch%kind//', grid ', &
+      patch%mx, ' x ', patch%my, ', ', patch%n, ' cells, c = ', record%c
+    if (cfg%scheme%name == 'collocation') then
+      write (output_unit, '(2x, a, f6.3, a, g0.4, a, es10.3)') 'scheme: collocation, alpha = ', &
+        cfg%scheme%alpha, ', nu = ', cfg%nu, ', G = ', cfg%g
+    else
+      write (output_unit, '(2x, a, g0.4, a, es10.3)') 'scheme: backward, nu = ', cfg%nu, ', G = ', cfg%g
+    end if
+    write (output_unit, '(2x, a, 3es14.6)') 'f11 f22 f23:', record%f(1, 1), record%f(2, 2), record%f(2, 3)
+    do i = 1, 3
+      if (record%klt(i) == record%klt(i)) then
+        write (output_unit, fmt_c) names(i)//' = ', record%cn(i), '   Kalker ', record%klt(i), &
+          '   (', 100 * (record%cn(i) / record%klt(i) - 1), ' %)'
+      else
+        write (output_unit, '(2x, a, es12.5)') names(i)//' = ', record%cn(i)
+      end if
+    end do
+    if (patch%kind == 'contact') call print_contact_comparison(cfg, record)
+    if (record%extrapolated) then
+      write (output_unit, '(2x, a, i0, a, i0, a)') 'extrapolated (', cfg%extrapolate_levels, &
+        ' levels, ratio ', cfg%refine_ratio, '; the rows above are the finest level):'
+      do i = 1, 3
+        write (output_unit, '(4x, a, f9.5, a, es8.1, a, f5.2, a)') names(i)//' -> ', record%ext(i), &
+          ' +- ', record%ext_error(i), '   (order ', record%ext_order(i), ')'
+      end do
+    end if
+    write (output_unit, '(2x, a, 3es12.4)') 'FASTSIM L1 L2 L3:', record%fastsim
+    if (record%method == 'dense') then
+      write (output_unit, '(2x, a)') 'method: dense LU (LAPACK)'
+      write (output_unit, '(2x, a, es9.2, a, es9.2)') 'rcond ', record%rcond, ', backward error ', record%backward_error
+      write (output_unit, '(2x, a, es9.2, a, es9.2, a)') 'solve: relative residual ', record%relative_residual, &
+        ', backward error before refinement ', record%backward_error_initial, ', refine = '//trim(record%refine)
+    else
+      write (output_unit, '(2x, a, i0, a, es9.2, a)') 'method: iterative (FFT operator, preconditioned GMRES), ', &
+        record%iterations, ' iterations, relative residual ', record%backward_error, ' (no rcond estimate)'
+    end if
+    write (output_unit, '(2x, a, 4f9.3)') 'time assemble factor solve total [s]:', record%t_assemble, &
+      record%t_factor, record%t_solve, record%t_total
+    write (output_unit, '(2x, a)') 'verdict: '//record%verdict//'   table: '//cfg%table_file
+    do i = 1, size(record%warnings)
+      write (output_unit, '(2x, a)') 'WARNING: '//trim(record%warnings(i))
+      write (error_unit, '(a)') 'kcreep: warning: '//trim(record%warnings(i))
+    end do
+  end subroutine print_summary
+
+  !> shape = 'contact': kcreep's forces for CONTACT's creepages beside CONTACT's.
+  subroutine print_contact_comparison(cfg, record)
+    type(config_t), intent(in) :: cfg
+    type(run_record_t), intent(in) :: record
+    character(len=300), allocatable :: lines(:)
+    integer :: i
+    lines = comparison_lines(cfg%contact, record%f, cfg%scheme%name == 'backward' .and. &
+                             cfg%scheme%spin_shift == contact_spin_shift)
+    do i = 1, size(lines)
+      write (output_unit, '(2x, a)') trim(lines(i))
+    end do
+  end subroutine print_contact_comparison
+
+end module kcreep_app_summary

@@ -1,0 +1,13 @@
+!> kcreep: Kalker's creep coefficients of any contact patch (command line).
+!> The work is the library's (src/); the command line is app/kcreep_app_cli.
+program kcreep_main
+  use kcreep_status, only: status_t
+  use kcreep_app_cli, only: command_t, parse_command, run_command, stop_with
+  implicit none
+  type(command_t) :: command
+  type(status_t) :: status
+
+  call parse_command(command, status)
+  if (.not. status%failed()) call run_command(command, status)
+  if (status%failed()) call stop_with(status)
+end program kcreep_main

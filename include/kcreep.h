@@ -1,0 +1,76 @@
+/* kcreep: Kalker's creep coefficients of any contact patch -- C API.
+ *
+ * One opaque handle holds a problem (grid geometry, material, scheme, solver
+ * settings), its last result and its last error. Every function returns a
+ * status: KCREEP_OK (0) or an error code; kcreep_get_message() gives the
+ * one-line reason. NULL handles and NULL arrays are errors, never crashes.
+ * Repeated solves on one handle with the same grid, scheme and material
+ * reuse the operator table (the in-loop case: a new mask each step).
+ *
+ * Units: any consistent set (mm and N/mm^2 give N and N mm). Sign
+ * convention: (Fx, Fy, Mz) = -f (xi, eta, phi), x the rolling direction,
+ * leading edge at +x.
+ */
+#ifndef KCREEP_H
+#define KCREEP_H
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+#define KCREEP_OK 0
+#define KCREEP_BAD_INPUT 2   /* a value out of range, a NULL array, an empty patch */
+#define KCREEP_NUMERICAL 3   /* the solver could not produce a result */
+#define KCREEP_NO_RESULT 6   /* NULL handle, or no successful solve yet */
+
+/* Verdict bits (kcreep_get_verdict); 0 is "ok". */
+#define KCREEP_VERDICT_DEGENERATE 1
+#define KCREEP_VERDICT_NONPHYSICAL 2
+#define KCREEP_VERDICT_ALPHA_EDGE 4
+#define KCREEP_VERDICT_COARSE 8
+#define KCREEP_VERDICT_ILL_CONDITIONED 16
+#define KCREEP_VERDICT_INACCURATE 32
+
+typedef void *kcreep_handle;
+
+/* 10000 major + 100 minor + patch */
+int kcreep_version(void);
+
+kcreep_handle kcreep_new(void);                 /* default settings, no patch */
+void kcreep_delete(kcreep_handle *handle);      /* frees and sets *handle = NULL */
+int kcreep_get_message(kcreep_handle handle, char *buffer, int buffer_length);
+
+/* Settings (defaults: g = 1, nu = 0.25, scheme "collocation" alpha 0.5, method "auto"). */
+int kcreep_set_material(kcreep_handle handle, double g, double nu);
+int kcreep_set_scheme(kcreep_handle handle, const char *name, double alpha, double spin_shift);
+int kcreep_set_solver(kcreep_handle handle, const char *method, double tolerance);
+int kcreep_set_extrapolation(kcreep_handle handle, int levels, int ratio);   /* levels 0: off */
+
+/* Geometry: an ellipse on an mx x my grid over [-a, a] x [-b, b], or a mask
+ * inside[iy * mx + ix] != 0 (rows in increasing y) with cell sizes dx, dy and
+ * the centre (x0, y0) of cell (0, 0). */
+int kcreep_set_ellipse(kcreep_handle handle, double semi_a, double semi_b, int mx, int my);
+int kcreep_set_mask(kcreep_handle handle, int mx, int my, const int *inside,
+                    double dx, double dy, double x0, double y0);
+
+int kcreep_solve(kcreep_handle handle);
+/* kcreep_set_mask + kcreep_solve in one call */
+int kcreep_solve_mask(kcreep_handle handle, int mx, int my, const int *inside,
+                      double dx, double dy, double x0, double y0);
+
+/* Results of the last successful solve. */
+int kcreep_get_matrix(kcreep_handle handle, double f[9]);          /* f[3 i + j] = f_(i+1)(j+1) */
+int kcreep_get_normalised(kcreep_handle handle, double c[3]);      /* C11, C22, C23 */
+int kcreep_get_error_estimate(kcreep_handle handle, double limit[3], double error[3]); /* NaN if none */
+int kcreep_get_fastsim(kcreep_handle handle, double l[3]);         /* L1, L2, L3 */
+int kcreep_get_verdict(kcreep_handle handle, int *flags, char *buffer, int buffer_length);
+int kcreep_get_cells(kcreep_handle handle, int *n, int *mx, int *my);
+/* t: length >= 6 n; px of case j (0 xi, 1 eta, 2 phi) at t[j*2n + k], py at
+ * t[j*2n + n + k]; ix, iy (1-based grid indices, n each) may be NULL. */
+int kcreep_get_tractions(kcreep_handle handle, int length, double *t, int *ix, int *iy);
+int kcreep_get_reuse_count(kcreep_handle handle, int *count);
+
+#ifdef __cplusplus
+}
+#endif
+#endif /* KCREEP_H */

@@ -1,0 +1,23 @@
+"""kcreep: Kalker's creep coefficients of any contact patch.
+
+    import kcreep
+    r = kcreep.solve_ellipse(2.0, 1.0, nu=0.25, g=82000.0, mx=80, my=40, scheme="backward")
+    r.f        # 3 x 3 creep-force matrix, (Fx, Fy, Mz) = -f (xi, eta, phi)
+    r.c        # C11, C22, C23
+    r.verdict  # 'ok' or what is wrong
+
+The solver is the shared library libkcreep (found in the build tree
+`build/`, beside an installed package, or where KCREEP_LIBRARY says);
+`kcreep.table` reads kcreep's table files and needs nothing but Python.
+"""
+from . import table  # noqa: F401  (standard library only)
+
+__all__ = ["solve_ellipse", "solve_mask", "Solver", "Result", "KcreepError", "version", "table"]
+
+
+def __getattr__(name):
+    # the bindings load numpy and the shared library only when first used
+    if name in ("solve_ellipse", "solve_mask", "Solver", "Result", "KcreepError", "version"):
+        from . import library
+        return getattr(library, name)
+    raise AttributeError(name)

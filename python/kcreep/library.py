@@ -1,0 +1,179 @@
+"""ctypes bindings of kcreep's C API (include/kcreep.h), with numpy arrays.
+
+Errors of the library become KcreepError carrying kcreep's one-line message.
+"""
+import ctypes
+import os
+
+import numpy as np
+
+_HERE = os.path.dirname(os.path.abspath(__file__))
+_NAME = "libkcreep.so"
+
+
+class KcreepError(RuntimeError):
+    """A kcreep call failed; .code is the status, str() the message."""
+
+    def __init__(self, code, message):
+        super().__init__(message)
+        self.code = code
+
+
+def _candidates():
+    env = os.environ.get("KCREEP_LIBRARY")
+    if env:
+        return [env]
+    return [
+        os.path.join(_HERE, _NAME),                                   # bundled beside the package
+        os.path.join(_HERE, "..", "..", "build", _NAME),              # the source tree's build/
+        os.path.join(_HERE, "..", "..", "..", "..", "lib", _NAME),    # <prefix>/lib/pythonX/site-packages
+        _NAME,                                                        # the loader's search path
+    ]
+
+
+def _load():
+    tried = []
+    for path in _candidates():
+        try:
+            return ctypes.CDLL(path)
+        except OSError as e:
+            tried.append(f"{path} ({e})")
+    raise OSError("kcreep: libkcreep.so not found; build it (scripts/setup.sh) or set KCREEP_LIBRARY. Tried: "
+                  + "; ".join(tried))
+
+
+_lib = _load()
+_h = ctypes.c_void_p
+_d = ctypes.c_double
+_i = ctypes.c_int
+_p = ctypes.c_void_p
+_signatures = {
+    "kcreep_version": ([], _i),
+    "kcreep_new": ([], _h),
+    "kcreep_delete": ([ctypes.POINTER(_h)], None),
+    "kcreep_get_message": ([_h, ctypes.c_char_p, _i], _i),
+    "kcreep_set_material": ([_h, _d, _d], _i),
+    "kcreep_set_scheme": ([_h, ctypes.c_char_p, _d, _d], _i),
+    "kcreep_set_solver": ([_h, ctypes.c_char_p, _d], _i),
+    "kcreep_set_extrapolation": ([_h, _i, _i], _i),
+    "kcreep_set_ellipse": ([_h, _d, _d, _i, _i], _i),
+    "kcreep_set_mask": ([_h, _i, _i, _p, _d, _d, _d, _d], _i),
+    "kcreep_solve": ([_h], _i),
+    "kcreep_solve_mask": ([_h, _i, _i, _p, _d, _d, _d, _d], _i),
+    "kcreep_get_matrix": ([_h, _p], _i),
+    "kcreep_get_normalised": ([_h, _p], _i),
+    "kcreep_get_error_estimate": ([_h, _p, _p], _i),
+    "kcreep_get_fastsim": ([_h, _p], _i),
+    "kcreep_get_verdict": ([_h, ctypes.POINTER(_i), ctypes.c_char_p, _i], _i),
+    "kcreep_get_cells": ([_h, ctypes.POINTER(_i), ctypes.POINTER(_i), ctypes.POINTER(_i)], _i),
+    "kcreep_get_tractions": ([_h, _i, _p, _p, _p], _i),
+    "kcreep_get_reuse_count": ([_h, ctypes.POINTER(_i)], _i),
+}
+for _name, (_args, _res) in _signatures.items():
+    _f = getattr(_lib, _name)
+    _f.argtypes = _args
+    _f.restype = _res
+
+
+def version():
+    """kcreep's version as 'major.minor.patch'."""
+    v = _lib.kcreep_version()
+    return f"{v // 10000}.{v // 100 % 100}.{v % 100}"
+
+
+class Result:
+    """One solve: f (3 x 3), c (C11, C22, C23), fastsim (L1, L2, L3), verdict,
+    verdict_flags, warnings, n (cells), ext and ext_error (NaN unless
+    extrapolated) and, with tractions=True, traction (n x 2 x 3: px, py per load
+    case xi, eta, phi) with the cells' grid indices ix, iy (1-based)."""
+
+    def __repr__(self):
+        return f"Result(c={self.c.tolist()}, verdict={self.verdict!r}, n={self.n})"
+
+
+class Solver:
+    """A handle of the C API: settings, geometry, and repeated solves that
+    reuse the operator table when grid, scheme and material stay the same."""
+
+    def __init__(self, *, nu=0.25, g=1.0, scheme="collocation", alpha=0.5, spin_shift=0.0,
+                 method="auto", tolerance=0.0, extrapolate_levels=0, refine_ratio=2):
+        self._handle = _h(_lib.kcreep_new())
+        self._check(_lib.kcreep_set_material(self._handle, g, nu))
+        self._check(_lib.kcreep_set_scheme(self._handle, scheme.encode(), alpha, spin_shift))
+        self._check(_lib.kcreep_set_solver(self._handle, method.encode(), tolerance))
+        self._check(_lib.kcreep_set_extrapolation(self._handle, extrapolate_levels, refine_ratio))
+
+    def __del__(self):
+        if getattr(self, "_handle", None) is not None and _lib is not None:
+            _lib.kcreep_delete(ctypes.byref(self._handle))
+            self._handle = None
+
+    def _check(self, code):
+        if code != 0:
+            buffer = ctypes.create_string_buffer(1024)
+            _lib.kcreep_get_message(self._handle, buffer, len(buffer))
+            raise KcreepError(code, buffer.value.decode(errors="replace") or f"kcreep status {code}")
+
+    def set_material(self, *, g, nu):
+        self._check(_lib.kcreep_set_material(self._handle, g, nu))
+
+    def solve_ellipse(self, semi_a, semi_b, mx=60, my=60, tractions=False):
+        self._check(_lib.kcreep_set_ellipse(self._handle, semi_a, semi_b, mx, my))
+        self._check(_lib.kcreep_solve(self._handle))
+        return self._result(tractions)
+
+    def solve_mask(self, inside, dx, dy, x0=0.0, y0=0.0, tractions=False):
+        cells = np.ascontiguousarray(np.asarray(inside) != 0, dtype=np.intc)
+        if cells.ndim != 2:
+            raise KcreepError(2, f"inside must be a 2-D array (rows in increasing y), got {cells.ndim}-D")
+        my, mx = cells.shape
+        self._check(_lib.kcreep_solve_mask(self._handle, mx, my, cells.ctypes.data, dx, dy, x0, y0))
+        return self._result(tractions)
+
+    @property
+    def reuse_count(self):
+        count = _i()
+        self._check(_lib.kcreep_get_reuse_count(self._handle, ctypes.byref(count)))
+        return count.value
+
+    def _result(self, tractions):
+        r = Result()
+        f = np.empty(9)
+        self._check(_lib.kcreep_get_matrix(self._handle, f.ctypes.data))
+        r.f = f.reshape(3, 3)
+        r.c = np.empty(3)
+        self._check(_lib.kcreep_get_normalised(self._handle, r.c.ctypes.data))
+        r.fastsim = np.empty(3)
+        self._check(_lib.kcreep_get_fastsim(self._handle, r.fastsim.ctypes.data))
+        r.ext, r.ext_error = np.empty(3), np.empty(3)
+        self._check(_lib.kcreep_get_error_estimate(self._handle, r.ext.ctypes.data, r.ext_error.ctypes.data))
+        flags = _i()
+        buffer = ctypes.create_string_buffer(8192)
+        self._check(_lib.kcreep_get_verdict(self._handle, ctypes.byref(flags), buffer, len(buffer)))
+        parts = buffer.value.decode(errors="replace").split("; ")
+        r.verdict, r.warnings, r.verdict_flags = parts[0], parts[1:], flags.value
+        n, mx, my = _i(), _i(), _i()
+        self._check(_lib.kcreep_get_cells(self._handle, ctypes.byref(n), ctypes.byref(mx), ctypes.byref(my)))
+        r.n, r.mx, r.my = n.value, mx.value, my.value
+        if tractions:
+            t = np.empty(6 * r.n)
+            r.ix, r.iy = np.empty(r.n, dtype=np.intc), np.empty(r.n, dtype=np.intc)
+            self._check(_lib.kcreep_get_tractions(self._handle, t.size, t.ctypes.data, r.ix.ctypes.data,
+                                                  r.iy.ctypes.data))
+            r.traction = t.reshape(3, 2, r.n).transpose(2, 1, 0)
+        return r
+
+
+def solve_ellipse(semi_a, semi_b, *, nu=0.25, g=1.0, mx=60, my=60, scheme="collocation", alpha=0.5,
+                  method="auto", tractions=False):
+    """Coefficients of the ellipse with semi-axes semi_a (along x, rolling) and semi_b."""
+    return Solver(nu=nu, g=g, scheme=scheme, alpha=alpha, method=method).solve_ellipse(
+        semi_a, semi_b, mx, my, tractions)
+
+
+def solve_mask(inside, dx, dy, *, x0=0.0, y0=0.0, nu=0.25, g=1.0, scheme="collocation", alpha=0.5,
+               method="auto", tractions=False):
+    """Coefficients of the patch inside (2-D boolean array, rows in increasing y)
+    with cell sizes dx, dy and the centre (x0, y0) of cell [0, 0]."""
+    return Solver(nu=nu, g=g, scheme=scheme, alpha=alpha, method=method).solve_mask(
+        inside, dx, dy, x0, y0, tractions)

@@ -1,0 +1,421 @@
+!> The C API (include/kcreep.h): an opaque handle holding one problem
+!> (grid geometry, material, scheme, solver settings), its last result, its
+!> last error and what repeated solves on the same grid can reuse.
+!>
+!> Every function returns a status: 0 (KCREEP_OK), 2 (bad argument or
+!> input), 3 (numerical failure) or 6 (no result yet, or a null handle).
+!> After a failure kcreep_get_message gives the one-line reason. Null
+!> handles and bad arrays are errors, never crashes.
+module kcreep_capi
+  use, intrinsic :: iso_c_binding, only: c_int, c_double, c_char, c_ptr, c_null_ptr, c_null_char, &
+                                         c_loc, c_f_pointer, c_associated
+  use, intrinsic :: ieee_arithmetic, only: ieee_value, ieee_quiet_nan
+  use kcreep_kinds, only: wp
+  use kcreep_status, only: status_t, fail, exit_bad_input
+  use kcreep_strings, only: itoa
+  use kcreep, only: kcreep_solve, kcreep_version_number, problem_t, result_t, default_problem, solve_cache_t, &
+                    ellipse_patch, mask_patch, n_load_cases
+  implicit none
+  private
+
+  integer(c_int), parameter :: status_ok = 0, status_no_result = 6
+
+  type :: handle_t
+    type(problem_t) :: problem
+    type(result_t) :: result
+    type(solve_cache_t) :: cache
+    logical :: solved = .false.
+    type(status_t) :: last
+  end type handle_t
+
+contains
+
+  !> Version as an integer: 10000 major + 100 minor + patch.
+  integer(c_int) function c_version() bind(c, name='kcreep_version')
+    c_version = int(kcreep_version_number, c_int)
+  end function c_version
+
+  !> A new handle with kcreep's default settings and no patch.
+  type(c_ptr) function c_new() bind(c, name='kcreep_new')
+    type(handle_t), pointer :: h
+    allocate (h)
+    h%problem = default_problem()
+    c_new = c_loc(h)
+  end function c_new
+
+  !> Free the handle and set the caller's pointer to NULL (NULL is accepted).
+  subroutine c_delete(handle) bind(c, name='kcreep_delete')
+    type(c_ptr), intent(inout) :: handle
+    type(handle_t), pointer :: h
+    if (.not. c_associated(handle)) return
+    call c_f_pointer(handle, h)
+    deallocate (h)
+    handle = c_null_ptr
+  end subroutine c_delete
+
+  !> The last error's message (empty after success), cut to buffer_length - 1
+  !> characters and NUL-terminated.
+  integer(c_int) function c_get_message(handle, buffer, buffer_length) bind(c, name='kcreep_get_message')
+    type(c_ptr), value :: handle, buffer
+    integer(c_int), value :: buffer_length
+    type(handle_t), pointer :: h
+    character(kind=c_char), pointer :: chars(:)
+    if (buffer_length < 1 .or. .not. c_associated(buffer)) then
+      c_get_message = exit_bad_input
+      return
+    end if
+    call c_f_pointer(buffer, chars, [buffer_length])
+    if (.not. c_associated(handle)) then
+      call to_c('null handle', chars, buffer_length)
+      c_get_message = status_no_result
+      return
+    end if
+    call c_f_pointer(handle, h)
+    if (allocated(h%last%message)) then
+      call to_c(h%last%message, chars, buffer_length)
+    else
+      call to_c('', chars, buffer_length)
+    end if
+    c_get_message = status_ok
+  end function c_get_message
+
+  !> Combined shear modulus g and Poisson's ratio nu of the two bodies.
+  integer(c_int) function c_set_material(handle, g, nu) bind(c, name='kcreep_set_material')
+    type(c_ptr), value :: handle
+    real(c_double), value :: g, nu
+    type(handle_t), pointer :: h
+    c_set_material = begin(handle, h)
+    if (c_set_material /= status_ok) return
+    h%problem%g = g
+    h%problem%nu = nu
+  end function c_set_material
+
+  !> scheme: "collocation" (with alpha) or "backward" (with spin_shift, in cells).
+  integer(c_int) function c_set_scheme(handle, name, alpha, spin_shift) bind(c, name='kcreep_set_scheme')
+    type(c_ptr), value :: handle, name
+    real(c_double), value :: alpha, spin_shift
+    type(handle_t), pointer :: h
+    c_set_scheme = begin(handle, h)
+    if (c_set_scheme /= status_ok) return
+    if (.not. c_associated(name)) then
+      call fail(h%last, exit_bad_input, 'kcreep_set_scheme: name is NULL')
+      c_set_scheme = finish(h)
+      return
+    end if
+    h%problem%scheme%name = from_c(name, 32)
+    h%problem%scheme%alpha = alpha
+    h%problem%scheme%spin_shift = spin_shift
+  end function c_set_scheme
+
+  !> method: "auto", "dense" or "iterative"; tolerance of the iterative solver (0: default).
+  integer(c_int) function c_set_solver(handle, method, tolerance) bind(c, name='kcreep_set_solver')
+    type(c_ptr), value :: handle, method
+    real(c_double), value :: tolerance
+    type(handle_t), pointer :: h
+    c_set_solver = begin(handle, h)
+    if (c_set_solver /= status_ok) return
+    if (.not. c_associated(method)) then
+      call fail(h%last, exit_bad_input, 'kcreep_set_solver: method is NULL')
+      c_set_solver = finish(h)
+      return
+    end if
+    h%problem%solve%method = from_c(method, 32)
+    if (tolerance > 0) h%problem%solve%tolerance = tolerance
+  end function c_set_solver
+
+  !> Richardson extrapolation over levels (2 or 3) refined by ratio; levels 0 turns it off.
+  integer(c_int) function c_set_extrapolation(handle, levels, ratio) bind(c, name='kcreep_set_extrapolation')
+    type(c_ptr), value :: handle
+    integer(c_int), value :: levels, ratio
+    type(handle_t), pointer :: h
+    c_set_extrapolation = begin(handle, h)
+    if (c_set_extrapolation /= status_ok) return
+    h%problem%extrapolate = levels > 0
+    if (levels > 0) then
+      h%problem%extrapolate_levels = levels
+      h%problem%refine_ratio = ratio
+    end if
+  end function c_set_extrapolation
+
+  !> The ellipse of semi-axes a (along x, rolling) and b on an mx x my grid over [-a, a] x [-b, b].
+  integer(c_int) function c_set_ellipse(handle, semi_a, semi_b, mx, my) bind(c, name='kcreep_set_ellipse')
+    type(c_ptr), value :: handle
+    real(c_double), value :: semi_a, semi_b
+    integer(c_int), value :: mx, my
+    type(handle_t), pointer :: h
+    c_set_ellipse = begin(handle, h)
+    if (c_set_ellipse /= status_ok) return
+    if (.not. (semi_a > 0 .and. semi_b > 0 .and. semi_a < huge(1.0_wp) .and. semi_b < huge(1.0_wp))) then
+      call fail(h%last, exit_bad_input, 'kcreep_set_ellipse: semi_a, semi_b must be finite and > 0')
+    else if (mx < 1 .or. my < 1) then
+      call fail(h%last, exit_bad_input, 'kcreep_set_ellipse: mx, my must be >= 1')
+    else
+      call ellipse_patch(real(semi_a, wp), real(semi_b, wp), int(mx), int(my), h%problem%patch, h%last)
+    end if
+    c_set_ellipse = finish(h)
+  end function c_set_ellipse
+
+  !> A mask of mx x my cells: inside[iy * mx + ix] != 0 for cells in the patch
+  !> (rows in increasing y, cells in increasing x), cell sizes dx, dy, centre
+  !> of the first cell (x0, y0).
+  integer(c_int) function c_set_mask(handle, mx, my, inside, dx, dy, x0, y0) bind(c, name='kcreep_set_mask')
+    type(c_ptr), value :: handle
+    integer(c_int), value :: mx, my
+    type(c_ptr), value :: inside
+    real(c_double), value :: dx, dy, x0, y0
+    type(handle_t), pointer :: h
+    integer(c_int), pointer :: cells(:, :)
+    c_set_mask = begin(handle, h)
+    if (c_set_mask /= status_ok) return
+    if (.not. c_associated(inside)) then
+      call fail(h%last, exit_bad_input, 'kcreep_set_mask: inside is NULL')
+    else if (mx < 1 .or. my < 1) then
+      call fail(h%last, exit_bad_input, 'kcreep_set_mask: mx, my must be >= 1')
+    else if (.not. (dx > 0 .and. dy > 0 .and. dx < huge(1.0_wp) .and. dy < huge(1.0_wp))) then
+      call fail(h%last, exit_bad_input, 'kcreep_set_mask: dx, dy must be finite and > 0')
+    else if (.not. (abs(x0) < huge(1.0_wp) .and. abs(y0) < huge(1.0_wp))) then
+      call fail(h%last, exit_bad_input, 'kcreep_set_mask: x0, y0 must be finite')
+    else
+      call c_f_pointer(inside, cells, [mx, my])
+      call mask_patch(cells /= 0, real(dx, wp), real(dy, wp), real(x0, wp), real(y0, wp), 'kcreep_set_mask', &
+                      h%problem%patch, h%last)
+    end if
+    c_set_mask = finish(h)
+  end function c_set_mask
+
+  !> Solve the handle's problem (reusing the operator table of the last solve
+  !> when the grid, scheme and material are the same).
+  integer(c_int) function c_solve(handle) bind(c, name='kcreep_solve')
+    type(c_ptr), value :: handle
+    type(handle_t), pointer :: h
+    c_solve = begin(handle, h)
+    if (c_solve /= status_ok) return
+    h%solved = .false.
+    call kcreep_solve(h%problem, h%result, h%last, h%cache)
+    h%solved = .not. h%last%failed()
+    c_solve = finish(h)
+  end function c_solve
+
+  !> kcreep_set_mask, then kcreep_solve: the in-loop call.
+  integer(c_int) function c_solve_mask(handle, mx, my, inside, dx, dy, x0, y0) bind(c, name='kcreep_solve_mask')
+    type(c_ptr), value :: handle
+    integer(c_int), value :: mx, my
+    type(c_ptr), value :: inside
+    real(c_double), value :: dx, dy, x0, y0
+    c_solve_mask = c_set_mask(handle, mx, my, inside, dx, dy, x0, y0)
+    if (c_solve_mask == status_ok) c_solve_mask = c_solve(handle)
+  end function c_solve_mask
+
+  !> f[3 i + j] = f_(i+1)(j+1): (Fx, Fy, Mz) = -f (xi, eta, phi).
+  integer(c_int) function c_get_matrix(handle, f) bind(c, name='kcreep_get_matrix')
+    type(c_ptr), value :: handle, f
+    type(handle_t), pointer :: h
+    real(c_double), pointer :: values(:)
+    c_get_matrix = solved(handle, h)
+    if (c_get_matrix == status_ok) c_get_matrix = output_array(h, f, 9, 'kcreep_get_matrix: f', values)
+    if (c_get_matrix /= status_ok) return
+    values = reshape(transpose(h%result%f), [9])   ! C reads row-major
+  end function c_get_matrix
+
+  !> c[0..2] = C11, C22, C23 (f11 / (G c^2), f22 / (G c^2), f23 / (G c^3)).
+  integer(c_int) function c_get_normalised(handle, c) bind(c, name='kcreep_get_normalised')
+    type(c_ptr), value :: handle, c
+    type(handle_t), pointer :: h
+    real(c_double), pointer :: values(:)
+    c_get_normalised = solved(handle, h)
+    if (c_get_normalised == status_ok) c_get_normalised = output_array(h, c, 3, 'kcreep_get_normalised: c', values)
+    if (c_get_normalised /= status_ok) return
+    values = h%result%cn
+  end function c_get_normalised
+
+  !> Estimated absolute error of C11, C22, C23 (Richardson extrapolation);
+  !> NaN when no estimate was computed. value[0..2]: the extrapolated limits.
+  integer(c_int) function c_get_error_estimate(handle, limit, error) bind(c, name='kcreep_get_error_estimate')
+    type(c_ptr), value :: handle, limit, error
+    type(handle_t), pointer :: h
+    real(c_double), pointer :: limits(:), errors(:)
+    c_get_error_estimate = solved(handle, h)
+    if (c_get_error_estimate == status_ok) &
+      c_get_error_estimate = output_array(h, limit, 3, 'kcreep_get_error_estimate: limit', limits)
+    if (c_get_error_estimate == status_ok) &
+      c_get_error_estimate = output_array(h, error, 3, 'kcreep_get_error_estimate: error', errors)
+    if (c_get_error_estimate /= status_ok) return
+    if (h%result%extrapolated) then
+      limits = h%result%ext
+      errors = h%result%ext_error
+    else
+      limits = ieee_value(1.0_wp, ieee_quiet_nan)
+      errors = limits
+    end if
+  end function c_get_error_estimate
+
+  !> FASTSIM flexibilities L1, L2, L3 from the exact coefficients.
+  integer(c_int) function c_get_fastsim(handle, flexibility) bind(c, name='kcreep_get_fastsim')
+    type(c_ptr), value :: handle, flexibility
+    type(handle_t), pointer :: h
+    real(c_double), pointer :: values(:)
+    c_get_fastsim = solved(handle, h)
+    if (c_get_fastsim == status_ok) c_get_fastsim = output_array(h, flexibility, 3, 'kcreep_get_fastsim: l', values)
+    if (c_get_fastsim /= status_ok) return
+    values = h%result%fastsim
+  end function c_get_fastsim
+
+  !> Verdict bits (0: ok) and the verdict words with the warnings, '; '-separated.
+  integer(c_int) function c_get_verdict(handle, flags, buffer, buffer_length) bind(c, name='kcreep_get_verdict')
+    type(c_ptr), value :: handle, flags, buffer
+    integer(c_int), value :: buffer_length
+    type(handle_t), pointer :: h
+    character(len=:), allocatable :: text
+    integer(c_int), pointer :: flag_value
+    character(kind=c_char), pointer :: chars(:)
+    integer :: i
+    c_get_verdict = solved(handle, h)
+    if (c_get_verdict /= status_ok) return
+    if (.not. c_associated(flags) .or. .not. c_associated(buffer) .or. buffer_length < 1) then
+      call fail(h%last, exit_bad_input, 'kcreep_get_verdict: flags and buffer must not be NULL, buffer_length >= 1')
+      c_get_verdict = finish(h)
+      return
+    end if
+    call c_f_pointer(flags, flag_value)
+    call c_f_pointer(buffer, chars, [buffer_length])
+    flag_value = int(h%result%verdict_flags, c_int)
+    text = h%result%verdict
+    do i = 1, size(h%result%warnings)
+      text = text//'; '//trim(h%result%warnings(i))
+    end do
+    call to_c(text, chars, buffer_length)
+  end function c_get_verdict
+
+  !> Cells in the patch solved (the finest level when extrapolated) and its grid.
+  integer(c_int) function c_get_cells(handle, n, mx, my) bind(c, name='kcreep_get_cells')
+    type(c_ptr), value :: handle
+    integer(c_int), intent(out) :: n, mx, my   ! (by reference: NULL is not allowed, see kcreep.h)
+    type(handle_t), pointer :: h
+    c_get_cells = solved(handle, h)
+    if (c_get_cells /= status_ok) return
+    n = int(h%result%n, c_int)
+    mx = int(h%result%mx, c_int)
+    my = int(h%result%my, c_int)
+  end function c_get_cells
+
+  !> Tractions per unit creepage: for cell k (patch order, x fastest) and load
+  !> case j (0 xi, 1 eta, 2 phi), px = t[j * 2n + k], py = t[j * 2n + n + k];
+  !> ix[k], iy[k] (1-based grid indices) when the pointers are not NULL.
+  !> length: the room in t, at least 6 n.
+  integer(c_int) function c_get_tractions(handle, length, t, ix, iy) bind(c, name='kcreep_get_tractions')
+    type(c_ptr), value :: handle
+    integer(c_int), value :: length
+    type(c_ptr), value :: t, ix, iy
+    type(handle_t), pointer :: h
+    integer(c_int), pointer :: cells(:)
+    real(c_double), pointer :: values(:)
+    integer :: n
+    c_get_tractions = solved(handle, h)
+    if (c_get_tractions /= status_ok) return
+    n = h%result%n
+    if (length < 2 * n * n_load_cases) then
+      call fail(h%last, exit_bad_input, 'kcreep_get_tractions: length must be at least 6 n = '// &
+                itoa(6 * n))
+      c_get_tractions = finish(h)
+      return
+    end if
+    c_get_tractions = output_array(h, t, 2 * n * n_load_cases, 'kcreep_get_tractions: t', values)
+    if (c_get_tractions /= status_ok) return
+    values = reshape(h%result%traction, [2 * n * n_load_cases])
+    if (c_associated(ix)) then
+      call c_f_pointer(ix, cells, [n])
+      cells = int(h%result%patch%ix, c_int)
+    end if
+    if (c_associated(iy)) then
+      call c_f_pointer(iy, cells, [n])
+      cells = int(h%result%patch%iy, c_int)
+    end if
+  end function c_get_tractions
+
+  !> Solves on this handle that reused the operator table of an earlier one.
+  integer(c_int) function c_get_reuse_count(handle, count) bind(c, name='kcreep_get_reuse_count')
+    type(c_ptr), value :: handle
+    integer(c_int), intent(out) :: count
+    type(handle_t), pointer :: h
+    c_get_reuse_count = begin(handle, h)
+    if (c_get_reuse_count /= status_ok) return
+    count = int(h%cache%reused, c_int)
+  end function c_get_reuse_count
+
+  ! --- helpers -------------------------------------------------------------
+
+  !> The handle behind a C pointer, with its last error cleared.
+  integer(c_int) function begin(handle, h)
+    type(c_ptr), intent(in) :: handle
+    type(handle_t), pointer, intent(out) :: h
+    nullify (h)
+    if (.not. c_associated(handle)) then
+      begin = status_no_result
+      return
+    end if
+    call c_f_pointer(handle, h)
+    h%last = status_t()
+    begin = status_ok
+  end function begin
+
+  !> The handle of a solved problem, or the status saying why there is none.
+  integer(c_int) function solved(handle, h)
+    type(c_ptr), intent(in) :: handle
+    type(handle_t), pointer, intent(out) :: h
+    solved = begin(handle, h)
+    if (solved /= status_ok) return
+    if (.not. h%solved) then
+      call fail(h%last, int(status_no_result), 'no result: call kcreep_solve (successfully) first')
+      solved = status_no_result
+    end if
+  end function solved
+
+  integer(c_int) function finish(h)
+    type(handle_t), intent(in) :: h
+    finish = int(h%last%code, c_int)
+  end function finish
+
+  !> A NUL-terminated C string (at most max_length characters read).
+  function from_c(text_ptr, max_length) result(s)
+    type(c_ptr), intent(in) :: text_ptr
+    integer, intent(in) :: max_length
+    character(len=:), allocatable :: s
+    character(kind=c_char), pointer :: text(:)
+    integer :: i
+    call c_f_pointer(text_ptr, text, [max_length])
+    s = ''
+    do i = 1, max_length
+      if (text(i) == c_null_char) exit
+      s = s//text(i)
+    end do
+  end function from_c
+
+  subroutine to_c(s, buffer, buffer_length)
+    character(len=*), intent(in) :: s
+    character(kind=c_char), intent(out) :: buffer(*)
+    integer(c_int), intent(in) :: buffer_length
+    integer :: i, n
+    n = min(len(s), int(buffer_length) - 1)
+    do i = 1, n
+      buffer(i) = s(i:i)
+    end do
+    buffer(n + 1) = c_null_char
+  end subroutine to_c
+
+  !> out as a Fortran array of length n, or a bad-input status when it is NULL.
+  integer(c_int) function output_array(h, out, n, what, values)
+    type(handle_t), intent(inout) :: h
+    type(c_ptr), intent(in) :: out
+    integer, intent(in) :: n
+    character(len=*), intent(in) :: what
+    real(c_double), pointer, intent(out) :: values(:)
+    nullify (values)
+    if (.not. c_associated(out)) then
+      call fail(h%last, exit_bad_input, what//' is NULL')
+    else
+      call c_f_pointer(out, values, [n])
+    end if
+    output_array = finish(h)
+  end function output_array
+
+end module kcreep_capi

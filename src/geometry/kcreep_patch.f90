@@ -1,0 +1,159 @@
+!> The contact patch: a uniform grid of rectangular cells and the mask of the
+!> cells that are in contact.
+!>
+!> Grid convention: cell (ix, iy), ix = 1..mx along x (rolling direction),
+!> iy = 1..my along y, has its centre at (x0 + (ix-1)*dx, y0 + (iy-1)*dy).
+!> Only the cells of the mask become unknowns; they are numbered in the
+!> order of the grid (ix fastest).
+!>
+!> Geometry only: files with masks are read in io (kcreep_mask_file).
+module kcreep_patch
+  use, intrinsic :: iso_fortran_env, only: real64
+  use kcreep_status, only: status_t, fail, exit_bad_input
+  use kcreep_strings, only: itoa
+  use kcreep_limits, only: check_grid_size
+  implicit none
+  private
+  public :: patch_t, ellipse_patch, mask_patch
+
+  type :: patch_t
+    character(len=:), allocatable :: kind     !< 'ellipse', 'mask' or 'contact'
+    integer :: mx = 0, my = 0                 !< grid cells along x and y
+    real(real64) :: dx = 0, dy = 0            !< cell sizes
+    real(real64) :: x0 = 0, y0 = 0            !< centre of cell (1, 1)
+    real(real64) :: semi_a = 0, semi_b = 0    !< ellipse semi-axes (kind 'ellipse' only)
+    logical, allocatable :: inside(:, :)      !< (mx, my): cell is in the patch
+    integer :: n = 0                          !< number of patch cells
+    integer, allocatable :: ix(:), iy(:)      !< grid indices of patch cell k
+  contains
+    procedure :: cell_x, cell_y, area, equivalent_radius, centroid
+    procedure :: mirror_symmetric_in_x, mirror_symmetric_in_y
+  end type patch_t
+
+contains
+
+  !> Cells of an mx x my grid over [-a, a] x [-b, b] whose centres lie in the ellipse.
+  subroutine ellipse_patch(semi_a, semi_b, mx, my, patch, status)
+    real(real64), intent(in) :: semi_a, semi_b
+    integer, intent(in) :: mx, my
+    type(patch_t), intent(out) :: patch
+    type(status_t), intent(inout) :: status
+    integer :: ix, iy
+    real(real64) :: x, y
+
+    patch%kind = 'ellipse'
+    patch%semi_a = semi_a
+    patch%semi_b = semi_b
+    patch%mx = mx
+    patch%my = my
+    patch%dx = 2 * semi_a / mx
+    patch%dy = 2 * semi_b / my
+    patch%x0 = -semi_a + patch%dx / 2
+    patch%y0 = -semi_b + patch%dy / 2
+    allocate (patch%inside(mx, my))
+    do iy = 1, my
+      do ix = 1, mx
+        x = patch%cell_x(ix)
+        y = patch%cell_y(iy)
+        patch%inside(ix, iy) = (x / semi_a)**2 + (y / semi_b)**2 <= 1
+      end do
+    end do
+    call index_cells(patch, 'ellipse', status)
+  end subroutine ellipse_patch
+
+  !> A patch from an explicit mask on a grid with given cell sizes and origin.
+  subroutine mask_patch(inside, dx, dy, x0, y0, source, patch, status)
+    logical, intent(in) :: inside(:, :)
+    real(real64), intent(in) :: dx, dy, x0, y0
+    character(len=*), intent(in) :: source   !< named in error messages
+    type(patch_t), intent(out) :: patch
+    type(status_t), intent(inout) :: status
+
+    call check_grid_size(size(inside, 1), size(inside, 2), trim(source)//': ', status)
+    if (status%failed()) return
+    patch%kind = 'mask'
+    patch%mx = size(inside, 1)
+    patch%my = size(inside, 2)
+    patch%dx = dx
+    patch%dy = dy
+    patch%x0 = x0
+    patch%y0 = y0
+    patch%inside = inside
+    call index_cells(patch, source, status)
+  end subroutine mask_patch
+
+  !> Number the patch cells; an empty patch is an error.
+  subroutine index_cells(patch, source, status)
+    type(patch_t), intent(inout) :: patch
+    character(len=*), intent(in) :: source
+    type(status_t), intent(inout) :: status
+    integer :: ix, iy, k
+
+    patch%n = count(patch%inside)
+    if (patch%n == 0) then
+      call fail(status, exit_bad_input, trim(source)//': the patch is empty (no cell inside on the '// &
+                itoa(patch%mx)//' x '//itoa(patch%my)//' grid)')
+      return
+    end if
+    allocate (patch%ix(patch%n), patch%iy(patch%n))
+    k = 0
+    do iy = 1, patch%my
+      do ix = 1, patch%mx
+        if (.not. patch%inside(ix, iy)) cycle
+        k = k + 1
+        patch%ix(k) = ix
+        patch%iy(k) = iy
+      end do
+    end do
+  end subroutine index_cells
+
+  elemental real(real64) function cell_x(self, ix)
+    class(patch_t), intent(in) :: self
+    integer, intent(in) :: ix
+    cell_x = self%x0 + (ix - 1) * self%dx
+  end function cell_x
+
+  elemental real(real64) function cell_y(self, iy)
+    class(patch_t), intent(in) :: self
+    integer, intent(in) :: iy
+    cell_y = self%y0 + (iy - 1) * self%dy
+  end function cell_y
+
+  pure real(real64) function area(self)
+    class(patch_t), intent(in) :: self
+    area = self%n * self%dx * self%dy
+  end function area
+
+  !> c of the normalisation: sqrt(a b) for an ellipse, sqrt(area/pi) otherwise.
+  pure real(real64) function equivalent_radius(self)
+    class(patch_t), intent(in) :: self
+    real(real64), parameter :: pi = acos(-1.0_real64)
+    if (self%kind == 'ellipse') then
+      equivalent_radius = sqrt(self%semi_a * self%semi_b)
+    else
+      equivalent_radius = sqrt(self%area() / pi)
+    end if
+  end function equivalent_radius
+
+  !> Centre of area of the patch cells.
+  pure function centroid(self) result(xy)
+    class(patch_t), intent(in) :: self
+    real(real64) :: xy(2)
+    xy = [sum(self%cell_x(self%ix)), sum(self%cell_y(self%iy))] / max(1, self%n)
+  end function centroid
+
+  !> The mask is its own mirror image in x about x = 0 (cell positions included).
+  pure logical function mirror_symmetric_in_x(self)
+    class(patch_t), intent(in) :: self
+    mirror_symmetric_in_x = abs(self%x0 + (self%mx - 1) * self%dx / 2) <= 1e-12_real64 * self%dx * self%mx
+    if (mirror_symmetric_in_x) mirror_symmetric_in_x = all(self%inside .eqv. self%inside(self%mx:1:-1, :))
+  end function mirror_symmetric_in_x
+
+  !> The mask is its own mirror image in y about y = 0 (cell positions included).
+  pure logical function mirror_symmetric_in_y(self)
+    class(patch_t), intent(in) :: self
+    mirror_symmetric_in_y = abs(self%y0 + (self%my - 1) * self%dy / 2) <= 1e-12_real64 * self%dy * self%my
+    if (mirror_symmetric_in_y) mirror_symmetric_in_y = all(self%inside .eqv. self%inside(:, self%my:1:-1))
+  end function mirror_symmetric_in_y
+
+end module kcreep_patch

@@ -1,0 +1,73 @@
+!> What the library is asked (problem_t) and what it answers (result_t).
+!>
+!> A problem is a patch on its grid, the material, the discretisation scheme,
+!> how to solve, and which load cases (xi, eta, phi) are wanted. The result is
+!> the 3 x 3 creep-force matrix with everything needed to judge it: the
+!> normalised values, the error estimate when one was computed, the solver's
+!> diagnostics, the verdict (codes and messages) and, on request, the
+!> tractions. Nothing here knows about namelists or files.
+module kcreep_problem
+  use, intrinsic :: iso_fortran_env, only: real64, int64
+  use kcreep_patch, only: patch_t
+  use kcreep_assembly, only: scheme_t, n_load_cases
+  use kcreep_solver_options, only: solver_options_t
+  use kcreep_verdict, only: verdict_ok, message_length
+  implicit none
+  private
+  public :: problem_t, result_t, default_problem
+
+  type :: problem_t
+    type(patch_t) :: patch
+    real(real64) :: g = 1                       !< combined shear modulus
+    real(real64) :: nu = 0.25_real64            !< combined Poisson's ratio
+    type(scheme_t) :: scheme                    !< 'collocation' (alpha) or 'backward' (spin_shift)
+    type(solver_options_t) :: solve             !< dense / iterative / auto, tolerance, splits
+    logical :: requested(n_load_cases) = .true. !< load cases xi, eta, phi to solve
+    character(len=:), allocatable :: refine     !< dense refinement: 'auto', 'always', 'never', 'lapack'
+    logical :: extrapolate = .false.            !< Richardson extrapolation in the mesh size
+    integer :: extrapolate_levels = 3, refine_ratio = 2
+  end type problem_t
+
+  type :: result_t
+    character(len=:), allocatable :: scheme     !< as solved
+    integer :: mx = 0, my = 0, n = 0            !< grid and patch cells solved (the finest level)
+    real(real64) :: alpha = 0, nu = 0, g = 0    !< alpha NaN for the backward scheme
+    real(real64) :: c = 0                       !< normalising length: sqrt(a b), or sqrt(area / pi)
+    real(real64) :: f(3, 3) = 0                 !< f(i, j) = f_ij; (Fx, Fy, Mz) = -f (xi, eta, phi)
+    real(real64) :: cn(3) = 0                   !< C11, C22, C23
+    real(real64) :: klt(3) = 0                  !< Kalker's table E3 for an ellipse, NaN otherwise
+    real(real64) :: fastsim(3) = 0              !< FASTSIM flexibilities L1, L2, L3
+    real(real64) :: centroid(2) = 0             !< centre of area of the patch cells
+    ! Richardson extrapolation (problem%extrapolate): limits, error estimates, orders used
+    logical :: extrapolated = .false.
+    real(real64) :: ext(3) = 0, ext_error(3) = 0, ext_order(3) = 0
+    ! diagnostics of the solve
+    character(len=:), allocatable :: method     !< 'dense' or 'iterative'
+    integer :: iterations = 0                   !< GMRES iterations, 0 for dense
+    real(real64) :: rcond = 0, backward_error = 0
+    real(real64) :: backward_error_initial = 0, relative_residual = 0   !< before refinement
+    character(len=:), allocatable :: refine     !< mode and whether it refined
+    real(real64) :: t_assemble = 0, t_factor = 0, t_solve = 0, t_total = 0
+    real(real64) :: t_operator = 0, t_preconditioner = 0, t_orthogonalise = 0   !< GMRES profile
+    ! verdict
+    integer :: verdict_flags = verdict_ok
+    character(len=:), allocatable :: verdict    !< 'ok' or the words of the flags, comma separated
+    character(len=message_length), allocatable :: warnings(:)   !< one sentence per problem found
+    type(patch_t) :: patch                      !< the grid solved (the finest level)
+    !> (2 n, 3): px (1:n) and py (n+1:2n) of each load case per unit creepage,
+    !> NaN for cases not requested; cells numbered as in the patch
+    real(real64), allocatable :: traction(:, :)
+  end type result_t
+
+contains
+
+  !> A problem with every setting at kcreep's default (no patch yet): the
+  !> namelist reader and the C and Python bindings start from this.
+  pure function default_problem() result(problem)
+    type(problem_t) :: problem
+    problem%scheme%name = 'collocation'
+    problem%solve%method = 'auto'
+    problem%refine = 'auto'
+  end function default_problem
+
+end module kcreep_problem

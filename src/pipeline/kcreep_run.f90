@@ -1,0 +1,134 @@
+!> One grid, from problem to result: build the operator, solve the requested
+!> load cases, derive the coefficients and judge them.
+module kcreep_run
+  use, intrinsic :: iso_fortran_env, only: real64, int64
+  use, intrinsic :: ieee_arithmetic, only: ieee_value, ieee_quiet_nan
+  use kcreep_status, only: status_t
+  use kcreep_assembly, only: operator_table_t, build_operator_table
+  use kcreep_dense, only: dense_diagnostics_t
+  use kcreep_linear_solve, only: solve_load_cases
+  use kcreep_creep_matrix, only: creep_matrix, normalised
+  use kcreep_kalker_table, only: kalker_coefficients
+  use kcreep_fastsim, only: fastsim_flexibilities
+  use kcreep_verdict, only: judge
+  use kcreep_problem, only: problem_t, result_t
+  implicit none
+  private
+  public :: run_case, solve_cache_t
+
+  !> What repeated solves on the same grid can share: the operator table
+  !> (influence coefficients by cell offset) depends on the grid, the scheme
+  !> and the material, not on the mask. Kept by the caller between solves.
+  type :: solve_cache_t
+    type(operator_table_t) :: table
+    logical :: filled = .false.
+    integer :: mx = 0, my = 0
+    real(real64) :: dx = 0, dy = 0, nu = 0, g = 0, alpha = 0, spin_shift = 0
+    character(len=:), allocatable :: scheme
+    integer :: reused = 0                   !< solves that found the table here
+  end type solve_cache_t
+
+contains
+
+  !> Solve problem on its own grid (no extrapolation).
+  subroutine run_case(problem, result, status, cache)
+    type(problem_t), intent(in) :: problem
+    type(result_t), intent(out) :: result
+    type(status_t), intent(inout) :: status
+    type(solve_cache_t), intent(inout), optional, target :: cache
+    type(operator_table_t), target :: own_table
+    type(operator_table_t), pointer :: table
+    type(dense_diagnostics_t) :: diag
+    integer(int64) :: t0, t1, rate
+    real(real64) :: t_table
+
+    allocate (result%warnings(0))
+    call system_clock(t0, rate)
+    associate (patch => problem%patch)
+      if (present(cache)) then
+        if (.not. cache_matches(cache, problem)) then
+          call build_operator_table(patch, problem%scheme, problem%nu, problem%g, cache%table)
+          call remember(cache, problem)
+        else
+          cache%reused = cache%reused + 1
+        end if
+        table => cache%table
+      else
+        call build_operator_table(patch, problem%scheme, problem%nu, problem%g, own_table)
+        table => own_table
+      end if
+      call system_clock(t1)
+      t_table = real(t1 - t0, real64) / rate
+
+      ! dense or iterative, only the systems the requested cases need
+      call solve_load_cases(problem%solve, problem%scheme, problem%nu, patch, table, problem%requested, &
+                            problem%refine, result%traction, diag, status)
+      if (status%failed()) return
+
+      result%scheme = problem%scheme%name
+      result%mx = patch%mx
+      result%my = patch%my
+      result%n = patch%n
+      result%alpha = merge(problem%scheme%alpha, ieee_value(1.0_real64, ieee_quiet_nan), &
+                           problem%scheme%name == 'collocation')
+      result%nu = problem%nu
+      result%g = problem%g
+      result%patch = patch
+      result%c = patch%equivalent_radius()
+      result%centroid = patch%centroid()
+      result%f = creep_matrix(patch, result%traction, problem%requested)
+      result%cn = normalised(result%f, problem%g, result%c)
+      result%fastsim = fastsim_flexibilities(patch, result%f(1, 1), result%f(2, 2), result%f(2, 3))
+      if (patch%kind == 'ellipse') then
+        result%klt = kalker_coefficients(patch%semi_a / patch%semi_b, problem%nu)
+      else
+        result%klt = ieee_value(1.0_real64, ieee_quiet_nan)
+      end if
+      result%rcond = diag%rcond
+      result%backward_error = diag%backward_error
+      result%backward_error_initial = diag%backward_error_initial
+      result%relative_residual = diag%relative_residual
+      result%refine = problem%refine//merge(' (refined)    ', ' (not refined)', diag%refined)
+      result%method = diag%method
+      result%iterations = diag%iterations
+      result%t_assemble = t_table + diag%t_assemble
+      result%t_factor = diag%t_factor
+      result%t_solve = diag%t_solve
+      result%t_operator = diag%t_operator
+      result%t_preconditioner = diag%t_preconditioner
+      result%t_orthogonalise = diag%t_orthogonalise
+      call judge(problem%scheme, problem%requested, patch, result%traction, result%f, diag, &
+                 result%verdict_flags, result%verdict, result%warnings)
+    end associate
+    call system_clock(t1)
+    result%t_total = real(t1 - t0, real64) / rate
+  end subroutine run_case
+
+  pure logical function cache_matches(cache, problem)
+    type(solve_cache_t), intent(in) :: cache
+    type(problem_t), intent(in) :: problem
+    cache_matches = cache%filled
+    if (.not. cache_matches) return
+    associate (p => problem%patch, s => problem%scheme)
+      cache_matches = cache%mx == p%mx .and. cache%my == p%my .and. cache%dx == p%dx .and. cache%dy == p%dy &
+                      .and. cache%nu == problem%nu .and. cache%g == problem%g .and. cache%scheme == s%name &
+                      .and. cache%alpha == s%alpha .and. cache%spin_shift == s%spin_shift
+    end associate
+  end function cache_matches
+
+  pure subroutine remember(cache, problem)
+    type(solve_cache_t), intent(inout) :: cache
+    type(problem_t), intent(in) :: problem
+    cache%filled = .true.
+    cache%mx = problem%patch%mx
+    cache%my = problem%patch%my
+    cache%dx = problem%patch%dx
+    cache%dy = problem%patch%dy
+    cache%nu = problem%nu
+    cache%g = problem%g
+    cache%scheme = problem%scheme%name
+    cache%alpha = problem%scheme%alpha
+    cache%spin_shift = problem%scheme%spin_shift
+  end subroutine remember
+
+end module kcreep_run

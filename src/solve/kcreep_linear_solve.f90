@@ -1,0 +1,511 @@
+!> Solve the requested load cases by the chosen method.
+!>
+!> dense:     LU of each subsystem the scene needs (system_split): a
+!>            y-symmetric patch gives two half-size systems, nu = 0 splits
+!>            px from py, and a system no requested case needs is skipped.
+!>            Residuals for the backward error come from the FFT operator
+!>            (O(n log n) instead of O(n^2)).
+!> iterative: GMRES on the full system with the FFT operator and the strip
+!>            preconditioner; all requested cases in lockstep.
+!> auto:      the one estimated faster, and iterative whenever the dense
+!>            matrix does not fit in the memory available.
+module kcreep_linear_solve
+  use, intrinsic :: iso_fortran_env, only: real64, int64
+  use, intrinsic :: ieee_arithmetic, only: ieee_value, ieee_quiet_nan
+  use kcreep_status, only: status_t, fail, exit_numerical, exit_bad_input
+  use kcreep_strings, only: itoa, rtoa
+  use kcreep_lapack, only: dgetrf, dgetrs, dgecon
+  use kcreep_patch, only: patch_t
+  use kcreep_assembly, only: operator_table_t, scheme_t, rigid_creepage, n_load_cases
+  use kcreep_dense, only: dense_diagnostics_t, backward_error, relative_residual, &
+                          refine_threshold, solve_lapack_expert
+  use kcreep_split, only: subsystem_t, plan_subsystems, assemble_subsystem, restrict_to, expand_from
+  use kcreep_fft_operator, only: fft_operator_t, create_fft_operator, destroy_fft_operator, apply_fft_operator
+  use kcreep_preconditioner, only: strip_preconditioner_t, build_strip_preconditioner, apply_strip_preconditioner
+  use kcreep_krylov, only: block_operator_t, gmres_result_t, gmres
+  use kcreep_solver_options, only: solver_options_t
+  implicit none
+  private
+  public :: solve_load_cases, choose_method, solve_memory_bytes
+
+  !> GMRES works on the unknowns of the subsystems (system_split), one
+  !> subsystem per column, padded with zeros to the longest: a y-symmetric
+  !> patch thus needs half-length Krylov vectors and half the preconditioner
+  !> work. The operator expands to the full traction, applies the FFT
+  !> operator and restricts back.
+  type, extends(block_operator_t) :: fft_block_t
+    type(fft_operator_t) :: op
+    type(subsystem_t), allocatable :: subs(:)
+    integer, allocatable :: sub_of(:)     !< subsystem of each column
+    integer :: n = 0
+  contains
+    procedure :: apply => apply_fft_block
+  end type fft_block_t
+
+  !> The strip preconditioner on the representative cells (their mirror
+  !> rows have the same blocks, so the reduced preconditioner is the full
+  !> one restricted).
+  type, extends(block_operator_t) :: strip_block_t
+    type(strip_preconditioner_t) :: p
+    type(subsystem_t), allocatable :: subs(:)
+    integer, allocatable :: sub_of(:)
+    integer :: n = 0
+  contains
+    procedure :: apply => apply_strip_block
+  end type strip_block_t
+
+  !> Rates for the 'auto' choice, from scripts/bench.sh on the 2-core
+  !> development machine (shared, so rough): the split dense LU ran at about
+  !> 3e10 flop/s end to end, and one lockstep GMRES step for the three load
+  !> cases cost about 1e-8 s per (padded FFT grid cell x log2 of the grid size).
+  real(real64), parameter :: dense_rate = 3e10_real64
+  real(real64), parameter :: iterative_step_cost = 1e-8_real64
+  !> GMRES iterations assumed by the estimate (measured 70 at 60 x 60, 180 at 400 x 400).
+  integer, parameter :: assumed_iterations = 100
+
+contains
+
+  !> 'dense' or 'iterative' for these options and this patch.
+  function choose_method(opts, patch, subs, requested) result(method)
+    type(solver_options_t), intent(in) :: opts
+    type(patch_t), intent(in) :: patch
+    type(subsystem_t), intent(in) :: subs(:)
+    logical, intent(in) :: requested(n_load_cases)
+    character(len=:), allocatable :: method
+    real(real64) :: t_dense, t_iterative, grid
+    integer :: i
+    if (opts%method /= 'auto') then
+      method = opts%method
+      return
+    end if
+    if (.not. dense_fits(subs, opts%memory_limit)) then
+      method = 'iterative'
+      return
+    end if
+    t_dense = 0
+    do i = 1, size(subs)
+      t_dense = t_dense + 2 * real(subs(i)%m, real64)**3 / 3 / dense_rate
+    end do
+    grid = 4 * real(patch%mx, real64) * patch%my
+    t_iterative = assumed_iterations * iterative_step_cost * grid * log(grid) / log(2.0_real64) &
+                  * max(1, count(requested)) / 3
+    method = merge('dense    ', 'iterative', t_dense <= t_iterative)
+    method = trim(method)
+  end function choose_method
+
+  !> The largest dense subsystem matrix (plus its copy-free solve) fits in available memory.
+  logical function dense_fits(subs, memory_limit)
+    type(subsystem_t), intent(in) :: subs(:)
+    integer(int64), intent(in) :: memory_limit   !< bytes, negative: no limit
+    integer(int64) :: have, need
+    integer :: i
+    need = 0
+    do i = 1, size(subs)
+      need = max(need, 8_int64 * subs(i)%m * subs(i)%m)
+    end do
+    have = memory_limit
+    dense_fits = have < 0 .or. need <= have * 9 / 10
+  end function dense_fits
+
+  !> traction(:, j): (px, py) of load case j for unit creepage; NaN for cases not requested.
+  !> refine: 'auto' refines once when the backward error is above round-off,
+  !> 'always' / 'never' force it, 'lapack' solves the whole unsplit system with
+  !> LAPACK's expert driver (dgesvx, equilibration and refinement) for comparison.
+  subroutine solve_load_cases(opts, scheme, nu, patch, table, requested, refine, traction, diag, status)
+    type(solver_options_t), intent(in) :: opts
+    type(scheme_t), intent(in) :: scheme
+    real(real64), intent(in) :: nu
+    type(patch_t), intent(in) :: patch
+    type(operator_table_t), intent(in) :: table
+    logical, intent(in) :: requested(n_load_cases)
+    character(len=*), intent(in) :: refine
+    real(real64), allocatable, intent(out) :: traction(:, :)
+    type(dense_diagnostics_t), intent(out) :: diag
+    type(status_t), intent(inout) :: status
+    type(subsystem_t), allocatable :: subs(:)
+    real(real64), allocatable :: rhs(:, :)
+    integer :: j, n
+    logical :: fallback
+
+    n = patch%n
+    allocate (rhs(2 * n, n_load_cases), traction(2 * n, n_load_cases))
+    do j = 1, n_load_cases
+      call rigid_creepage(patch, scheme, j, rhs(:, j))
+    end do
+    traction = ieee_value(1.0_real64, ieee_quiet_nan)
+    subs = plan_subsystems(patch, nu, opts%split_systems, requested)
+    diag%method = choose_method(opts, patch, subs, requested)
+    if (diag%method == 'dense') then
+      if (.not. dense_fits(subs, opts%memory_limit)) then
+        call fail(status, exit_bad_input, 'method = ''dense'': the largest dense matrix ('// &
+                  itoa(maxval(subs%m))//' unknowns) needs '// &
+                  rtoa(8 * real(maxval(subs%m), real64)**2 / 2.0_real64**30)//' GiB, only '// &
+                  rtoa(real(opts%memory_limit, real64) / 2.0_real64**30)// &
+                  ' GiB are available (use method = ''iterative'' or ''auto'')')
+        return
+      end if
+      if (refine == 'lapack') then
+        call solve_dense_expert(patch, table, requested, opts%memory_limit, rhs, traction, diag, status)
+      else
+        call solve_dense_split(patch, table, subs, requested, refine, rhs, traction, diag, status)
+      end if
+    else
+      call check_iterative_memory(opts, patch, count(requested), status)
+      if (status%failed()) return
+      call solve_iterative(opts, nu, patch, table, requested, rhs, traction, diag, status)
+      fallback = status%code == exit_numerical .and. opts%method == 'auto'
+      if (fallback) fallback = dense_fits(subs, opts%memory_limit)
+      if (fallback) then
+        ! auto promised an answer: GMRES stalls only on hard (near-degenerate)
+        ! systems, which the dense LU still solves and the verdict then judges
+        status = status_t()
+        diag%method = 'dense'
+        diag%iterations = 0
+        call solve_dense_split(patch, table, subs, requested, refine, rhs, traction, diag, status)
+      end if
+    end if
+  end subroutine solve_load_cases
+
+  !> refine = 'lapack': the whole 2n x 2n system through dense_solver's dgesvx path.
+  subroutine solve_dense_expert(patch, table, requested, memory_limit, rhs, traction, diag, status)
+    type(patch_t), intent(in) :: patch
+    type(operator_table_t), intent(in) :: table
+    logical, intent(in) :: requested(n_load_cases)
+    integer(int64), intent(in) :: memory_limit
+    real(real64), intent(in) :: rhs(:, :)
+    real(real64), intent(inout) :: traction(:, :)
+    type(dense_diagnostics_t), intent(inout) :: diag
+    type(status_t), intent(inout) :: status
+    real(real64), allocatable :: x(:, :)
+    integer, allocatable :: cases(:)
+    integer :: j
+    cases = pack([(j, j=1, n_load_cases)], requested)
+    x = rhs(:, cases)
+    call solve_lapack_expert(patch, table, memory_limit, x, diag, status)
+    if (status%failed()) return
+    diag%method = 'dense'
+    diag%iterations = 0
+    do j = 1, size(cases)
+      traction(:, cases(j)) = x(:, j)
+    end do
+  end subroutine solve_dense_expert
+
+  !> Fail before allocating when the GMRES basis, FFT grids and strip factors cannot fit.
+  subroutine check_iterative_memory(opts, patch, n_cases, status)
+    type(solver_options_t), intent(in) :: opts
+    type(patch_t), intent(in) :: patch
+    integer, intent(in) :: n_cases
+    type(status_t), intent(inout) :: status
+    real(real64) :: need, have
+    need = iterative_bytes(opts, patch, n_cases)
+    have = real(opts%memory_limit, real64)
+    if (have > 0 .and. need > have) then
+      call fail(status, exit_bad_input, 'the iterative solver for '//itoa(patch%n)//' cells needs about '// &
+                rtoa(need / 2.0_real64**30)//' GiB, only '//rtoa(have / 2.0_real64**30)// &
+                ' GiB are available (use a coarser grid, fewer load_cases or a smaller restart)')
+    end if
+  end subroutine check_iterative_memory
+
+  !> Krylov basis + a few work vectors, 4 padded grids per case, row factors (<= 2 n mx).
+  pure real(real64) function iterative_bytes(opts, patch, n_cases) result(bytes)
+    type(solver_options_t), intent(in) :: opts
+    type(patch_t), intent(in) :: patch
+    integer, intent(in) :: n_cases
+    bytes = 8 * (2 * real(patch%n, real64) * ((opts%restart + 6) * n_cases) + &
+                 4 * n_cases * 4 * real(patch%mx, real64) * patch%my + 2 * real(patch%n, real64) * patch%mx)
+  end function iterative_bytes
+
+  !> Peak bytes of solve_load_cases for this case, for the method it will take
+  !> ('auto' decided as it would be now): the largest dense subsystem matrix
+  !> with about 20 vectors of its size, or the iterative solver's storage.
+  function solve_memory_bytes(opts, nu, patch, requested) result(bytes)
+    type(solver_options_t), intent(in) :: opts
+    real(real64), intent(in) :: nu
+    type(patch_t), intent(in) :: patch
+    logical, intent(in) :: requested(n_load_cases)
+    integer(int64) :: bytes
+    type(subsystem_t), allocatable :: subs(:)
+    integer(int64) :: m
+    subs = plan_subsystems(patch, nu, opts%split_systems, requested)
+    if (choose_method(opts, patch, subs, requested) == 'dense') then
+      m = maxval(subs%m)
+      bytes = 8 * m * m + 160 * m
+    else
+      bytes = int(iterative_bytes(opts, patch, count(requested)), int64)
+    end if
+  end function solve_memory_bytes
+
+  subroutine solve_dense_split(patch, table, subs, requested, refine, rhs, traction, diag, status)
+    type(patch_t), intent(in) :: patch
+    type(operator_table_t), intent(in) :: table
+    type(subsystem_t), intent(in) :: subs(:)
+    logical, intent(in) :: requested(n_load_cases)
+    character(len=*), intent(in) :: refine   !< 'auto', 'always' or 'never'
+    real(real64), intent(in) :: rhs(:, :)
+    real(real64), intent(inout) :: traction(:, :)
+    type(dense_diagnostics_t), intent(inout) :: diag
+    type(status_t), intent(inout) :: status
+    type(fft_operator_t) :: op
+    real(real64), allocatable :: a(:, :), b(:, :), x(:, :), r(:, :), work(:)
+    integer, allocatable :: ipiv(:), iwork(:), cases(:)
+    integer :: i, j, m, nrhs, info, n, lda
+    integer(int64) :: t0, t1, rate
+    real(real64) :: anorm_1, anorm_inf, rcond, berr
+
+    n = patch%n
+    call system_clock(t0, rate)
+    call create_fft_operator(patch, table, n_load_cases, op)
+    call system_clock(t1)
+    diag%t_solve = real(t1 - t0, real64) / rate
+    diag%rcond = huge(1.0_real64)
+    diag%backward_error = 0
+    diag%backward_error_initial = 0
+    diag%relative_residual = 0
+    do j = 1, n_load_cases
+      if (requested(j)) traction(:, j) = 0
+    end do
+    ! one matrix buffer for all the subsystems: its pages are faulted in once
+    ! (first touch of hundreds of MB costs about a tenth of the LU)
+    lda = maxval(subs%m)
+    call system_clock(t0)
+    allocate (a(lda, lda), ipiv(lda), work(4 * lda), iwork(lda))
+    call system_clock(t1)
+    diag%t_assemble = diag%t_assemble + real(t1 - t0, real64) / rate
+    do i = 1, size(subs)
+      associate (s => subs(i))
+        m = s%m
+        cases = pack([(j, j=1, n_load_cases)], s%serves .and. requested)
+        nrhs = size(cases)
+        call system_clock(t0)
+        call assemble_subsystem(patch, table, s, a(1:m, 1:m))
+        call system_clock(t1)
+        diag%t_assemble = diag%t_assemble + real(t1 - t0, real64) / rate
+
+        t0 = t1
+        call norms_1_inf(a(1:m, 1:m), anorm_1, anorm_inf)
+        call dgetrf(m, m, a, lda, ipiv, info)
+        if (info > 0) then
+          call fail(status, exit_numerical, 'the influence matrix ('//s%label//') is exactly singular (LU pivot '// &
+                    itoa(info)//' is zero); the collocation point or the patch is degenerate')
+          return
+        end if
+        call dgecon('1', m, a, lda, anorm_1, rcond, work, iwork, info)
+        diag%rcond = min(diag%rcond, rcond)
+        call system_clock(t1)
+        diag%t_factor = diag%t_factor + real(t1 - t0, real64) / rate
+
+        t0 = t1
+        allocate (b(m, nrhs), r(m, nrhs))
+        do j = 1, nrhs
+          call restrict_to(s, n, rhs(:, cases(j)), b(:, j))
+        end do
+        x = b
+        call dgetrs('N', m, nrhs, a, lda, ipiv, x, m, info)
+        call residual(s, b, x, r)
+        berr = backward_error(r, b, x, anorm_inf)
+        diag%backward_error_initial = max(diag%backward_error_initial, berr)
+        diag%relative_residual = max(diag%relative_residual, relative_residual(r, b))
+        if ((refine == 'auto' .and. berr > refine_threshold) .or. refine == 'always') then
+          call dgetrs('N', m, nrhs, a, lda, ipiv, r, m, info)
+          x = x + r
+          call residual(s, b, x, r)
+          berr = backward_error(r, b, x, anorm_inf)
+          diag%refined = .true.
+        end if
+        diag%backward_error = max(diag%backward_error, berr)
+        do j = 1, nrhs
+          call expand_from(s, n, x(:, j), traction(:, cases(j)))
+        end do
+        deallocate (b, r, x)
+        call system_clock(t1)
+        diag%t_solve = diag%t_solve + real(t1 - t0, real64) / rate
+      end associate
+    end do
+    call destroy_fft_operator(op)
+
+  contains
+
+    !> r = b - A_s x: the full traction x stands for, through the FFT operator, at the subsystem's rows.
+    subroutine residual(s, b, x, r)
+      type(subsystem_t), intent(in) :: s
+      real(real64), intent(in) :: b(:, :), x(:, :)
+      real(real64), intent(out) :: r(:, :)
+      real(real64), allocatable :: full(:, :), ax(:, :)
+      integer :: k
+      allocate (full(2 * n, size(x, 2)), ax(2 * n, size(x, 2)))
+      full = 0
+      do k = 1, size(x, 2)
+        call expand_from(s, n, x(:, k), full(:, k))
+      end do
+      call apply_fft_operator(op, full, ax)
+      do k = 1, size(x, 2)
+        call restrict_to(s, n, ax(:, k), r(:, k))
+        r(:, k) = b(:, k) - r(:, k)
+      end do
+    end subroutine residual
+
+  end subroutine solve_dense_split
+
+  !> 1-norm and infinity-norm of a in one pass over it (instead of two dlange calls).
+  pure subroutine norms_1_inf(a, norm_1, norm_inf)
+    real(real64), intent(in) :: a(:, :)
+    real(real64), intent(out) :: norm_1, norm_inf
+    real(real64) :: row_sums(size(a, 1))
+    integer :: j
+    row_sums = 0
+    norm_1 = 0
+    do j = 1, size(a, 2)
+      row_sums = row_sums + abs(a(:, j))
+      norm_1 = max(norm_1, sum(abs(a(:, j))))
+    end do
+    norm_inf = maxval(row_sums)
+  end subroutine norms_1_inf
+
+  subroutine solve_iterative(opts, nu, patch, table, requested, rhs, traction, diag, status)
+    type(solver_options_t), intent(in) :: opts
+    real(real64), intent(in) :: nu
+    type(patch_t), intent(in) :: patch
+    type(operator_table_t), intent(in) :: table
+    logical, intent(in) :: requested(n_load_cases)
+    real(real64), intent(in) :: rhs(:, :)
+    real(real64), intent(inout) :: traction(:, :)
+    type(dense_diagnostics_t), intent(inout) :: diag
+    type(status_t), intent(inout) :: status
+    type(fft_block_t) :: a
+    type(strip_block_t) :: m_inv
+    type(gmres_result_t) :: result
+    type(subsystem_t), allocatable :: subs(:)
+    real(real64), allocatable :: x(:, :), b(:, :)
+    integer, allocatable :: case_of(:), sub_of(:)
+    logical, allocatable :: rows_used(:)
+    integer(int64) :: t0, t1, rate
+    integer :: i, j, nc, n, mmax, worst
+
+    n = patch%n
+    subs = plan_subsystems(patch, nu, opts%split_systems, requested)
+    ! one GMRES column per (subsystem, requested load case it serves)
+    allocate (case_of(0), sub_of(0))
+    do j = 1, n_load_cases
+      do i = 1, size(subs)
+        if (requested(j) .and. subs(i)%serves(j)) then
+          case_of = [case_of, j]
+          sub_of = [sub_of, i]
+        end if
+      end do
+    end do
+    nc = size(case_of)
+    mmax = maxval(subs%m)
+    ! rows holding representative cells (all rows unless mirrored partners exist)
+    allocate (rows_used(patch%my))
+    rows_used = .false.
+    do i = 1, size(subs)
+      rows_used(patch%iy(subs(i)%cell)) = .true.
+    end do
+
+    call system_clock(t0, rate)
+    call create_fft_operator(patch, table, nc, a%op)
+    a%subs = subs
+    a%sub_of = sub_of
+    a%n = n
+    call system_clock(t1)
+    diag%t_assemble = real(t1 - t0, real64) / rate
+    t0 = t1
+    call build_strip_preconditioner(patch, table, m_inv%p, status, rows_used)
+    if (status%failed()) return
+    m_inv%subs = subs
+    m_inv%sub_of = sub_of
+    m_inv%n = n
+    call system_clock(t1)
+    diag%t_factor = real(t1 - t0, real64) / rate
+    t0 = t1
+    allocate (x(mmax, nc), b(mmax, nc))
+    x = 0
+    b = 0
+    do i = 1, nc
+      call restrict_to(subs(sub_of(i)), n, rhs(:, case_of(i)), b(1:subs(sub_of(i))%m, i))
+    end do
+    call gmres(a, m_inv, b, x, opts%tolerance, opts%restart, opts%max_iterations, result)
+    call system_clock(t1)
+    diag%t_solve = real(t1 - t0, real64) / rate
+    call destroy_fft_operator(a%op)
+    diag%rcond = ieee_value(1.0_real64, ieee_quiet_nan)   ! no factorisation to estimate it from
+    diag%backward_error = maxval(result%relative_residual)
+    diag%backward_error_initial = diag%backward_error
+    diag%relative_residual = diag%backward_error
+    diag%iterations = maxval(result%iterations)
+    diag%t_operator = result%t_operator
+    diag%t_preconditioner = result%t_preconditioner
+    diag%t_orthogonalise = result%t_orthogonalise
+    if (.not. all(result%converged)) then
+      worst = maxloc(result%relative_residual, dim=1)
+      call fail(status, exit_numerical, 'the iterative solver did not converge: load case '// &
+                trim(case_word(case_of(worst)))//' has relative residual '// &
+                rtoa(result%relative_residual(worst))//' after '//itoa(result%iterations(worst))// &
+                ' GMRES iterations (tolerance '//rtoa(opts%tolerance)// &
+                '; raise max_iterations or use method = ''dense'')')
+      return
+    end if
+    do j = 1, n_load_cases
+      if (requested(j)) traction(:, j) = 0
+    end do
+    do i = 1, nc
+      call expand_from(subs(sub_of(i)), n, x(1:subs(sub_of(i))%m, i), traction(:, case_of(i)))
+    end do
+
+  contains
+
+    pure function case_word(j) result(w)
+      integer, intent(in) :: j
+      character(len=3) :: w
+      w = merge('xi ', merge('eta', 'phi', j == 2), j == 1)
+    end function case_word
+
+  end subroutine solve_iterative
+
+  subroutine apply_fft_block(self, x, y, columns)
+    class(fft_block_t), intent(inout) :: self
+    real(real64), intent(in) :: x(:, :)
+    real(real64), intent(out) :: y(:, :)
+    integer, intent(in) :: columns(:)
+    real(real64), allocatable :: full(:, :), afull(:, :)
+    integer :: c, m
+    allocate (full(2 * self%n, size(x, 2)), afull(2 * self%n, size(x, 2)))
+    full = 0
+    do c = 1, size(x, 2)
+      m = self%subs(self%sub_of(columns(c)))%m
+      call expand_from(self%subs(self%sub_of(columns(c))), self%n, x(1:m, c), full(:, c))
+    end do
+    call apply_fft_operator(self%op, full, afull)
+    y = 0
+    do c = 1, size(x, 2)
+      m = self%subs(self%sub_of(columns(c)))%m
+      call restrict_to(self%subs(self%sub_of(columns(c))), self%n, afull(:, c), y(1:m, c))
+    end do
+  end subroutine apply_fft_block
+
+  subroutine apply_strip_block(self, x, y, columns)
+    class(strip_block_t), intent(inout) :: self
+    real(real64), intent(in) :: x(:, :)
+    real(real64), intent(out) :: y(:, :)
+    integer, intent(in) :: columns(:)
+    real(real64), allocatable :: full(:, :), zfull(:, :)
+    integer :: c, u
+    allocate (full(2 * self%n, size(x, 2)), zfull(2 * self%n, size(x, 2)))
+    full = 0
+    do c = 1, size(x, 2)
+      associate (s => self%subs(self%sub_of(columns(c))))
+        do u = 1, s%m
+          full(s%comp(u) * self%n + s%cell(u), c) = x(u, c)
+        end do
+      end associate
+    end do
+    call apply_strip_preconditioner(self%p, full, zfull)
+    y = 0
+    do c = 1, size(x, 2)
+      associate (s => self%subs(self%sub_of(columns(c))))
+        call restrict_to(s, self%n, zfull(:, c), y(1:s%m, c))
+      end associate
+    end do
+  end subroutine apply_strip_block
+
+end module kcreep_linear_solve
