@@ -83,7 +83,7 @@ contains
     namelist /output/ table_file, traction_file
 
     integer :: unit, ios, nrows
-    logical :: group_present(size(group_names))
+    logical :: group_present(size(group_names)), group_closed(size(group_names)), last_line_open
     character(len=512) :: msg
     character(len=:), allocatable :: text
 
@@ -123,8 +123,13 @@ contains
     ! the whole file first: a folder, a binary file, text outside the groups,
     ! unknown or repeated groups are errors the namelist read would not report
     call read_input_file(path, 'input '''//path//'''', text, status)
-    if (.not. status%failed()) call scan_namelist_text(text, 'input '''//path//'''', group_names, group_present, status)
+    if (.not. status%failed()) call scan_namelist_text(text, 'input '''//path//'''', group_names, group_present, &
+                                                       group_closed, status)
     if (status%failed()) return
+    ! a last line without its newline: the namelist read assigns the group and
+    ! then meets the end of the file looking for the next record
+    last_line_open = .false.
+    if (len(text) > 0) last_line_open = text(len(text):len(text)) /= achar(10)
     open (newunit=unit, file=path, status='old', action='read', iostat=ios, iomsg=msg)
     if (ios /= 0) then
       call fail(status, exit_bad_input, 'input '''//path//''': cannot open ('//trim(msg)//')')
@@ -133,16 +138,16 @@ contains
 
     rewind (unit)
     if (group_present(1)) read (unit, nml=patch, iostat=ios, iomsg=msg)
-    call check_read('patch', group_present(1))
+    call check_read('patch', 1)
     rewind (unit)
     if (group_present(2)) read (unit, nml=material, iostat=ios, iomsg=msg)
-    call check_read('material', group_present(2))
+    call check_read('material', 2)
     rewind (unit)
     if (group_present(3)) read (unit, nml=solver, iostat=ios, iomsg=msg)
-    call check_read('solver', group_present(3))
+    call check_read('solver', 3)
     rewind (unit)
     if (group_present(4)) read (unit, nml=output, iostat=ios, iomsg=msg)
-    call check_read('output', group_present(4))
+    call check_read('output', 4)
     close (unit)
     if (status%failed()) return
 
@@ -195,11 +200,13 @@ contains
 
   contains
 
-    subroutine check_read(group, was_present)
+    subroutine check_read(group, k)
       character(len=*), intent(in) :: group
-      logical, intent(in) :: was_present
-      if (.not. was_present .or. status%failed()) return
-      if (ios == iostat_end) then
+      integer, intent(in) :: k
+      if (.not. group_present(k) .or. status%failed()) return
+      if (ios == iostat_end .and. group_closed(k) .and. last_line_open) then
+        ios = 0                           ! read whole: its / was there, the newline after it was not
+      else if (ios == iostat_end) then
         call fail(status, exit_bad_input, 'input '''//path//''': namelist &'//group// &
                   ': end of file before the closing /')
       else if (ios /= 0) then
