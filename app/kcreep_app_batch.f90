@@ -98,7 +98,7 @@ contains
     character(len=512) :: msg
 
     label = 'case '//itoa(k)//' '''//input_path//''''
-    call solve_input(input_path, folder_of(input_path), .false., cfg, record, case_status)
+    call solve_input(input_path, .false., cfg, record, case_status)
     if (.not. case_status%failed() .and. len(cfg%traction_file) > 0) &
       call write_text_file(cfg%traction_file, traction_lines(record%patch, record%traction, cfg%requested), &
                            'traction_file', case_status)
@@ -276,7 +276,7 @@ contains
     integer :: k
     bytes = 0
     do k = 1, size(paths)
-      call load_input(paths(k)%s, folder_of(paths(k)%s), cfg, patch, status)
+      call load_input(paths(k)%s, cfg, patch, status)
       if (status%failed()) return
       bytes(k) = case_memory_bytes(cfg, patch)
     end do

@@ -16,18 +16,15 @@ module kcreep_app_case
 
 contains
 
-  !> Read and check the namelist at input_path and build its patch. When
-  !> base_folder is not empty, relative file names inside the namelist
-  !> (mask_file, contact_file, table_file, traction_file) are taken relative to it, as if
-  !> kcreep ran in that folder (the batch's convention); when it is empty
-  !> they stay relative to the working folder (the single-case convention).
-  subroutine load_input(input_path, base_folder, cfg, patch, status)
-    character(len=*), intent(in) :: input_path, base_folder
+  !> Read and check the namelist at input_path and build its patch (relative
+  !> file names inside the namelist are taken from the namelist's folder).
+  subroutine load_input(input_path, cfg, patch, status)
+    character(len=*), intent(in) :: input_path
     type(config_t), intent(out) :: cfg
     type(patch_t), intent(out) :: patch
     type(status_t), intent(inout) :: status
 
-    call read_config(input_path, cfg, status, base_folder)
+    call read_config(input_path, cfg, status)
     if (status%failed()) return
     call build_patch(cfg, patch, status)
   end subroutine load_input
@@ -36,8 +33,8 @@ contains
   !> library. With check_table false the namelist's table_file is not checked
   !> (the batch writes its own table); the traction file, when asked for,
   !> always is. The record holds the finest grid solved and its tractions.
-  subroutine solve_input(input_path, base_folder, check_table, cfg, record, status)
-    character(len=*), intent(in) :: input_path, base_folder
+  subroutine solve_input(input_path, check_table, cfg, record, status)
+    character(len=*), intent(in) :: input_path
     logical, intent(in) :: check_table
     type(config_t), intent(out) :: cfg
     type(run_record_t), intent(out) :: record
@@ -45,7 +42,7 @@ contains
     type(patch_t) :: patch
     type(problem_t) :: problem
 
-    call load_input(input_path, base_folder, cfg, patch, status)
+    call load_input(input_path, cfg, patch, status)
     if (check_table .and. .not. status%failed()) call check_output_path(cfg%table_file, 'table_file', status)
     if (.not. status%failed() .and. len(cfg%traction_file) > 0) &
       call check_output_path(cfg%traction_file, 'traction_file', status)

@@ -89,7 +89,7 @@ contains
     type(config_t) :: cfg
     type(run_record_t) :: record
 
-    call solve_input(input_path, '', .true., cfg, record, status)
+    call solve_input(input_path, .true., cfg, record, status)
     if (status%failed()) return
     ! every output complete in its temporary file before any is renamed into
     ! place: a failure (a full disk) leaves all the previous files as they were

@@ -6,7 +6,7 @@
 module kcreep_namelist
   use, intrinsic :: iso_fortran_env, only: real64, iostat_end
   use kcreep_status, only: status_t, fail, exit_bad_input
-  use kcreep_strings, only: itoa, rtoa, lower, resolve_path
+  use kcreep_strings, only: itoa, rtoa, lower, resolve_path, folder_of
   use kcreep_patch, only: patch_t, ellipse_patch, mask_patch
   use kcreep_mask_file, only: read_mask_file, parse_mask_rows
   use kcreep_assembly, only: scheme_t, load_case_names, n_load_cases
@@ -53,15 +53,15 @@ module kcreep_namelist
 
 contains
 
-  !> Read and validate the namelist at path. With base_folder, relative file
-  !> names inside it (mask_file, contact_file, table_file, traction_file) are
-  !> taken relative to that folder (the batch's convention), else relative to
-  !> the working folder.
-  subroutine read_config(path, cfg, status, base_folder)
+  !> Read and validate the namelist at path. Relative file names inside it
+  !> (mask_file, contact_file, table_file, traction_file) are taken relative
+  !> to the namelist's own folder, whatever the working folder and the mode
+  !> (single run, batch, memory estimate). Only the default table, which the
+  !> namelist does not name, goes to the working folder.
+  subroutine read_config(path, cfg, status)
     character(len=*), intent(in) :: path
     type(config_t), intent(out) :: cfg
     type(status_t), intent(inout) :: status
-    character(len=*), intent(in), optional :: base_folder
 
     ! namelist variables, with their defaults
     character(len=32) :: shape, scheme, method, refine
@@ -185,15 +185,11 @@ contains
     cfg%solve%max_iterations = max_iterations
     cfg%solve%restart = restart
     cfg%solve%split_systems = split_systems
-    cfg%table_file = trim(table_file)
+    cfg%table_file = resolve_path(trim(table_file), folder_of(path))
     if (len(cfg%table_file) == 0) cfg%table_file = default_table_name(path)
-    cfg%traction_file = trim(traction_file)
-    if (present(base_folder)) then
-      cfg%mask_file = resolve_path(cfg%mask_file, base_folder)
-      cfg%contact_file = resolve_path(cfg%contact_file, base_folder)
-      cfg%table_file = resolve_path(cfg%table_file, base_folder)
-      cfg%traction_file = resolve_path(cfg%traction_file, base_folder)
-    end if
+    cfg%traction_file = resolve_path(trim(traction_file), folder_of(path))
+    cfg%mask_file = resolve_path(cfg%mask_file, folder_of(path))
+    cfg%contact_file = resolve_path(cfg%contact_file, folder_of(path))
 
     call validate(cfg, mask_rows, nrows, load_cases, status)
     if (cfg%shape == 'contact' .and. .not. status%failed()) call load_contact_case(cfg, material_given, status)
