@@ -52,7 +52,8 @@ def run_kcreep(path, m, scheme="collocation"):
     with open(nml, "w") as f:
         f.write(f"&patch shape='ellipse', semi_a=1, semi_b=1, mx={m}, my={m} /\n"
                 f"&material g=1, nu=0.25 /\n"
-                f"&solver scheme='{scheme}', alpha=0.5, method='{method}', split_systems={split} /\n"
+                f"&solver scheme='{scheme}'{', alpha=0.5' if scheme == 'collocation' else ''}, method='{method}', "
+                f"split_systems={split} /\n"
                 f"&output table_file='{name}.tab' /\n")
     samples = []
     for _ in range(REPEATS):

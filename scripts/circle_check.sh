@@ -30,10 +30,12 @@ echo "# unit circle, nu = 0.25, method = $method; dCij: against Kalker's table; 
 printf '%-12s %5s %6s %9s %9s %9s %8s %8s %8s %9s\n' scheme grid n C11 C22 C23 'dC11%' 'dC22%' 'dC23%' 't_total_s'
 for scheme in collocation backward; do
   for m in $grids; do
+    point=""   # the collocation point belongs to the collocation scheme only
+    [[ $scheme == collocation ]] && point=", alpha=0.5"
     cat > "$work/c.nml" <<EON
 &patch shape='ellipse', semi_a=1, semi_b=1, mx=$m, my=$m /
 &material g=1, nu=0.25 /
-&solver scheme='$scheme', alpha=0.5, method='$method' /
+&solver scheme='$scheme'$point, method='$method' /
 EON
     times=()
     for ((r = 0; r < repeats; r++)); do

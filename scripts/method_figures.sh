@@ -23,7 +23,7 @@ while read -r name scheme alpha a b; do
   cat > "$name.nml" <<EON
 &patch semi_a=$a, semi_b=$b, mx=40, my=40 /
 &material nu=0.25 /
-&solver scheme='$scheme', alpha=$alpha /
+&solver scheme='$scheme'$([[ $scheme == collocation ]] && echo ", alpha=$alpha") /
 &output traction_file='$name.trac' /
 EON
   "$kcreep" "$name.nml" >/dev/null 2>&1

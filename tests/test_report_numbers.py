@@ -64,7 +64,7 @@ for scheme in ("collocation", "backward"):
     for m in (10, 20, 40):
         name = f"r1_paper_{scheme}_m{m}"
         row = kc.coefficients(kc.namelist(f"shape='ellipse', semi_a=1, semi_b=1, mx={m}, my={m}", "nu=0.25",
-                                          f"scheme='{scheme}', alpha=0.5"), folder, name)
+                                          f"{kc.scheme_setting(scheme, 0.5)}"), folder, name)
         fresh[(scheme, m)] = row
         quoted = sweep[name]
         for c in ("c11", "c22", "c23"):
@@ -85,7 +85,7 @@ for scheme in ("collocation", "backward"):
 ext = {}
 for scheme in ("collocation", "backward"):
     ext[scheme] = kc.coefficients(kc.namelist("shape='ellipse', semi_a=1, semi_b=1, mx=10, my=10", "nu=0.25",
-                                              f"scheme='{scheme}', alpha=0.5, extrapolate=.true."),
+                                              f"{kc.scheme_setting(scheme, 0.5)}, extrapolate=.true."),
                                   folder, f"ext_{scheme}")
 evt = os.path.join(data, "error_vs_time.dat")
 with open(evt) as f:

@@ -35,6 +35,7 @@ module kcreep_namelist
     character(len=:), allocatable :: mask_file
     character(len=max_row_length), allocatable :: mask_rows(:)   !< inline rows given
     real(real64) :: dx = 0, dy = 0, x0 = 0, y0 = 0
+    logical :: x0_given = .false., y0_given = .false.   !< x0, y0 written in the namelist
     character(len=:), allocatable :: contact_file   !< shape 'contact': CONTACT .out file
     integer :: contact_case = 0
     type(contact_case_t) :: contact                 !< what was read from it
@@ -73,8 +74,11 @@ contains
     character(len=max_row_length), allocatable :: mask_rows(:)
     character(len=4096) :: contact_file
     integer :: contact_case
-    !> "not given": g, nu and spin_shift default differently for shape = 'contact'
+    !> "not given": g, nu and spin_shift default differently for shape = 'contact',
+    !> and a value the user wrote is either used or refused, never replaced
     real(real64), parameter :: unset = -huge(1.0_real64)
+    integer, parameter :: unset_int = -huge(1)
+    character(len=:), allocatable :: where
     logical :: material_given
     namelist /patch/ shape, semi_a, semi_b, mx, my, mask_file, mask_rows, dx, dy, x0, y0, contact_file, contact_case
     namelist /material/ g, nu
@@ -88,23 +92,23 @@ contains
     character(len=:), allocatable :: text
 
     shape = 'ellipse'
-    semi_a = 1
-    semi_b = 1
-    mx = 0
-    my = 0
+    semi_a = unset
+    semi_b = unset
+    mx = unset_int
+    my = unset_int
     mask_file = ''
     allocate (mask_rows(max_inline_rows))
     mask_rows = ''
     dx = 0
     dy = 0
-    x0 = 0
-    y0 = 0
+    x0 = unset
+    y0 = unset
     contact_file = ''
     contact_case = 1
     g = unset
     nu = unset
     scheme = ''
-    alpha = 0.5_real64
+    alpha = unset
     spin_shift = unset
     load_cases = 'xi eta phi'
     extrapolate = .false.
@@ -154,6 +158,34 @@ contains
     cfg%shape = lower(trim(adjustl(shape)))
     ! shape = 'contact' follows CONTACT's conventions unless &solver says otherwise
     if (len_trim(scheme) == 0) scheme = merge('backward   ', 'collocation', cfg%shape == 'contact')
+    ! values written that the case would not use: refused, not ignored
+    where = 'input '''//path//''': '
+    if (mx /= unset_int .and. mx < 1) call fail(status, exit_bad_input, where//'&patch mx = '//itoa(mx)// &
+        ' (must be >= 1; leave mx out for the default)')
+    if (my /= unset_int .and. my < 1) call fail(status, exit_bad_input, where//'&patch my = '//itoa(my)// &
+        ' (must be >= 1; leave my out for the default)')
+    if (lower(trim(adjustl(scheme))) == 'collocation' .and. spin_shift /= unset) call fail(status, exit_bad_input, &
+        where//'&solver spin_shift = '//rtoa(spin_shift)//' is not used by scheme = ''collocation'' '// &
+        '(it moves the spin creepage of the backward scheme; leave it out or set scheme = ''backward'')')
+    if (lower(trim(adjustl(scheme))) == 'backward' .and. alpha /= unset) call fail(status, exit_bad_input, &
+        where//'&solver alpha = '//rtoa(alpha)//' is not used by scheme = ''backward'' '// &
+        '(it is the collocation point of scheme = ''collocation''; leave it out or change the scheme)')
+    if (cfg%shape /= 'ellipse' .and. semi_a /= unset) call fail(status, exit_bad_input, where// &
+        '&patch semi_a = '//rtoa(semi_a)//' is only used by shape = ''ellipse'' (shape = '''//cfg%shape// &
+        '''; leave it out)')
+    if (cfg%shape /= 'ellipse' .and. semi_b /= unset) call fail(status, exit_bad_input, where// &
+        '&patch semi_b = '//rtoa(semi_b)//' is only used by shape = ''ellipse'' (shape = '''//cfg%shape// &
+        '''; leave it out)')
+    if (status%failed()) return
+    if (mx == unset_int) mx = 0        ! 0 from here on: not given
+    if (my == unset_int) my = 0
+    if (semi_a == unset) semi_a = 1
+    if (semi_b == unset) semi_b = 1
+    if (alpha == unset) alpha = 0.5_real64
+    cfg%x0_given = x0 /= unset
+    cfg%y0_given = y0 /= unset
+    if (x0 == unset) x0 = 0
+    if (y0 == unset) y0 = 0
     if (spin_shift == unset) spin_shift = merge(contact_spin_shift, 0.0_real64, cfg%shape == 'contact')
     material_given = g /= unset .or. nu /= unset
     if (g == unset) g = 1
@@ -276,7 +308,7 @@ contains
       if (cfg%contact_case < 1) call fail(status, exit_bad_input, where//'&patch contact_case = '// &
           itoa(cfg%contact_case)//' (must be >= 1)')
       if (len(cfg%mask_file) > 0 .or. nrows > 0 .or. cfg%mx /= 0 .or. cfg%my /= 0 .or. cfg%dx /= 0 .or. &
-          cfg%dy /= 0 .or. cfg%x0 /= 0 .or. cfg%y0 /= 0) call fail(status, exit_bad_input, where// &
+          cfg%dy /= 0 .or. cfg%x0_given .or. cfg%y0_given) call fail(status, exit_bad_input, where// &
           '&patch shape = ''contact'' takes its grid and mask from contact_file (leave out mask_file, '// &
           'mask_rows, mx, my, dx, dy, x0, y0)')
     case default
@@ -368,6 +400,10 @@ contains
           call fail(status, exit_bad_input, 'input '''//cfg%input_path//''': &patch dx, dy = '// &
                     rtoa(cfg%dx)//', '//rtoa(cfg%dy)//' disagree with the header of mask_file '''// &
                     cfg%mask_file//''' ('//rtoa(patch%dx)//', '//rtoa(patch%dy)//'; leave them out)')
+        if ((cfg%x0_given .and. cfg%x0 /= patch%x0) .or. (cfg%y0_given .and. cfg%y0 /= patch%y0)) &
+          call fail(status, exit_bad_input, 'input '''//cfg%input_path//''': &patch x0, y0 = '// &
+                    rtoa(cfg%x0)//', '//rtoa(cfg%y0)//' disagree with the header of mask_file '''// &
+                    cfg%mask_file//''' ('//rtoa(patch%x0)//', '//rtoa(patch%y0)//'; leave them out)')
       else
         call parse_mask_rows(cfg%mask_rows, where, inside, status)
         if (status%failed()) return
