@@ -265,21 +265,34 @@ contains
         ''': no cases (expected one namelist path per line)')
   end subroutine read_case_list
 
-  !> Bytes each namelist of paths needs (case_driver%case_memory_bytes);
-  !> relative names inside a namelist are taken from its own folder, as in a batch.
-  subroutine estimate_memory(paths, bytes, status)
+  !> kcreep --estimate-memory: for each namelist one line 'FILE BYTES PATH' on
+  !> standard output (the file as given, the bytes the case needs at its peak,
+  !> the solve path it takes there: dense or iterative; the last two fields
+  !> are single words, so a file name with blanks is read from the right), or
+  !> one error line on standard error; every file is tried. n_failed: the
+  !> files that could not be estimated.
+  subroutine estimate_memory(paths, n_failed)
     type(text_t), intent(in) :: paths(:)
-    integer(int64), intent(out) :: bytes(size(paths))
-    type(status_t), intent(inout) :: status
+    integer, intent(out) :: n_failed
     type(config_t) :: cfg
     type(patch_t) :: patch
+    type(status_t) :: status
+    integer(int64) :: bytes
+    character(len=:), allocatable :: method
     integer :: k
-    bytes = 0
+    n_failed = 0
     do k = 1, size(paths)
+      status = status_t()
       call load_input(paths(k)%s, cfg, patch, status)
-      if (status%failed()) return
-      bytes(k) = case_memory_bytes(cfg, patch)
+      if (.not. status%failed()) call case_memory_bytes(cfg, patch, bytes, method, status)
+      if (status%failed()) then
+        n_failed = n_failed + 1
+        write (error_unit, '(a)') 'kcreep: error: '//status%message
+      else
+        write (output_unit, '(a, 1x, i0, 1x, a)') paths(k)%s, bytes, method
+      end if
     end do
+    flush (output_unit)
   end subroutine estimate_memory
 
   !> '<list name without folder and extension>.tab' in the working folder.

@@ -6,7 +6,7 @@ module kcreep_app_case
   use kcreep_status, only: status_t
   use kcreep, only: problem_t, patch_t, kcreep_solve
   use kcreep_namelist, only: config_t, read_config, build_patch, problem_of
-  use kcreep_linear_solve, only: solve_memory_bytes
+  use kcreep_extrapolation, only: memory_need
   use kcreep_table, only: run_record_t, case_name
   use kcreep_app_files, only: check_output_path
   use kcreep_app_memory, only: memory_limit_bytes
@@ -53,19 +53,22 @@ contains
     record%case_name = case_name(cfg%input_path)
   end subroutine solve_input
 
-  !> Bytes a case needs at its peak: what its solve path needs
-  !> (kcreep_linear_solve%solve_memory_bytes: the dense subsystem matrix or the
-  !> iterative solver's storage) and the operator table with its influence
-  !> coefficients (about 40 reals per grid cell). The program itself (code,
+  !> Bytes a case needs at its peak and the solve path it takes there
+  !> (kcreep_extrapolation%memory_need: the dense subsystem matrix or the
+  !> iterative solver's storage, and the operator table, of the grid or the
+  !> extrapolation level that needs most). The program itself (code,
   !> OpenBLAS buffers) is not included: a few tens of MiB, see README.
-  function case_memory_bytes(cfg, patch) result(bytes)
+  subroutine case_memory_bytes(cfg, patch, bytes, method, status)
     type(config_t), intent(in) :: cfg
     type(patch_t), intent(in) :: patch
-    integer(int64) :: bytes
+    integer(int64), intent(out) :: bytes
+    character(len=:), allocatable, intent(out) :: method
+    type(status_t), intent(inout) :: status
     type(problem_t) :: problem
+    integer :: level
     problem = problem_of(cfg, patch)
     problem%solve%memory_limit = memory_limit_bytes()
-    bytes = solve_memory_bytes(problem%solve, cfg%nu, patch, cfg%requested) + 320 * int(patch%mx, int64) * patch%my
-  end function case_memory_bytes
+    call memory_need(problem, bytes, method, level, status)
+  end subroutine case_memory_bytes
 
 end module kcreep_app_case

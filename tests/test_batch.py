@@ -161,10 +161,13 @@ kc.check(proc.returncode == 2 and "another list" in proc.stderr and len(proc.std
 write(os.path.join(sub, "it80.nml"), "&patch semi_a=1, semi_b=0.8, mx=80, my=80 /\n&solver method='iterative' /\n")
 est = subprocess.run([kc.KCREEP, "--estimate-memory", "sub/s2_60.nml", "sub/e10.nml", "sub/m.nml", "sub/it80.nml"],
                      cwd=folder, capture_output=True, text=True)
-values = [int(v) for v in est.stdout.split()]
+# one line 'FILE BYTES PATH' per file
+values = [int(l.rsplit(" ", 2)[1]) for l in est.stdout.strip().splitlines()]
 n60 = reference[2]["n"]
 dense = 8 * n60 ** 2
 kc.check(est.returncode == 0 and len(values) == 4, f"one estimate per file: {est.stdout.split()}")
+kc.check([l.rsplit(" ", 2)[2] for l in est.stdout.strip().splitlines()] == ["dense", "dense", "dense", "iterative"],
+         f"the solve path of each: {est.stdout.strip()}")
 # measured (GNU time, OPENBLAS_NUM_THREADS=1, unit circle): dense 80 x 80 estimate 205e6 B,
 # peak RSS 227e6 B; dense 40 x 40 13.5e6 / 26.5e6 B (the program itself adds 10-20 MB);
 # iterative 80 x 80 24e6 / 28e6 B, 200 x 200 213e6 / 137e6 B (the estimate is generous)

@@ -12,8 +12,9 @@ extrap      extrapolate checks memory for the path each level takes
 newline     a namelist whose last line has no newline is read
 memlimit    RLIMIT_AS counts as a memory limit; a failed allocation is the
             documented one-line error
-estimate    --estimate-memory: 'file bytes path' per line, an error line for a
-            bad file, the others still estimated, exit status 2
+estimate    --estimate-memory: 'FILE BYTES PATH' per line (PATH: the solve path,
+            dense or iterative), an error line for a bad file, the others
+            still estimated, exit status 2
 lock        a second kcreep --batch on the same table is refused at once
 names       batch cases named by their path relative to the list; two cases
             writing the same traction_file are refused
@@ -200,22 +201,24 @@ def section_extrap():
     # iterative path there, which needs well under 1 GiB. Solving all three
     # levels takes minutes, so the check runs with the memory as it is and a
     # smaller study (30 x 30, ratio 2: 30, 60, 120) is solved end to end.
-    est = run(["--estimate-memory", write_and(folder, "e60.nml", "&solver extrapolate=.true. /\n")])
-    m = re.match(r"\S+\s+(\d+)", est.stdout.strip()) if est.returncode == 0 else None
-    need = int(m.group(1)) if m else None
-    kc.check(est.returncode == 0 and need is not None and need < 2 * 2**30,
-             f"60 x 60 extrapolate: the estimate follows the iterative finest level, < 2 GiB ({est.stdout.strip()} "
-             f"{est.stderr.strip()})")
-    # 30 x 30 with 3 levels: the finest, 120 x 120 (22,600 cells), would need
-    # 3.3 GB as one dense matrix; auto solves it iteratively
-    rc, out, err, table = kc.run("&patch mx=30, my=30 /\n&solver extrapolate=.true. /\n", folder, "e30",
+    est = run(["--estimate-memory", write_and(folder, "e60.nml", "&solver extrapolate=.true. /\n"),
+               write_and(folder, "i240.nml", "&patch mx=240, my=240 /\n&solver method='iterative' /\n")])
+    fields = [l.rsplit(" ", 2) for l in est.stdout.strip().splitlines()]
+    ok = est.returncode == 0 and len(fields) == 2
+    kc.check(ok and fields[0][2] == "iterative" and int(fields[0][1]) == int(fields[1][1]),
+             f"60 x 60 extrapolate: the estimate is that of its finest level, 240 x 240 iterative ({fields})")
+    kc.check(ok and int(fields[0][1]) < 2 * 2**30, "and under 2 GiB")
+    # the whole default-grid study on the iterative path (60, 120, 240 x 240)
+    rc, out, err, table = kc.run("&solver extrapolate=.true., method='iterative' /\n", folder, "e60i",
                                  expect_ok=False)
-    kc.check(rc == 0, f"30 x 30 extrapolate runs ({err.strip()[:300]})")
-    # the check still refuses a study that does not fit whatever the path:
-    # dense forced on the 240 x 240 level
-    rc, out, err, table = kc.run("&solver extrapolate=.true., method='dense' /\n", folder, "e60d", expect_ok=False)
-    kc.check(rc == 2 and "extrapolation" in err and "GiB" in err,
-             f"method = 'dense' at 240 x 240 is refused before any work ({err.strip()[:200]})")
+    kc.check(rc == 0 and table and table[0]["mx"] == 240,
+             f"60 x 60 extrapolate with the iterative solver runs to 240 x 240 ({err.strip()[:300]})")
+    # a study that does not fit on its path is still refused before any work:
+    # the whole dense matrix of the 240 x 240 level (90,000 unknowns, 65 GB)
+    rc, out, err, table = kc.run("&solver extrapolate=.true., method='dense', split_systems=.false. /\n", folder,
+                                 "e60d", expect_ok=False)
+    kc.check(rc == 2 and "extrapolation level 3" in err and "GiB" in err,
+             f"method = 'dense' unsplit at 240 x 240 is refused before any work ({err.strip()[:200]})")
 
 
 def write_and(dirname, name, text):
@@ -279,12 +282,12 @@ def section_estimate():
     lines = proc.stdout.strip().splitlines()
     kc.check(proc.returncode == 2, f"exit 2 when some files could not be estimated ({proc.returncode})")
     kc.check(len(lines) == 2, f"one line per estimated file on standard output ({lines})")
-    pat = re.compile(r"^file (\d+) (.+)$")
+    pat = re.compile(r"^(.+) (\d+) (dense|iterative)$")
     parsed = [pat.match(l) for l in lines]
-    kc.check(all(parsed) and [p.group(2) for p in parsed] == ["a.nml", "c d.nml"],
-             f"lines 'file BYTES PATH' in argument order ({lines})")
+    kc.check(all(parsed) and [p.group(1) for p in parsed] == ["a.nml", "c d.nml"],
+             f"lines 'FILE BYTES PATH' in argument order ({lines})")
     if all(parsed) and len(parsed) == 2:
-        kc.check(int(parsed[1].group(1)) > int(parsed[0].group(1)) > 0, "bytes grow with the grid")
+        kc.check(int(parsed[1].group(2)) > int(parsed[0].group(2)) > 0, "bytes grow with the grid")
     err = proc.stderr.strip().splitlines()
     kc.check(len(err) == 2 and all(l.startswith("kcreep: error: ") for l in err)
              and "bad.nml" in err[0] and "missing.nml" in err[1],

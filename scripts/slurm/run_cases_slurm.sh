@@ -168,7 +168,8 @@ if [[ -z $mem_mb ]]; then
   max_bytes=0
   while IFS= read -r path; do
     # a case kcreep cannot read gets an error row in its task; it needs no memory
-    bytes=$(cd "$(dirname "$path")" && "$kcreep" --estimate-memory "$path" 2>/dev/null) || continue
+    # 'FILE BYTES PATH': the bytes are the last field but one
+    bytes=$("$kcreep" --estimate-memory "$path" 2>/dev/null | awk '{print $(NF - 1)}') && [[ -n $bytes ]] || continue
     ((bytes > max_bytes)) && max_bytes=$bytes
   done <"$todo"
   rm -f "$todo"

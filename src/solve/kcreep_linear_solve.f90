@@ -26,7 +26,7 @@ module kcreep_linear_solve
   use kcreep_solver_options, only: solver_options_t
   implicit none
   private
-  public :: solve_load_cases, choose_method, solve_memory_bytes
+  public :: solve_load_cases, choose_method, solve_memory_bytes, solve_memory_plan
 
   !> GMRES works on the unknowns of the subsystems (system_split), one
   !> subsystem per column, padded with zeros to the longest: a y-symmetric
@@ -224,16 +224,29 @@ contains
     type(patch_t), intent(in) :: patch
     logical, intent(in) :: requested(n_load_cases)
     integer(int64) :: bytes
+    character(len=:), allocatable :: method
+    call solve_memory_plan(opts, nu, patch, requested, bytes, method)
+  end function solve_memory_bytes
+
+  !> solve_memory_bytes and the method it assumes ('dense' or 'iterative').
+  subroutine solve_memory_plan(opts, nu, patch, requested, bytes, method)
+    type(solver_options_t), intent(in) :: opts
+    real(real64), intent(in) :: nu
+    type(patch_t), intent(in) :: patch
+    logical, intent(in) :: requested(n_load_cases)
+    integer(int64), intent(out) :: bytes
+    character(len=:), allocatable, intent(out) :: method
     type(subsystem_t), allocatable :: subs(:)
     integer(int64) :: m
     subs = plan_subsystems(patch, nu, opts%split_systems, requested)
-    if (choose_method(opts, patch, subs, requested) == 'dense') then
+    method = choose_method(opts, patch, subs, requested)
+    if (method == 'dense') then
       m = maxval(subs%m)
       bytes = 8 * m * m + 160 * m
     else
       bytes = int(iterative_bytes(opts, patch, count(requested)), int64)
     end if
-  end function solve_memory_bytes
+  end subroutine solve_memory_plan
 
   subroutine solve_dense_split(patch, table, subs, requested, refine, rhs, traction, diag, status)
     type(patch_t), intent(in) :: patch
