@@ -12,7 +12,8 @@
 !> file is removed. A case that fails gets a row all the same: NaN numbers
 !> and the verdict error:bad-input, error:numerical or error:io; its
 !> message goes to standard error and into the table's comments, and the
-!> batch goes on.
+!> batch goes on. The partial table is locked (flock) while the batch runs:
+!> a second batch on the same table is refused at once.
 module kcreep_app_batch
   use, intrinsic :: iso_fortran_env, only: real64, int64, output_unit, error_unit
   use, intrinsic :: ieee_arithmetic, only: ieee_value, ieee_quiet_nan
@@ -24,6 +25,8 @@ module kcreep_app_batch
   use kcreep_strings, only: folder_of, resolve_path
   use kcreep_table, only: run_record_t, table_lines, table_row, traction_lines, case_name
   use kcreep_app_files, only: write_text_file, check_output_path
+  use kcreep_app_lock, only: lock_exclusive, truncate_locked
+  use, intrinsic :: iso_c_binding, only: c_int
   implicit none
   private
   public :: run_batch, read_case_list, estimate_memory, default_batch_table, text_t
@@ -48,6 +51,8 @@ contains
     type(text_t), allocatable :: cases(:), partial(:)
     character(len=:), allocatable :: partial_path, signature
     integer :: n_done, k, unit, ios
+    integer(c_int) :: lock_fd
+    logical :: held
     character(len=512) :: msg
 
     n_failed = 0
@@ -59,7 +64,17 @@ contains
     signature = '# kcreep batch in progress: '//itoa(size(cases))//' cases, list signature '// &
                 list_signature(cases)
 
-    call resume_partial(partial_path, signature, size(cases), partial, status)
+    ! one batch per table: the lock is held on the partial table until the end
+    call lock_exclusive(partial_path, lock_fd, held)
+    if (held) then
+      call fail(status, exit_io, 'batch table '''//partial_path//''' is locked: another kcreep --batch is '// &
+                'writing '''//out_path//''' now (wait for it to finish, or give another OUT_TABLE)')
+      return
+    else if (lock_fd < 0) then
+      call fail(status, exit_io, 'batch table '''//partial_path//''': cannot create it')
+      return
+    end if
+    call resume_partial(partial_path, lock_fd, signature, size(cases), partial, status)
     if (status%failed()) return
     n_done = count_rows(partial)
     n_failed = count_error_rows(partial)
@@ -168,8 +183,9 @@ contains
   !> Open (or start) the partial table. An existing one must come from the
   !> same list (same first line); a torn last line, left by a kill in the
   !> middle of a write, is dropped so the case is simply run again.
-  subroutine resume_partial(partial_path, signature, n_cases, lines, status)
+  subroutine resume_partial(partial_path, lock_fd, signature, n_cases, lines, status)
     character(len=*), intent(in) :: partial_path, signature
+    integer(c_int), intent(in) :: lock_fd
     integer, intent(in) :: n_cases
     type(text_t), allocatable, intent(out) :: lines(:)
     type(status_t), intent(inout) :: status
@@ -201,8 +217,30 @@ contains
       allocate (lines(1))
       lines(1)%s = signature
     end if
-    call write_text_file(partial_path, joined(lines), 'batch table', status)
+    call rewrite_locked(partial_path, lock_fd, lines, status)
   end subroutine resume_partial
+
+  !> Replace the contents of the locked partial table in place (a new file
+  !> renamed over it would not carry the lock).
+  subroutine rewrite_locked(path, lock_fd, lines, status)
+    character(len=*), intent(in) :: path
+    integer(c_int), intent(in) :: lock_fd
+    type(text_t), intent(in) :: lines(:)
+    type(status_t), intent(inout) :: status
+    integer :: unit, ios, k
+    character(len=512) :: msg
+    if (.not. truncate_locked(lock_fd)) then
+      call fail(status, exit_io, 'batch table '''//path//''': cannot empty it to start over')
+      return
+    end if
+    open (newunit=unit, file=path, status='old', action='write', position='rewind', iostat=ios, iomsg=msg)
+    do k = 1, size(lines)
+      if (ios == 0) write (unit, '(a)', iostat=ios, iomsg=msg) lines(k)%s
+    end do
+    if (ios == 0) flush (unit, iostat=ios, iomsg=msg)
+    if (ios == 0) close (unit, iostat=ios, iomsg=msg)
+    if (ios /= 0) call fail(status, exit_io, 'batch table '''//path//''': cannot write ('//trim(msg)//')')
+  end subroutine rewrite_locked
 
   !> Write the finished table from the partial one, then remove the partial one.
   subroutine finish_table(partial_path, out_path, list_path, n_cases, n_failed, status)
