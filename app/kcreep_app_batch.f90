@@ -25,7 +25,8 @@ module kcreep_app_batch
   use kcreep_strings, only: folder_of, resolve_path
   use kcreep_table, only: run_record_t, table_lines, table_row, traction_lines, case_name
   use kcreep_app_files, only: write_text_file, check_output_path
-  use kcreep_app_lock, only: lock_exclusive, truncate_locked
+  use kcreep_app_lock, only: lock_exclusive, truncate_locked, real_path
+  use kcreep_namelist, only: read_config
   use, intrinsic :: iso_c_binding, only: c_int
   implicit none
   private
@@ -48,7 +49,7 @@ contains
     character(len=*), intent(in) :: list_path, out_path
     integer, intent(out) :: n_failed
     type(status_t), intent(inout) :: status
-    type(text_t), allocatable :: cases(:), partial(:)
+    type(text_t), allocatable :: cases(:), partial(:), names(:)
     character(len=:), allocatable :: partial_path, signature
     integer :: n_done, k, unit, ios
     integer(c_int) :: lock_fd
@@ -56,7 +57,9 @@ contains
     character(len=512) :: msg
 
     n_failed = 0
-    call read_case_list(list_path, cases, status)
+    call read_case_list(list_path, cases, names, status)
+    if (status%failed()) return
+    call check_traction_files(list_path, cases, status)
     if (status%failed()) return
     call check_output_path(out_path, 'batch table', status)
     if (status%failed()) return
@@ -88,7 +91,7 @@ contains
       return
     end if
     do k = n_done + 1, size(cases)
-      call run_one(k, size(cases), cases(k)%s, unit, n_failed, status)
+      call run_one(k, size(cases), cases(k)%s, names(k)%s, unit, n_failed, status)
       if (status%failed()) then
         close (unit)
         return
@@ -100,9 +103,9 @@ contains
   end subroutine run_batch
 
   !> Solve case k and append its row (and any comments) to the partial table.
-  subroutine run_one(k, n, input_path, unit, n_failed, status)
+  subroutine run_one(k, n, input_path, name, unit, n_failed, status)
     integer, intent(in) :: k, n, unit
-    character(len=*), intent(in) :: input_path
+    character(len=*), intent(in) :: input_path, name
     integer, intent(inout) :: n_failed
     type(status_t), intent(inout) :: status
     type(config_t) :: cfg
@@ -120,7 +123,7 @@ contains
 
     if (case_status%failed()) then
       n_failed = n_failed + 1
-      record = failed_record(input_path, case_status%code)
+      record = failed_record(name, case_status%code)
       write (error_unit, '(a)') 'kcreep: '//label//': error: '//case_status%message
       write (unit, '(a)', iostat=ios, iomsg=msg) '# '//label//': error: '//case_status%message
     else
@@ -130,6 +133,7 @@ contains
         if (ios == 0) write (unit, '(a)', iostat=ios, iomsg=msg) '# '//label//': warning: '//trim(record%warnings(i))
       end do
     end if
+    record%case_name = name
     if (ios == 0) write (unit, '(a)', iostat=ios, iomsg=msg) table_row(record)
     if (ios == 0) flush (unit, iostat=ios, iomsg=msg)
     if (ios /= 0) then
@@ -146,13 +150,13 @@ contains
   end subroutine run_one
 
   !> The row of a case that could not be solved: its name, NaN numbers, the error word.
-  function failed_record(input_path, code) result(record)
-    character(len=*), intent(in) :: input_path
+  function failed_record(name, code) result(record)
+    character(len=*), intent(in) :: name
     integer, intent(in) :: code
     type(run_record_t) :: record
     real(real64) :: nan
     nan = ieee_value(1.0_real64, ieee_quiet_nan)
-    record%case_name = case_name(input_path)
+    record%case_name = name
     record%scheme = '-'
     record%alpha = nan
     record%nu = nan
@@ -280,16 +284,21 @@ contains
     if (ios == 0) close (unit, status='delete')
   end subroutine finish_table
 
-  !> The cases of a list file: one path per line, relative to the list's folder.
-  subroutine read_case_list(list_path, cases, status)
+  !> The cases of a list file: one path per line, relative to the list's
+  !> folder; names: each case's name in the table, its path relative to the
+  !> list's folder without the extension (listed_case_name).
+  subroutine read_case_list(list_path, cases, names, status)
     character(len=*), intent(in) :: list_path
-    type(text_t), allocatable, intent(out) :: cases(:)
+    type(text_t), allocatable, intent(out) :: cases(:), names(:)
     type(status_t), intent(inout) :: status
     type(text_t), allocatable :: lines(:)
-    character(len=:), allocatable :: tail, entry
+    character(len=:), allocatable :: tail, entry, list_folder, name
     integer :: k
 
-    allocate (cases(0))
+    allocate (cases(0), names(0))
+    list_folder = folder_of(list_path)
+    if (len(list_folder) == 0) list_folder = '.'
+    list_folder = real_path(list_folder)
     call read_text_file(list_path, 'batch list', lines, tail, status)
     if (status%failed()) return
     if (len(tail) > 0) lines = [lines, text_t(tail)]
@@ -298,6 +307,8 @@ contains
       if (len(entry) == 0) cycle
       if (entry(1:1) == '#') cycle
       cases = [cases, text_t(resolve_path(entry, folder_of(list_path)))]
+      name = listed_case_name(entry, list_folder)   ! (a temporary: gfortran 12 fails on the function result in the constructor)
+      names = [names, text_t(name)]
     end do
     if (size(cases) == 0) call fail(status, exit_bad_input, 'batch list '''//list_path// &
         ''': no cases (expected one namelist path per line)')
@@ -332,6 +343,77 @@ contains
     end do
     flush (output_unit)
   end subroutine estimate_memory
+
+  !> A case's name in a batch table: its path as the list gives it, relative
+  !> to the list's folder (an absolute path inside that folder made relative;
+  !> leading './' dropped), without the extension, blanks replaced. So
+  !> a/case.nml and b/case.nml stay apart as a/case and b/case.
+  !> list_folder: the list's folder as an absolute canonical path, or ''.
+  function listed_case_name(entry, list_folder) result(name)
+    character(len=*), intent(in) :: entry, list_folder
+    character(len=:), allocatable :: name
+    integer :: slash, dot, i
+    name = entry
+    if (len(list_folder) > 0 .and. len(name) > len(list_folder) + 1) then
+      if (name(1:len(list_folder) + 1) == list_folder//'/') name = name(len(list_folder) + 2:)
+    end if
+    do while (len(name) > 2)
+      if (name(1:2) /= './') exit
+      name = name(3:)
+    end do
+    slash = index(name, '/', back=.true.)
+    dot = index(name, '.', back=.true.)
+    if (dot > slash + 1) name = name(1:dot - 1)
+    do i = 1, len(name)
+      if (name(i:i) == ' ' .or. iachar(name(i:i)) < 33) name(i:i) = '_'
+    end do
+    if (len(name) == 0) name = '-'
+  end function listed_case_name
+
+  !> Two cases that write the same traction file would overwrite each other:
+  !> refuse the list before any work. Cases that cannot be read are left to
+  !> their own error rows.
+  subroutine check_traction_files(list_path, cases, status)
+    character(len=*), intent(in) :: list_path
+    type(text_t), intent(in) :: cases(:)
+    type(status_t), intent(inout) :: status
+    type(text_t), allocatable :: traction(:)
+    type(config_t) :: cfg
+    type(status_t) :: case_status
+    integer :: k, j
+    allocate (traction(size(cases)))
+    do k = 1, size(cases)
+      traction(k)%s = ''
+      case_status = status_t()
+      call read_config(cases(k)%s, cfg, case_status)
+      if (case_status%failed() .or. len(cfg%traction_file) == 0) cycle
+      traction(k)%s = canonical_output(cfg%traction_file)
+      do j = 1, k - 1
+        if (traction(j)%s == traction(k)%s) then
+          call fail(status, exit_bad_input, 'batch list '''//list_path//''': cases '//itoa(j)//' '''// &
+                    cases(j)%s//''' and '//itoa(k)//' '''//cases(k)%s//''' both write traction_file '''// &
+                    traction(k)%s//''' (the second would overwrite the first; give each case its own)')
+          return
+        end if
+      end do
+    end do
+  end subroutine check_traction_files
+
+  !> An output path made comparable: its folder resolved (the file itself may not exist yet).
+  function canonical_output(path) result(canonical)
+    character(len=*), intent(in) :: path
+    character(len=:), allocatable :: canonical, folder
+    integer :: slash
+    slash = index(path, '/', back=.true.)
+    folder = folder_of(path)
+    if (len(folder) == 0) folder = '.'
+    folder = real_path(folder)
+    if (len(folder) == 0) then
+      canonical = path
+    else
+      canonical = folder//'/'//path(slash + 1:)
+    end if
+  end function canonical_output
 
   !> '<list name without folder and extension>.tab' in the working folder.
   pure function default_batch_table(list_path) result(name)

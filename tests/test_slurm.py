@@ -79,7 +79,9 @@ def compare(local_rows, slurm_rows, what):
 sweep = []
 for k in range(8):
     m = 10 + 2 * k
-    name = f"p{k}_{m}"
+    # the last case in a sub-folder: named sub/p7_24 locally and after the gather
+    name = f"p{k}_{m}" if k < 7 else f"sub/p{k}_{m}"
+    os.makedirs(os.path.join(folder, os.path.dirname(name)), exist_ok=True)
     solver = "&solver scheme='backward', spin_shift=0.1666666666666667 /\n" if k % 3 == 2 else ""
     with open(os.path.join(folder, name + ".nml"), "w") as f:
         f.write(f"&patch semi_a=1, semi_b={1 - 0.08 * k:.2f}, mx={m}, my={m} /\n&material nu={0.1 * (k % 4):.1f} /\n"
@@ -97,6 +99,7 @@ local = run([kc.KCREEP, "--batch", "sweep.list", "local.tab"], cwd=folder)
 t_local = time.time() - t0
 kc.check(local.returncode == 5, f"local batch: exit 5 (one bad case) ({local.returncode})")
 local_rows = kc.read_table(os.path.join(folder, "local.tab"))
+kc.check(local_rows[-1]["case"] == "sub/p7_24", f"a case in a sub-folder is named by its path ({local_rows[-1]['case']})")
 
 state = tempfile.mkdtemp(prefix="kcreep-slurm-")
 os.chmod(state, 0o755)                # munged wants every folder above its socket searchable

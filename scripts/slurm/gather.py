@@ -23,10 +23,27 @@ import sys
 
 
 def case_name(path):
-    """The table's case column for a namelist path (as kcreep writes it)."""
+    """The name of a namelist without folder and extension (sweeps from before
+    run_cases_slurm.sh recorded the list's folder)."""
     name = path[path.rfind("/") + 1:]
     dot = name.rfind(".")
     if dot > 0:
+        name = name[:dot]
+    name = "".join("_" if (c == " " or ord(c) < 33) else c for c in name)
+    return name or "-"
+
+
+def listed_name(entry, folder):
+    """The table's case column as kcreep --batch writes it for a list entry:
+    relative to the list's folder (an absolute path inside it made relative,
+    leading './' dropped), without the extension, blanks replaced."""
+    name = entry
+    if folder and name.startswith(folder + "/") and len(name) > len(folder) + 1:
+        name = name[len(folder) + 1:]
+    while len(name) > 2 and name.startswith("./"):
+        name = name[2:]
+    slash, dot = name.rfind("/"), name.rfind(".")
+    if dot > slash + 1:
         name = name[:dot]
     name = "".join("_" if (c == " " or ord(c) < 33) else c for c in name)
     return name or "-"
@@ -64,6 +81,14 @@ def main():
         print(f"gather: error: {workdir} is not a run_cases_slurm.sh folder ({e})", file=sys.stderr)
         return 2
     n_chunks = (len(cases) + chunk_size - 1) // chunk_size
+    # the chunk tables name each case by its absolute path (the chunk lists hold
+    # those); the gathered table names it as kcreep --batch of the whole list
+    # would: relative to the list's folder
+    try:
+        list_dir = open(os.path.join(workdir, "list_dir")).read().rstrip("\n")
+    except OSError:
+        list_dir = None
+    chunks_dir = os.path.realpath(os.path.join(workdir, "chunks"))
 
     header, columns, per_case_comments, rows = None, None, [], []
     missing, problems = [], []
@@ -90,10 +115,12 @@ def main():
             missing += expected
             continue
         names = [r.split(None, 1)[0] for r in chunk_rows]
-        if names != [case_name(p) for p in expected]:
+        if names != [listed_name(p, chunks_dir) for p in expected]:
             problems.append(f"chunk {i}: rows {names} do not match its cases")
             missing += expected
             continue
+        chunk_rows = [(listed_name(p, list_dir) if list_dir else case_name(p)) + r[len(name):]
+                      for p, r, name in zip(expected, chunk_rows, names)]
         for c in comments:            # per-case messages, renumbered to the place in the whole list
             m = re.match(r"# case (\d+) (.*)", c)
             if m:

@@ -128,6 +128,8 @@ if [[ -f $workdir/cases.list ]]; then
 else
   cp "$cases_new" "$workdir/cases.list"
   echo "$chunk" >"$workdir/chunk_size"
+  # the gathered table names each case relative to the list's folder, as kcreep --batch does
+  printf '%s\n' "$list_dir" >"$workdir/list_dir"
   split -l "$chunk" -a 5 --numeric-suffixes=1 --additional-suffix=.list "$workdir/cases.list" "$workdir/chunks/"
 fi
 
