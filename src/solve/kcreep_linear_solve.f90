@@ -281,7 +281,13 @@ contains
     ! (first touch of hundreds of MB costs about a tenth of the LU)
     lda = maxval(subs%m)
     call system_clock(t0)
-    allocate (a(lda, lda), ipiv(lda), work(4 * lda), iwork(lda))
+    allocate (a(lda, lda), ipiv(lda), work(4 * lda), iwork(lda), stat=info)
+    if (info /= 0) then
+      call fail(status, exit_numerical, 'out of memory: the dense matrix of '//itoa(lda)//' unknowns ('// &
+                rtoa(8 * real(lda, real64)**2 / 2.0_real64**30)//' GiB) could not be allocated '// &
+                '(use a coarser grid or method = ''iterative'')')
+      return
+    end if
     call system_clock(t1)
     diag%t_assemble = diag%t_assemble + real(t1 - t0, real64) / rate
     do i = 1, size(subs)
