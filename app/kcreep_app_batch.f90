@@ -166,6 +166,7 @@ contains
     record%cn = nan
     record%klt = nan
     record%fastsim = nan
+    record%centroid = nan
     record%t_assemble = nan
     record%t_factor = nan
     record%t_solve = nan

@@ -48,6 +48,8 @@ module kcreep_namelist
     integer :: extrapolate_levels = 3, refine_ratio = 2
     character(len=:), allocatable :: refine     !< see dense_solver refine_modes
     type(solver_options_t) :: solve           !< method, tolerance, splits
+    character(len=:), allocatable :: spin_centre   !< 'origin', 'centroid' or 'point'
+    real(real64) :: spin_centre_xy(2) = 0          !< the point of spin_centre = 'point'
     ! &output
     character(len=:), allocatable :: table_file, traction_file
   end type config_t
@@ -65,7 +67,8 @@ contains
     type(status_t), intent(inout) :: status
 
     ! namelist variables, with their defaults
-    character(len=32) :: shape, scheme, method, refine
+    character(len=32) :: shape, scheme, method, refine, spin_centre
+    real(real64) :: spin_centre_x, spin_centre_y
     real(real64) :: semi_a, semi_b, dx, dy, x0, y0, g, nu, alpha, spin_shift, tolerance
     integer :: mx, my, extrapolate_levels, refine_ratio, max_iterations, restart
     logical :: extrapolate, split_systems
@@ -83,7 +86,8 @@ contains
     namelist /patch/ shape, semi_a, semi_b, mx, my, mask_file, mask_rows, dx, dy, x0, y0, contact_file, contact_case
     namelist /material/ g, nu
     namelist /solver/ scheme, alpha, spin_shift, load_cases, extrapolate, extrapolate_levels, refine_ratio, refine, &
-                      method, tolerance, max_iterations, restart, split_systems
+                      method, tolerance, max_iterations, restart, split_systems, spin_centre, spin_centre_x, &
+                      spin_centre_y
     namelist /output/ table_file, traction_file
 
     integer :: unit, ios, nrows
@@ -111,6 +115,9 @@ contains
     alpha = unset
     spin_shift = unset
     load_cases = 'xi eta phi'
+    spin_centre = 'origin'
+    spin_centre_x = unset
+    spin_centre_y = unset
     extrapolate = .false.
     extrapolate_levels = 3
     refine_ratio = 2
@@ -176,6 +183,23 @@ contains
     if (cfg%shape /= 'ellipse' .and. semi_b /= unset) call fail(status, exit_bad_input, where// &
         '&patch semi_b = '//rtoa(semi_b)//' is only used by shape = ''ellipse'' (shape = '''//cfg%shape// &
         '''; leave it out)')
+    cfg%spin_centre = lower(trim(adjustl(spin_centre)))
+    select case (cfg%spin_centre)
+    case ('origin', 'centroid')
+      if (spin_centre_x /= unset .or. spin_centre_y /= unset) call fail(status, exit_bad_input, where// &
+          '&solver spin_centre_x, spin_centre_y are only used by spin_centre = ''point'' (spin_centre = '''// &
+          cfg%spin_centre//''')')
+    case ('point')
+      if (spin_centre_x == unset .or. spin_centre_y == unset) call fail(status, exit_bad_input, where// &
+          '&solver spin_centre = ''point'' needs both spin_centre_x and spin_centre_y')
+      if (.not. (offset_in_range(spin_centre_x) .and. offset_in_range(spin_centre_y))) &
+        call fail(status, exit_bad_input, where//'&solver spin_centre_x, spin_centre_y = '// &
+                  rtoa(spin_centre_x)//', '//rtoa(spin_centre_y)//' (allowed: 0 or 1e-30 <= |x|, |y| <= 1e30)')
+      cfg%spin_centre_xy = [spin_centre_x, spin_centre_y]
+    case default
+      call fail(status, exit_bad_input, where//'&solver spin_centre = '''//cfg%spin_centre// &
+                ''' (allowed: ''origin'', ''centroid'', ''point'' with spin_centre_x, spin_centre_y)')
+    end select
     if (status%failed()) return
     if (mx == unset_int) mx = 0        ! 0 from here on: not given
     if (my == unset_int) my = 0
@@ -450,6 +474,14 @@ contains
     problem%extrapolate = cfg%extrapolate
     problem%extrapolate_levels = cfg%extrapolate_levels
     problem%refine_ratio = cfg%refine_ratio
+    select case (cfg%spin_centre)
+    case ('centroid')
+      problem%spin_centre = patch%centroid()
+    case ('point')
+      problem%spin_centre = cfg%spin_centre_xy
+    case default
+      problem%spin_centre = 0
+    end select
   end function problem_of
 
   !> '<input name without folder and extension>.tab' in the working folder.

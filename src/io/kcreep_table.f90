@@ -19,7 +19,7 @@ module kcreep_table
   character(len=*), parameter :: table_columns = &
     'case scheme mx my n alpha nu g c f11 f12 f13 f21 f22 f23 f31 f32 f33 c11 c22 c23 '// &
     'klt11 klt22 klt23 t_assemble t_factor t_solve t_total rcond berr verdict '// &
-    'ext11 ext22 ext23 exterr11 exterr22 exterr23 extp11 extp22 extp23 iterations L1 L2 L3'
+    'ext11 ext22 ext23 exterr11 exterr22 exterr23 extp11 extp22 extp23 iterations L1 L2 L3 xc yc'
 
 
 contains
@@ -30,10 +30,11 @@ contains
     type(run_record_t), intent(in) :: records(:)
     character(len=*), intent(in) :: warnings(:)
     character(len=line_length), allocatable :: lines(:)
-    character(len=*), parameter :: fixed(4) = [character(len=100) :: &
+    character(len=*), parameter :: fixed(5) = [character(len=100) :: &
       '# kcreep: creep coefficients of full-adhesion steady rolling', &
-      '# (Fx, Fy, Mz) = -[fij] (xi, eta, phi); rigid slip (xi - phi*y, eta + phi*x), leading edge at +x', &
+      '# (Fx, Fy, Mz) = -[fij] (xi, eta, phi); rigid slip (xi - phi*y, eta + phi*x), x, y from the spin centre', &
       '# c11 = f11/(g c^2), c22 = f22/(g c^2), c23 = f23/(g c^3); kltij: Kalker table E3 (ellipses)', &
+      '# leading edge at +x; xc, yc: centroid of the patch cells (coordinates of the input)', &
       '# times in s; rcond: LAPACK 1-norm estimate; berr: backward error (iterative: relative residual)']
     integer :: k, nw
 
@@ -62,7 +63,8 @@ contains
     ext = ieee_nan()
     if (r%extrapolated) ext = [r%ext, r%ext_error, r%ext_order]
     line = trim(buf)
-    write (buf, '(6(1x, es23.15e3), 3(1x, f6.3), 1x, i0, 3(1x, es23.15e3))') ext, r%iterations, r%fastsim
+    write (buf, '(6(1x, es23.15e3), 3(1x, f6.3), 1x, i0, 5(1x, es23.15e3))') ext, r%iterations, r%fastsim, &
+      r%centroid
     line = line//trim(buf)
   end function table_row
 

@@ -26,6 +26,10 @@ module kcreep_problem
     character(len=:), allocatable :: refine     !< dense refinement: 'auto', 'always', 'never', 'lapack'
     logical :: extrapolate = .false.            !< Richardson extrapolation in the mesh size
     integer :: extrapolate_levels = 3, refine_ratio = 2
+    !> The point (x, y) about which the spin phi turns and the moment Mz is
+    !> taken (the rigid slip is xi - phi (y - ys), eta + phi (x - xs)); the
+    !> coordinate origin by default.
+    real(real64) :: spin_centre(2) = 0
   end type problem_t
 
   type :: result_t
@@ -38,6 +42,7 @@ module kcreep_problem
     real(real64) :: klt(3) = 0                  !< Kalker's table E3 for an ellipse, NaN otherwise
     real(real64) :: fastsim(3) = 0              !< FASTSIM flexibilities L1, L2, L3
     real(real64) :: centroid(2) = 0             !< centre of area of the patch cells
+    real(real64) :: spin_centre(2) = 0          !< as given in the problem
     ! Richardson extrapolation (problem%extrapolate): limits, error estimates, orders used
     logical :: extrapolated = .false.
     real(real64) :: ext(3) = 0, ext_error(3) = 0, ext_order(3) = 0
