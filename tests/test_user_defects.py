@@ -300,6 +300,24 @@ def section_estimate():
              f"one error line per bad file, in order, the others still estimated ({err})")
     ok = run(["--estimate-memory", "a.nml"])
     kc.check(ok.returncode == 0 and pat.match(ok.stdout.strip()), f"all good: exit 0 ({ok.stdout.strip()})")
+    # the iterative estimate against the measured peak (GNU time): it must
+    # cover the solve (RSS <= estimate + the 64 MiB run_cases_slurm.sh adds for
+    # the program itself) without being far above it (measured on the unit
+    # circle: 160 x 160 0.094 GB / 0.088 GB, 200 x 200 0.155 / 0.138,
+    # 400 x 400 0.792 / 0.553; the old formula gave 1.25 GB at 400 x 400)
+    if os.path.exists("/usr/bin/time"):
+        write(os.path.join(folder, "it160.nml"), "&patch mx=160, my=160 /\n&solver method='iterative' /\n")
+        est = run(["--estimate-memory", "it160.nml"])
+        bytes_ = int(est.stdout.split()[-2]) if est.returncode == 0 else 0
+        proc = subprocess.run(["/usr/bin/time", "-v", kc.KCREEP, "it160.nml"], cwd=folder, capture_output=True,
+                              text=True, env=dict(os.environ, OPENBLAS_NUM_THREADS="1"))
+        m = re.search(r"Maximum resident set size \(kbytes\): (\d+)", proc.stderr)
+        rss = int(m.group(1)) * 1024 if m else None
+        kc.check(rss is not None and rss <= bytes_ + 64 * 2**20 and bytes_ <= 1.5 * rss,
+                 f"iterative 160 x 160: estimate {bytes_ / 1e6:.1f} MB against peak RSS "
+                 f"{(rss or 0) / 1e6:.1f} MB (RSS <= estimate + 64 MiB, estimate <= 1.5 RSS)")
+    else:
+        kc.check(False, "/usr/bin/time is needed (Debian package 'time', scripts/setup.sh installs it)")
 
 
 def section_lock():
