@@ -23,14 +23,15 @@ module kcreep_app_batch
   use kcreep_namelist, only: config_t
   use kcreep_app_case, only: solve_input, load_input, case_memory_bytes
   use kcreep_strings, only: folder_of, resolve_path
-  use kcreep_table, only: run_record_t, table_lines, table_row, traction_lines, case_name
+  use kcreep_table, only: run_record_t, table_lines, table_row, traction_lines, case_name, table_columns, pressure_lines, &
+                          contact_mask_lines, line_length
   use kcreep_app_files, only: write_text_file, check_output_path
   use kcreep_app_lock, only: lock_exclusive, truncate_locked, real_path
   use kcreep_namelist, only: read_config
   use, intrinsic :: iso_c_binding, only: c_int
   implicit none
   private
-  public :: run_batch, read_case_list, estimate_memory, default_batch_table, text_t
+  public :: run_batch, read_case_list, estimate_memory, default_batch_table, text_t, count_error_rows
 
   !> Exit status of a batch that finished but in which some cases failed.
   integer, parameter, public :: exit_cases_failed = 5
@@ -120,6 +121,11 @@ contains
     if (.not. case_status%failed() .and. len(cfg%traction_file) > 0) &
       call write_text_file(cfg%traction_file, traction_lines(record%patch, record%traction, cfg%requested), &
                            'traction_file', case_status)
+    if (.not. case_status%failed() .and. len(cfg%pressure_file) > 0 .and. record%normal_solved) &
+      call write_text_file(cfg%pressure_file, pressure_lines(record%patch, record%pressure, record%fn, &
+                           record%approach), 'pressure_file', case_status)
+    if (.not. case_status%failed() .and. len(cfg%contact_mask_file) > 0 .and. record%normal_solved) &
+      call write_text_file(cfg%contact_mask_file, contact_mask_lines(record%patch), 'contact_mask_file', case_status)
 
     if (case_status%failed()) then
       n_failed = n_failed + 1
@@ -254,7 +260,7 @@ contains
     type(status_t), intent(inout) :: status
     type(text_t), allocatable :: partial(:), lines(:)
     character(len=:), allocatable :: tail
-    character(len=1024), allocatable :: head(:)
+    character(len=line_length), allocatable :: head(:)
     character(len=0) :: no_warnings(0)
     integer :: k, nh, unit, ios
 
@@ -504,17 +510,53 @@ contains
     end do
   end function count_rows
 
-  !> Rows whose verdict (last word) starts with 'error:'.
+  !> Rows whose verdict (the table's verdict column, not the last word: more
+  !> columns follow it) starts with 'error:'.
   pure integer function count_error_rows(lines) result(n)
     type(text_t), intent(in) :: lines(:)
-    integer :: k, blank
+    integer :: k
     n = 0
     do k = 1, size(lines)
       if (.not. is_row(lines(k)%s)) cycle
-      blank = index(trim(lines(k)%s), ' ', back=.true.)
-      if (index(lines(k)%s(blank + 1:), 'error:') == 1) n = n + 1
+      if (index(word_of(lines(k)%s, verdict_column()), 'error:') == 1) n = n + 1
     end do
   end function count_error_rows
+
+  !> Position of 'verdict' among the table's columns.
+  pure integer function verdict_column()
+    verdict_column = 1
+    do while (word_of(table_columns, verdict_column) /= 'verdict' .and. &
+              len(word_of(table_columns, verdict_column)) > 0)
+      verdict_column = verdict_column + 1
+    end do
+  end function verdict_column
+
+  !> Word k (blank-separated) of text, '' when there are fewer.
+  pure function word_of(text, k) result(word)
+    character(len=*), intent(in) :: text
+    integer, intent(in) :: k
+    character(len=:), allocatable :: word
+    integer :: i, first, count
+    count = 0
+    i = 1
+    word = ''
+    do while (i <= len(text))
+      if (text(i:i) == ' ') then
+        i = i + 1
+        cycle
+      end if
+      first = i
+      do while (i <= len(text))
+        if (text(i:i) == ' ') exit
+        i = i + 1
+      end do
+      count = count + 1
+      if (count == k) then
+        word = text(first:i - 1)
+        return
+      end if
+    end do
+  end function word_of
 
   !> A short checksum of the case paths, so that a partial table is only
   !> resumed by the list it was started from.

@@ -4,7 +4,8 @@
 module kcreep_app_case
   use, intrinsic :: iso_fortran_env, only: int64
   use kcreep_status, only: status_t
-  use kcreep, only: problem_t, patch_t, kcreep_solve
+  use, intrinsic :: iso_fortran_env, only: real64
+  use kcreep, only: problem_t, patch_t, kcreep_solve, mask_patch
   use kcreep_namelist, only: config_t, read_config, build_patch, problem_of
   use kcreep_extrapolation, only: memory_need
   use kcreep_table, only: run_record_t, case_name
@@ -46,6 +47,14 @@ contains
     if (check_table .and. .not. status%failed()) call check_output_path(cfg%table_file, 'table_file', status)
     if (.not. status%failed() .and. len(cfg%traction_file) > 0) &
       call check_output_path(cfg%traction_file, 'traction_file', status)
+    if (.not. status%failed() .and. len(cfg%pressure_file) > 0) &
+      call check_output_path(cfg%pressure_file, 'pressure_file', status)
+    if (.not. status%failed() .and. len(cfg%contact_mask_file) > 0) &
+      call check_output_path(cfg%contact_mask_file, 'contact_mask_file', status)
+    if (check_table .and. cfg%fastsim_on .and. .not. status%failed()) &
+      call check_output_path(cfg%creep_file, 'creep_file', status)
+    if (check_table .and. cfg%fastsim_on .and. len(cfg%creep_map_file) > 0 .and. .not. status%failed()) &
+      call check_output_path(cfg%creep_map_file, 'creep_map_file', status)
     if (status%failed()) return
     problem = problem_of(cfg, patch)
     problem%solve%memory_limit = memory_limit_bytes()
@@ -57,7 +66,7 @@ contains
   !> (kcreep_extrapolation%memory_need: the dense subsystem matrix or the
   !> iterative solver's storage, and the operator table, of the grid or the
   !> extrapolation level that needs most). The program itself (code,
-  !> OpenBLAS buffers) is not included: a few tens of MiB, see README.
+  !> OpenBLAS buffers) is not included: a few tens of MiB, see docs/cluster.md.
   subroutine case_memory_bytes(cfg, patch, bytes, method, status)
     type(config_t), intent(in) :: cfg
     type(patch_t), intent(in) :: patch
@@ -66,8 +75,29 @@ contains
     type(status_t), intent(inout) :: status
     type(problem_t) :: problem
     integer :: level
+    integer(int64) :: need
+    type(patch_t) :: bound
     problem = problem_of(cfg, patch)
     problem%solve%memory_limit = memory_limit_bytes()
+    if (cfg%shape == 'gap') then
+      ! the contact area lies inside the interpenetration area {h < approach}
+      ! (the whole grid when the force is given): the tangential solve on that
+      ! bound, plus the normal solve's ~15 doubles per grid cell
+      associate (gap => cfg%normal%gap)
+        if (cfg%normal%force_given) then
+          call mask_patch(gap%h < huge(1.0_real64), gap%dx, gap%dy, gap%x0, gap%y0, 'gap', bound, status)
+        else
+          call mask_patch(gap%h < cfg%normal%approach, gap%dx, gap%dy, gap%x0, gap%y0, 'gap', bound, status)
+        end if
+        bytes = 120 * int(gap%mx, int64) * gap%my
+      end associate
+      if (status%failed()) return
+      problem%patch = bound
+      problem%extrapolate = .false.
+      call memory_need(problem, need, method, level, status)
+      bytes = bytes + need
+      return
+    end if
     call memory_need(problem, bytes, method, level, status)
   end subroutine case_memory_bytes
 

@@ -13,11 +13,12 @@ module kcreep_app_cli
   use kcreep_strings, only: itoa
   use kcreep, only: kcreep_version
   use kcreep_namelist, only: config_t
-  use kcreep_table, only: run_record_t, table_lines, traction_lines
+  use kcreep_table, only: run_record_t, table_lines, traction_lines, pressure_lines, contact_mask_lines
   use kcreep_app_case, only: solve_input
   use kcreep_app_batch, only: run_batch, estimate_memory, default_batch_table, text_t, exit_cases_failed
   use kcreep_app_files, only: write_temporary, commit_temporary, discard_temporary
   use kcreep_app_summary, only: print_summary
+  use kcreep_app_fastsim, only: run_fastsim
   implicit none
   private
   public :: command_t, parse_command, run_command, stop_with
@@ -88,27 +89,71 @@ contains
     type(status_t), intent(inout) :: status
     type(config_t) :: cfg
     type(run_record_t) :: record
+    character(len=400), allocatable :: creep(:)
+    character(len=200), allocatable :: maps(:), fastsim_summary(:), fastsim_warnings(:)
+    character(len=4096) :: paths(6)
+    character(len=24) :: variables(6)
+    logical :: with_maps
+    integer :: i, k, np
 
     call solve_input(input_path, .true., cfg, record, status)
     if (status%failed()) return
+    with_maps = .false.
+    if (cfg%fastsim_on) then
+      call run_fastsim(cfg, record, creep, maps, fastsim_summary, fastsim_warnings, status)
+      if (status%failed()) return
+      with_maps = cfg%fastsim%maps
+    end if
     ! every output complete in its temporary file before any is renamed into
     ! place: a failure (a full disk) leaves all the previous files as they were
-    call write_temporary(cfg%table_file, table_lines([record], record%warnings), 'table_file', status)
-    if (.not. status%failed() .and. len(cfg%traction_file) > 0) &
-      call write_temporary(cfg%traction_file, traction_lines(record%patch, record%traction, cfg%requested), &
-                           'traction_file', status)
-    if (.not. status%failed()) call commit_temporary(cfg%table_file, 'table_file', status)
-    if (.not. status%failed() .and. len(cfg%traction_file) > 0) &
-      call commit_temporary(cfg%traction_file, 'traction_file', status)
+    np = 0
+    call stage(cfg%table_file, 'table_file', table_lines([record], record%warnings))
+    if (len(cfg%traction_file) > 0) &
+      call stage(cfg%traction_file, 'traction_file', traction_lines(record%patch, record%traction, cfg%requested))
+    if (len(cfg%pressure_file) > 0 .and. record%normal_solved) &
+      call stage(cfg%pressure_file, 'pressure_file', &
+                 pressure_lines(record%patch, record%pressure, record%fn, record%approach))
+    if (len(cfg%contact_mask_file) > 0 .and. record%normal_solved) &
+      call stage(cfg%contact_mask_file, 'contact_mask_file', contact_mask_lines(record%patch))
+    if (cfg%fastsim_on) call stage(cfg%creep_file, 'creep_file', creep)
+    if (with_maps) call stage(cfg%creep_map_file, 'creep_map_file', maps)
+    do k = 1, np
+      if (.not. status%failed()) call commit_temporary(trim(paths(k)), trim(variables(k)), status)
+    end do
     if (status%failed()) then
-      call discard_temporary(cfg%table_file)
-      if (len(cfg%traction_file) > 0) call discard_temporary(cfg%traction_file)
+      do k = 1, np
+        call discard_temporary(trim(paths(k)))
+      end do
       return
     end if
     call print_summary(input_path, cfg, record)
+    if (cfg%fastsim_on) then
+      do i = 1, size(fastsim_summary)
+        write (output_unit, '(2x, a)') trim(fastsim_summary(i))
+      end do
+      if (with_maps) write (output_unit, '(2x, a)') 'FASTSIM maps: '//cfg%creep_map_file
+      do i = 1, size(fastsim_warnings)
+        write (output_unit, '(2x, a)') 'WARNING: '//trim(fastsim_warnings(i))
+        write (error_unit, '(a)') 'kcreep: warning: '//trim(fastsim_warnings(i))
+      end do
+    end if
     if (profile_requested() .and. record%method == 'iterative') write (error_unit, '(a, 3f9.3)') &
       'kcreep: GMRES seconds in operator, preconditioner, orthogonalisation:', &
       record%t_operator, record%t_preconditioner, record%t_orthogonalise
+
+  contains
+
+    !> Write one output to its temporary file and remember it for the commit.
+    subroutine stage(path, variable, lines)
+      character(len=*), intent(in) :: path, variable
+      character(len=*), intent(in) :: lines(:)
+      if (status%failed()) return
+      np = np + 1
+      paths(np) = path
+      variables(np) = variable
+      call write_temporary(path, lines, variable, status)
+    end subroutine stage
+
   end subroutine single_mode
 
   !> kcreep --batch LIST [OUT_TABLE]

@@ -2,7 +2,7 @@
 !> Kalker's table, the CONTACT comparison, extrapolation, solver diagnostics,
 !> times, verdict and warnings.
 module kcreep_app_summary
-  use, intrinsic :: iso_fortran_env, only: output_unit, error_unit
+  use, intrinsic :: iso_fortran_env, only: output_unit, error_unit, real64
   use kcreep, only: kcreep_version, patch_t
   use kcreep_namelist, only: config_t
   use kcreep_table, only: run_record_t
@@ -45,6 +45,7 @@ contains
       end if
     end do
     if (patch%kind == 'contact') call print_contact_comparison(cfg, record)
+    if (record%normal_solved) call print_normal(record)
     if (record%extrapolated) then
       write (output_unit, '(2x, a, i0, a, i0, a)') 'extrapolated (', cfg%extrapolate_levels, &
         ' levels, ratio ', cfg%refine_ratio, '; the rows above are the finest level):'
@@ -54,6 +55,16 @@ contains
       end do
     end if
     write (output_unit, '(2x, a, 3es12.4)') 'FASTSIM L1 L2 L3:', record%fastsim
+    if (patch%kind /= 'ellipse') then
+      do i = 1, 2
+        associate (e => record%ellipse(i))
+          write (output_unit, '(2x, a, f7.4, a, 3f8.4, a, 3f7.2, a)') 'equivalent ellipse ('//trim(e%kind)// &
+            '): a/b =', e%semi_a / e%semi_b, ', Kalker C11 C22 C23 =', e%c, ' (', 100 * (e%c / record%cn - 1), ' %)'
+          write (output_unit, '(4x, a, 3es12.4, a, 3f7.2, a)') 'its L1 L2 L3:', e%flex, ' (', &
+            100 * (e%flex / record%fastsim - 1), ' % against the exact L)'
+        end associate
+      end do
+    end if
     if (record%method == 'dense') then
       write (output_unit, '(2x, a)') 'method: dense LU (LAPACK)'
       write (output_unit, '(2x, a, es9.2, a, es9.2)') 'rcond ', record%rcond, ', backward error ', record%backward_error
@@ -71,6 +82,20 @@ contains
       write (error_unit, '(a)') 'kcreep: warning: '//trim(record%warnings(i))
     end do
   end subroutine print_summary
+
+  !> shape = 'gap': the normal problem behind the patch.
+  subroutine print_normal(record)
+    type(run_record_t), intent(in) :: record
+    real(real64) :: centroid(2)
+    centroid = record%patch%centroid()
+    write (output_unit, '(2x, a, es12.5, a, es12.5, a, es12.5)') 'normal: fn = ', record%fn, ', approach = ', &
+      record%approach, ', pmax = ', record%pmax
+    write (output_unit, '(2x, a, i0, a, es12.5, a, 2es12.4)') 'contact area: ', record%patch%n, ' cells, area ', &
+      record%patch%area(), ', centroid ', centroid
+    write (output_unit, '(2x, a, 4es12.4)') 'contact bounding box x, y: ', record%bbox
+    write (output_unit, '(2x, a, i0, a, es9.2)') 'normal solve: ', record%normal_iterations, &
+      ' iterations (constrained CG), complementarity residual ', record%normal_residual
+  end subroutine print_normal
 
   !> shape = 'contact': kcreep's forces for CONTACT's creepages beside CONTACT's.
   subroutine print_contact_comparison(cfg, record)

@@ -53,6 +53,13 @@ int kcreep_set_ellipse(kcreep_handle handle, double semi_a, double semi_b, int m
 int kcreep_set_mask(kcreep_handle handle, int mx, int my, const int *inside,
                     double dx, double dy, double x0, double y0);
 
+/* The normal problem: the undeformed distance h[iy * mx + ix] of the two
+ * surfaces on a grid, and exactly one of approach and normal_force > 0. The
+ * next solve finds the contact area and pressure, then the coefficients of
+ * that area (the handle's g, nu are the material). */
+int kcreep_set_gap(kcreep_handle handle, int mx, int my, const double *gap, double dx, double dy,
+                   double x0, double y0, double approach, double normal_force);
+
 int kcreep_solve(kcreep_handle handle);
 /* kcreep_set_mask + kcreep_solve in one call */
 int kcreep_solve_mask(kcreep_handle handle, int mx, int my, const int *inside,
@@ -68,7 +75,24 @@ int kcreep_get_cells(kcreep_handle handle, int *n, int *mx, int *my);
 /* t: length >= 6 n; px of case j (0 xi, 1 eta, 2 phi) at t[j*2n + k], py at
  * t[j*2n + n + k]; ix, iy (1-based grid indices, n each) may be NULL. */
 int kcreep_get_tractions(kcreep_handle handle, int length, double *t, int *ix, int *iy);
+/* GMRES iterations (0: dense LU), relative residual or backward error,
+ * rcond (NaN on the iterative path), seconds of the solve */
+int kcreep_get_diagnostics(kcreep_handle handle, int *iterations, double *residual, double *rcond,
+                           double *seconds);
 int kcreep_get_reuse_count(kcreep_handle handle, int *count);
+/* After a solve with kcreep_set_gap: total force, approach, maximum pressure,
+ * cells in contact, iterations of the normal solve. */
+int kcreep_get_normal(kcreep_handle handle, double *fn, double *approach, double *pmax, int *cells,
+                      int *iterations);
+
+/* FASTSIM with friction mu on the solved patch, for n creepages
+ * creep[3 k + 0..2] = (xi, eta, phi), with the patch's exact L1 L2 L3.
+ * pressure: mx * my values on the patch's grid (rows in increasing y), or
+ * NULL for the normal problem's pressure. rule: "separate" or "weighted".
+ * force[3 k + 0..2] = (Fx, Fy, Mz); adhesion[k] (may be NULL): the fraction
+ * of the area in adhesion. */
+int kcreep_fastsim(kcreep_handle handle, double mu, int n, const double *creep, const double *pressure,
+                   const char *rule, double *force, double *adhesion);
 
 #ifdef __cplusplus
 }

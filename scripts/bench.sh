@@ -1,10 +1,10 @@
 #!/usr/bin/env bash
 # kcreep benchmark: a ladder of grid sizes per solution path, the dgemm and
-# dgetrf rates of this machine, and the performance targets. Prints the table
-# and writes docs/performance.md and docs/figures/performance.png.
+# dgetrf rates of this machine, and the comparisons of the paths. Prints the table and
+# writes docs/performance.md and docs/figures/performance.png.
 #   scripts/bench.sh                 full ladder, 3 repeats (medians), ~10 min on 2 cores
 #   REPEATS=1 scripts/bench.sh       one run per point
-#   QUICK=1 scripts/bench.sh         small sizes only (checks the script, not the targets)
+#   QUICK=1 scripts/bench.sh         small sizes only (checks the script, not the numbers)
 #   KCREEP_BUILD_DIR=dir             build somewhere else (default build/)
 #   scripts/bench.sh --help          this text (nothing is built or run)
 usage() { awk 'NR > 1 && /^#/ { sub(/^# ?/, ""); print; next } NR > 1 { exit }' "${BASH_SOURCE[0]}"; }

@@ -17,24 +17,20 @@ coefficients normalised by the staircase patch's own area (c^2 = area/pi),
 which removes the irregular change of the staircase area with the mesh.
 
 Output: one line per series, triple and coefficient (whitespace columns,
-'#' header), read by the study scripts and docs/make_numbers.py.
+'#' header), read by the study scripts and scripts/make_report.py.
 """
 import argparse
 import math
+import os
 import sys
+
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "python"))
+from kcreep import table  # noqa: E402  (standard library only)
 
 
 def read_table(path):
-    columns, rows = None, []
-    with open(path) as f:
-        for line in f:
-            if line.startswith("#"):
-                columns = line[1:].split()
-                continue
-            if not line.strip():
-                continue
-            rows.append(dict(zip(columns, line.split())))
-    return rows
+    """Rows as dicts of strings (the callers convert what they need)."""
+    return table.read(path, numbers=False)
 
 
 def area_factor(row):

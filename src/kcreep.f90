@@ -19,13 +19,24 @@ module kcreep
   use kcreep_verdict, only: verdict_ok, verdict_degenerate, verdict_nonphysical, verdict_alpha_edge, &
                             verdict_coarse, verdict_ill_conditioned, verdict_inaccurate, verdict_words, &
                             message_length
-  use kcreep_problem, only: problem_t, result_t, default_problem
+  use kcreep_problem, only: problem_t, result_t, default_problem, normal_problem_t
+  use kcreep_normal_stage, only: normal_patch, store_normal
+  use kcreep_normal_solve, only: normal_result_t, normal_options_t
+  use kcreep_gap, only: gap_t, polynomial_gap_t, gap_from_array, gap_from_polynomial, auto_grid
   use kcreep_check, only: check_problem
   use kcreep_run, only: run_case, solve_cache_t
+  use kcreep_creep_curve, only: creep_request_t, creep_point_t, creep_map_t, creep_curve, source_names
+  use kcreep_fastsim_forces, only: fastsim_forces, fastsim_result_t, flexibility_weighted, flexibility_separate
+  use kcreep_pressure_models, only: hertz_pressure, strip_parabolic_pressure
+  use kcreep_equivalent_ellipse, only: equivalent_ellipse_t, equivalent_ellipses
   use kcreep_extrapolation, only: run_extrapolated
   implicit none
   private
   public :: kcreep_solve, kcreep_version, kcreep_version_number
+  public :: creep_request_t, creep_point_t, creep_map_t, creep_curve, source_names
+  public :: fastsim_forces, fastsim_result_t, flexibility_weighted, flexibility_separate
+  public :: hertz_pressure, strip_parabolic_pressure, equivalent_ellipse_t, equivalent_ellipses
+  public :: normal_problem_t, normal_options_t, gap_t, polynomial_gap_t, gap_from_array, gap_from_polynomial, auto_grid
   public :: problem_t, result_t, default_problem, solve_cache_t, status_t, patch_t, scheme_t, solver_options_t
   public :: ellipse_patch, mask_patch, n_load_cases, load_case_names, message_length
   public :: exit_bad_input, exit_numerical, exit_io
@@ -39,7 +50,9 @@ module kcreep
 contains
 
   !> Check the problem, then solve it: on its own grid, or on the levels of a
-  !> Richardson extrapolation when problem%extrapolate is set.
+  !> Richardson extrapolation when problem%extrapolate is set. With
+  !> problem%normal%active the normal contact problem is solved first and its
+  !> contact area is the patch (the pressure comes back in result%pressure).
   !> cache: kept by the caller between solves on the same grid (the C API's
   !> handle does), so that the operator table is built once.
   subroutine kcreep_solve(problem, result, status, cache)
@@ -48,8 +61,21 @@ contains
     type(status_t), intent(inout) :: status
     type(solve_cache_t), intent(inout), optional :: cache
 
-    type(problem_t) :: centred
+    type(problem_t) :: found, centred
+    type(normal_result_t) :: nres
 
+    if (problem%normal%active) then
+      ! the patch is the contact area of the normal problem
+      found = problem
+      call normal_patch(problem, found%patch, nres, status)
+      if (status%failed()) return
+      call check_problem(found, status)
+      if (status%failed()) return
+      call run_case(found, result, status, cache)
+      if (status%failed()) return
+      call store_normal(nres, found%patch, result)
+      return
+    end if
     call check_problem(problem, status)
     if (status%failed()) return
     if (all(problem%spin_centre == 0)) then

@@ -7,6 +7,9 @@ import subprocess
 import sys
 import tempfile
 
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "python"))
+from kcreep import table  # noqa: E402  (standard library only)
+
 KCREEP = None
 SCRATCH = None
 FAILURES = []
@@ -48,21 +51,7 @@ def run(text, folder, name="case", expect_ok=True, files=None):
 
 def read_table(path):
     """Rows of a kcreep table as dicts (numbers as float where they parse)."""
-    columns, rows = None, []
-    with open(path) as f:
-        for line in f:
-            if line.startswith("#"):
-                columns = line[1:].split()
-                continue
-            values = line.split()
-            row = {}
-            for c, v in zip(columns, values):
-                try:
-                    row[c] = float(v)
-                except ValueError:
-                    row[c] = v
-            rows.append(row)
-    return rows
+    return table.read(path)
 
 
 def coefficients(text, folder, name="case"):

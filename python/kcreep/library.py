@@ -68,6 +68,11 @@ _signatures = {
     "kcreep_get_cells": ([_h, ctypes.POINTER(_i), ctypes.POINTER(_i), ctypes.POINTER(_i)], _i),
     "kcreep_get_tractions": ([_h, _i, _p, _p, _p], _i),
     "kcreep_get_reuse_count": ([_h, ctypes.POINTER(_i)], _i),
+    "kcreep_set_gap": ([_h, _i, _i, _p, _d, _d, _d, _d, _d, _d], _i),
+    "kcreep_get_normal": ([_h, ctypes.POINTER(_d), ctypes.POINTER(_d), ctypes.POINTER(_d), ctypes.POINTER(_i),
+                           ctypes.POINTER(_i)], _i),
+    "kcreep_fastsim": ([_h, _d, _i, _p, _p, ctypes.c_char_p, _p, _p], _i),
+    "kcreep_get_diagnostics": ([_h, ctypes.POINTER(_i), ctypes.POINTER(_d), ctypes.POINTER(_d), ctypes.POINTER(_d)], _i),
 }
 for _name, (_args, _res) in _signatures.items():
     _f = getattr(_lib, _name)
@@ -84,7 +89,7 @@ def version():
 class Result:
     """One solve: f (3 x 3), c (C11, C22, C23), fastsim (L1, L2, L3), verdict,
     verdict_flags, warnings, n (cells), ext and ext_error (NaN unless
-    extrapolated) and, with tractions=True, traction (n x 2 x 3: px, py per load
+    extrapolated), iterations, residual, rcond, seconds (diagnostics) and, with tractions=True, traction (n x 2 x 3: px, py per load
     case xi, eta, phi) with the cells' grid indices ix, iy (1-based)."""
 
     def __repr__(self):
@@ -130,6 +135,39 @@ class Solver:
         self._check(_lib.kcreep_solve_mask(self._handle, mx, my, cells.ctypes.data, dx, dy, x0, y0))
         return self._result(tractions)
 
+    def solve_gap(self, gap, dx, dy, x0=0.0, y0=0.0, *, approach=0.0, normal_force=0.0, tractions=False):
+        """The normal problem on the undeformed distance gap (2-D array, rows in
+        increasing y), with approach or normal_force prescribed, then the
+        coefficients of the contact area found. The Result also has fn,
+        approach, pmax and normal_iterations."""
+        h = np.ascontiguousarray(gap, dtype=np.float64)
+        if h.ndim != 2:
+            raise KcreepError(2, f"gap must be a 2-D array (rows in increasing y), got {h.ndim}-D")
+        my, mx = h.shape
+        self._check(_lib.kcreep_set_gap(self._handle, mx, my, h.ctypes.data, dx, dy, x0, y0, approach, normal_force))
+        self._check(_lib.kcreep_solve(self._handle))
+        r = self._result(tractions)
+        fn, app, pmax, cells, iterations = _d(), _d(), _d(), _i(), _i()
+        self._check(_lib.kcreep_get_normal(self._handle, ctypes.byref(fn), ctypes.byref(app), ctypes.byref(pmax),
+                                           ctypes.byref(cells), ctypes.byref(iterations)))
+        r.fn, r.approach, r.pmax, r.normal_iterations = fn.value, app.value, pmax.value, iterations.value
+        return r
+
+    def fastsim(self, mu, creepages, pressure=None, rule="separate"):
+        """FASTSIM with friction mu on the last solved patch for creepages (n x 3:
+        xi, eta, phi), the patch's exact L1 L2 L3; pressure on the patch's grid
+        (2-D, rows in increasing y) or None for the normal problem's. Returns
+        (forces n x 3: Fx, Fy, Mz; adhesion n: fraction of the area adhering)."""
+        creep = np.ascontiguousarray(np.atleast_2d(creepages), dtype=np.float64)
+        if creep.ndim != 2 or creep.shape[1] != 3:
+            raise KcreepError(2, "creepages must be n x 3 (xi, eta, phi)")
+        n = creep.shape[0]
+        forces, adhesion = np.empty((n, 3)), np.empty(n)
+        p = None if pressure is None else np.ascontiguousarray(pressure, dtype=np.float64)
+        self._check(_lib.kcreep_fastsim(self._handle, mu, n, creep.ctypes.data, None if p is None else p.ctypes.data,
+                                        rule.encode(), forces.ctypes.data, adhesion.ctypes.data))
+        return forces, adhesion
+
     @property
     def reuse_count(self):
         count = _i()
@@ -155,6 +193,10 @@ class Solver:
         n, mx, my = _i(), _i(), _i()
         self._check(_lib.kcreep_get_cells(self._handle, ctypes.byref(n), ctypes.byref(mx), ctypes.byref(my)))
         r.n, r.mx, r.my = n.value, mx.value, my.value
+        iterations, residual, rcond, seconds = _i(), _d(), _d(), _d()
+        self._check(_lib.kcreep_get_diagnostics(self._handle, ctypes.byref(iterations), ctypes.byref(residual),
+                                                ctypes.byref(rcond), ctypes.byref(seconds)))
+        r.iterations, r.residual, r.rcond, r.seconds = iterations.value, residual.value, rcond.value, seconds.value
         if tractions:
             t = np.empty(6 * r.n)
             r.ix, r.iy = np.empty(r.n, dtype=np.intc), np.empty(r.n, dtype=np.intc)

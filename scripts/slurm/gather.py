@@ -21,16 +21,12 @@ import os
 import re
 import sys
 
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "python"))
+from kcreep import table  # noqa: E402  (standard library only)
 
-def case_name(path):
-    """The name of a namelist without folder and extension (sweeps from before
-    run_cases_slurm.sh recorded the list's folder)."""
-    name = path[path.rfind("/") + 1:]
-    dot = name.rfind(".")
-    if dot > 0:
-        name = name[:dot]
-    name = "".join("_" if (c == " " or ord(c) < 33) else c for c in name)
-    return name or "-"
+
+case_name = table.case_name
+read_chunk = table.read_chunk
 
 
 def listed_name(entry, folder):
@@ -47,23 +43,6 @@ def listed_name(entry, folder):
         name = name[:dot]
     name = "".join("_" if (c == " " or ord(c) < 33) else c for c in name)
     return name or "-"
-
-
-def read_chunk(path):
-    """(comment lines, column line, rows) of a chunk table; rows without the newline."""
-    comments, columns, rows = [], None, []
-    with open(path) as f:
-        for line in f:
-            line = line.rstrip("\n")
-            if line.startswith("#"):
-                if columns is not None or rows:
-                    raise ValueError(f"{path}: comment after the column line")
-                comments.append(line)
-            elif line.strip():
-                rows.append(line)
-    if comments:
-        columns = comments.pop()
-    return comments, columns, rows
 
 
 def main():

@@ -193,7 +193,10 @@ rm -f "$workdir/gather.exit"
 gather_id=$(sbatch "${common[@]}" --job-name="$job_name-gather" --dependency="afterany:$array_id" \
   --kill-on-invalid-dep=no --cpus-per-task=1 --mem=500 --time=00:30:00 \
   --output="$workdir/logs/gather_%j.out" --chdir="$workdir" \
-  "$here/gather.py" "$workdir" "$out") || die "sbatch of the gather job failed" 3
+  --wrap="$(printf 'exec python3 %q %q %q' "$here/gather.py" "$workdir" "$out")") \
+  || die "sbatch of the gather job failed" 3
+# (--wrap: sbatch copies a script it is given to its spool folder, where
+#  gather.py would not find the kcreep.table module beside the repository)
 gather_id=${gather_id%%;*}
 echo "$gather_id" >>"$workdir/jobs"
 echo "run_cases_slurm: $n_cases cases in $n_chunks chunk(s) of $chunk; submitted ${#pending[@]} array task(s):" \

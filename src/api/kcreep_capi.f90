@@ -14,7 +14,9 @@ module kcreep_capi
   use kcreep_status, only: status_t, fail, exit_bad_input
   use kcreep_strings, only: itoa
   use kcreep, only: kcreep_solve, kcreep_version_number, problem_t, result_t, default_problem, solve_cache_t, &
-                    ellipse_patch, mask_patch, n_load_cases
+                    ellipse_patch, mask_patch, n_load_cases, gap_from_array
+  use kcreep_creep_curve, only: creep_request_t, creep_point_t, creep_map_t, creep_curve
+  use kcreep_fastsim_forces, only: flexibility_weighted, flexibility_separate
   implicit none
   private
 
@@ -331,6 +333,159 @@ contains
       cells = int(h%result%patch%iy, c_int)
     end if
   end function c_get_tractions
+
+  !> How the last solve went: GMRES iterations (0 for dense LU), the final
+  !> relative residual (iterative) or backward error (dense), LAPACK's rcond
+  !> (NaN for the iterative path) and the seconds it took.
+  integer(c_int) function c_get_diagnostics(handle, iterations, residual, rcond, seconds) &
+    bind(c, name='kcreep_get_diagnostics')
+    type(c_ptr), value :: handle
+    integer(c_int), intent(out) :: iterations
+    real(c_double), intent(out) :: residual, rcond, seconds
+    type(handle_t), pointer :: h
+    c_get_diagnostics = solved(handle, h)
+    if (c_get_diagnostics /= status_ok) return
+    iterations = int(h%result%iterations, c_int)
+    residual = h%result%backward_error
+    rcond = h%result%rcond
+    seconds = h%result%t_total
+  end function c_get_diagnostics
+
+  !> The undeformed distance h of the two surfaces on an mx x my grid
+  !> (h[iy * mx + ix], rows in increasing y; cell sizes dx, dy; centre of the
+  !> first cell x0, y0): the next solve finds the contact area and pressure
+  !> (the normal problem) and then the coefficients of that area. Exactly one
+  !> of approach and normal_force is > 0 (the other 0): what is prescribed.
+  !> The material is the handle's (g, nu: 1/E* = (1 - nu)/g).
+  integer(c_int) function c_set_gap(handle, mx, my, gap, dx, dy, x0, y0, approach, normal_force) &
+    bind(c, name='kcreep_set_gap')
+    type(c_ptr), value :: handle, gap
+    integer(c_int), value :: mx, my
+    real(c_double), value :: dx, dy, x0, y0, approach, normal_force
+    type(handle_t), pointer :: h
+    real(c_double), pointer :: values(:, :)
+    c_set_gap = begin(handle, h)
+    if (c_set_gap /= status_ok) return
+    if (.not. c_associated(gap)) then
+      call fail(h%last, exit_bad_input, 'kcreep_set_gap: gap is NULL')
+    else if (mx < 1 .or. my < 1) then
+      call fail(h%last, exit_bad_input, 'kcreep_set_gap: mx, my must be >= 1')
+    else if ((approach > 0) .eqv. (normal_force > 0)) then
+      call fail(h%last, exit_bad_input, 'kcreep_set_gap: exactly one of approach and normal_force must be > 0')
+    else if (.not. (approach >= 0 .and. normal_force >= 0 .and. approach < huge(1.0_wp) &
+                    .and. normal_force < huge(1.0_wp))) then
+      call fail(h%last, exit_bad_input, 'kcreep_set_gap: approach, normal_force must be finite and >= 0')
+    else
+      call c_f_pointer(gap, values, [mx, my])
+      call gap_from_array(values, real(dx, wp), real(dy, wp), real(x0, wp), real(y0, wp), 'kcreep_set_gap', &
+                          h%problem%normal%gap, h%last)
+      if (.not. h%last%failed()) then
+        h%problem%normal%active = .true.
+        h%problem%normal%force_given = normal_force > 0
+        h%problem%normal%approach = approach
+        h%problem%normal%normal_force = normal_force
+      end if
+    end if
+    c_set_gap = finish(h)
+  end function c_set_gap
+
+  !> The normal problem of the last solve: total force, approach, maximum
+  !> pressure, cells in contact and CG iterations (status 6 when the last
+  !> solve had no normal problem).
+  integer(c_int) function c_get_normal(handle, fn, approach, pmax, cells, iterations) bind(c, name='kcreep_get_normal')
+    type(c_ptr), value :: handle
+    real(c_double), intent(out) :: fn, approach, pmax
+    integer(c_int), intent(out) :: cells, iterations
+    type(handle_t), pointer :: h
+    c_get_normal = solved(handle, h)
+    if (c_get_normal /= status_ok) return
+    if (.not. h%result%normal_solved) then
+      call fail(h%last, int(status_no_result), 'kcreep_get_normal: the last solve had no normal problem '// &
+                '(kcreep_set_gap)')
+      c_get_normal = finish(h)
+      return
+    end if
+    fn = h%result%fn
+    approach = h%result%approach
+    pmax = h%result%pmax
+    cells = int(h%result%n, c_int)
+    iterations = int(h%result%normal_iterations, c_int)
+  end function c_get_normal
+
+  !> FASTSIM with friction mu on the solved patch for n creepages
+  !> creep[3 k + 0..2] = (xi, eta, phi), with the patch's exact L1 L2 L3.
+  !> pressure: mx * my values on the patch's grid (rows in increasing y), or
+  !> NULL for the pressure of the normal problem (after kcreep_set_gap).
+  !> rule: "separate" (each creepage term with its own L) or "weighted"
+  !> (Kalker's single weighted L). Out: force[3 k + 0..2] = (Fx, Fy, Mz),
+  !> adhesion[k] = fraction of the area in adhesion (may be NULL).
+  integer(c_int) function c_fastsim(handle, mu, n, creep, pressure, rule, force, adhesion) &
+    bind(c, name='kcreep_fastsim')
+    type(c_ptr), value :: handle, creep, pressure, rule, force, adhesion
+    real(c_double), value :: mu
+    integer(c_int), value :: n
+    type(handle_t), pointer :: h
+    real(c_double), pointer :: creepages(:, :), grid(:, :), forces(:, :), adhered(:)
+    real(wp), allocatable :: pn(:, :)
+    type(creep_request_t) :: request
+    type(creep_point_t), allocatable :: points(:)
+    type(creep_map_t), allocatable :: maps(:)
+    character(len=:), allocatable :: rule_name
+    integer :: k
+    c_fastsim = solved(handle, h)
+    if (c_fastsim /= status_ok) return
+    if (.not. (mu > 0 .and. mu < huge(1.0_wp)) .or. n < 1) then
+      call fail(h%last, exit_bad_input, 'kcreep_fastsim: mu must be finite and > 0, n >= 1')
+    else if (.not. c_associated(creep) .or. .not. c_associated(force) .or. .not. c_associated(rule)) then
+      call fail(h%last, exit_bad_input, 'kcreep_fastsim: creep, rule and force must not be NULL')
+    else if (.not. c_associated(pressure) .and. .not. h%result%normal_solved) then
+      call fail(h%last, exit_bad_input, 'kcreep_fastsim: pressure is NULL and the last solve had no normal problem')
+    end if
+    if (h%last%failed()) then
+      c_fastsim = finish(h)
+      return
+    end if
+    rule_name = from_c(rule, 16)
+    select case (rule_name)
+    case ('separate')
+      request%rule = flexibility_separate
+    case ('weighted')
+      request%rule = flexibility_weighted
+    case default
+      call fail(h%last, exit_bad_input, 'kcreep_fastsim: rule = "'//rule_name//'" (allowed: separate, weighted)')
+      c_fastsim = finish(h)
+      return
+    end select
+    associate (p => h%result%patch)
+      if (c_associated(pressure)) then
+        call c_f_pointer(pressure, grid, [p%mx, p%my])
+        pn = grid
+        if (.not. all(pn >= 0 .and. pn < huge(1.0_wp))) then
+          call fail(h%last, exit_bad_input, 'kcreep_fastsim: pressure must be finite and >= 0 on the grid')
+          c_fastsim = finish(h)
+          return
+        end if
+      else
+        allocate (pn(p%mx, p%my))
+        pn = 0
+        do k = 1, p%n
+          pn(p%ix(k), p%iy(k)) = h%result%pressure(k)
+        end do
+      end if
+    end associate
+    call c_f_pointer(creep, creepages, [3, int(n)])
+    request%mu = mu
+    request%creepages = creepages
+    call creep_curve(h%result, pn, request, points, maps)
+    call c_f_pointer(force, forces, [3, int(n)])
+    do k = 1, n
+      forces(:, k) = [points(k)%force%fx, points(k)%force%fy, points(k)%force%mz]
+    end do
+    if (c_associated(adhesion)) then
+      call c_f_pointer(adhesion, adhered, [int(n)])
+      adhered = [(points(k)%force%adhesion, k=1, n)]
+    end if
+  end function c_fastsim
 
   !> Solves on this handle that reused the operator table of an earlier one.
   integer(c_int) function c_get_reuse_count(handle, count) bind(c, name='kcreep_get_reuse_count')

@@ -40,6 +40,8 @@ module kcreep_contact_reader
     character(len=32) :: fx_text = '', fy_text = '', mz_text = ''   !< as printed
     integer :: npot = 0, ncon = 0, nadh = 0, nslip = 0
     logical, allocatable :: inside(:, :)             !< (mx, my): cell in contact (IGS >= 1)
+    real(real64), allocatable :: pn(:, :)            !< (mx, my): normal pressure PN of the .mat (0 elsewhere;
+                                                     !< not allocated when the mask came from the .out map)
   end type contact_case_t
 
   type :: text_t
@@ -258,8 +260,9 @@ contains
     type(status_t), intent(inout) :: status
     type(text_t) :: text
     character(len=32) :: head(max_tokens), vals(max_tokens)
-    integer :: nh, nv, i, ios, mx, my, element, igs, ix, iy, n_slip, first_element
+    integer :: nh, nv, i, ios, mx, my, element, igs, ix, iy, n_slip, first_element, pn_column
     real(real64) :: xl, yl, dx, dy, gg(2), poiss(2), material(4), grid(4)
+    real(real64), allocatable :: row(:)
     integer :: grid_size(2), k
     logical :: have_grid, have_material
     logical, allocatable :: seen(:, :)
@@ -303,6 +306,8 @@ contains
         have_material = .true.
       else if (has(head(1:nh), 'IGS')) then
         first_element = i + 1
+        pn_column = findloc(head(1:nh), 'PN', dim=1)
+        if (head(1) == '%') pn_column = pn_column - 1
         exit
       end if
     end do
@@ -344,8 +349,9 @@ contains
     c%xl = xl
     c%yl = yl
 
-    allocate (c%inside(mx, my), seen(mx, my))
+    allocate (c%inside(mx, my), seen(mx, my), c%pn(mx, my), row(max(2, pn_column)))
     c%inside = .false.
+    c%pn = 0
     seen = .false.
     n_slip = 0
     do i = first_element, text%n
@@ -376,8 +382,23 @@ contains
       end if
       seen(ix, iy) = .true.
       c%inside(ix, iy) = igs >= 1
+      if (pn_column >= 3 .and. igs >= 1) then
+        read (text%lines(i), *, iostat=ios) row
+        if (ios /= 0) then
+          call fail(status, exit_bad_input, where//'line '//itoa(i)//': cannot read PN (column '// &
+                    itoa(pn_column)//') from "'//trim(text%lines(i)(1:min(60, len_trim(text%lines(i)))))//'"')
+          return
+        end if
+        if (.not. (row(pn_column) >= 0 .and. row(pn_column) <= huge(1.0_real64))) then
+          call fail(status, exit_bad_input, where//'line '//itoa(i)//': PN = '//rtoa(row(pn_column))// &
+                    ' (a normal pressure must be finite and >= 0)')
+          return
+        end if
+        c%pn(ix, iy) = row(pn_column)
+      end if
       if (igs == 2) n_slip = n_slip + 1
     end do
+    if (pn_column < 3) deallocate (c%pn)      ! no PN column: no pressure from this file
     if (n_slip /= c%nslip) then
       call fail(status, exit_bad_input, where//itoa(n_slip)//' elements in slip (IGS = 2) but NSLIP = '// &
                 itoa(c%nslip)//' in the .out (truncated, or the element file of another case?)')

@@ -1,6 +1,7 @@
 !> The namelist input: reading, defaults and validation.
 !>
-!> Groups &patch, &material, &solver, &output, each optional. Anything out of
+!> Groups &patch, &material, &solver, &output, &normal, each optional
+!> (&normal describes the normal contact problem of shape = 'gap'). Anything out of
 !> range or inconsistent is reported through status with the file, group,
 !> variable, value and what is allowed, before any computation or output.
 module kcreep_namelist
@@ -17,14 +18,26 @@ module kcreep_namelist
   use kcreep_limits, only: check_grid_size, length_in_range, offset_in_range, modulus_in_range
   use kcreep_solver_options, only: solver_options_t, validate_solver_options
   use kcreep_dense, only: refine_modes
-  use kcreep_problem, only: problem_t
+  use kcreep_problem, only: problem_t, normal_problem_t
+  use kcreep_gap, only: gap_t, polynomial_gap_t, gap_from_polynomial, auto_grid
+  use kcreep_gap_file, only: read_gap_file
+  use kcreep_contact_input, only: contact_input_t, read_contact_input
+  use kcreep_hertz, only: hertz_t, hertz_from_force
+  use kcreep_normal_influence, only: compliance_from_g_nu, compliance_from_e_nu, combined_g_nu_from_e_nu
+  use kcreep_creep_curve, only: creep_request_t, source_names
+  use kcreep_fastsim_forces, only: flexibility_weighted, flexibility_separate
   implicit none
   private
-  public :: config_t, read_config, build_patch, problem_of, max_inline_rows, max_row_length
+  public :: config_t, read_config, build_patch, problem_of, max_inline_rows, max_row_length, max_creepages
 
   integer, parameter :: max_inline_rows = 2048, max_row_length = 2048
   integer, parameter :: default_cells = 60
-  character(len=*), parameter :: group_names(4) = [character(len=8) :: 'patch', 'material', 'solver', 'output']
+  integer, parameter :: max_creepages = 100000   !< creepage points of &fastsim (list and sweep together)
+  character(len=*), parameter :: group_names(6) = [character(len=8) :: 'patch', 'material', 'solver', 'output', &
+                                                    'normal', 'fastsim']
+  !> &normal: the number of cells across the automatic grid's larger side, its margin
+  integer, parameter :: default_cells_across = 60
+  real(real64), parameter :: default_margin = 0.2_real64
 
   type :: config_t
     character(len=:), allocatable :: input_path
@@ -50,8 +63,25 @@ module kcreep_namelist
     type(solver_options_t) :: solve           !< method, tolerance, splits
     character(len=:), allocatable :: spin_centre   !< 'origin', 'centroid' or 'point'
     real(real64) :: spin_centre_xy(2) = 0          !< the point of spin_centre = 'point'
+    ! &fastsim (group absent: fastsim_on false, nothing of it runs)
+    logical :: fastsim_on = .false.
+    type(creep_request_t) :: fastsim
+    character(len=:), allocatable :: pressure       !< 'hertz', 'contact', 'file', 'parabolic' (after 'auto')
+    character(len=:), allocatable :: pressure_input_file   !< pressure = 'file': the pressure per cell
+    real(real64) :: fn = 1                          !< load of the 'hertz' and 'parabolic' pressures
     ! &output
-    character(len=:), allocatable :: table_file, traction_file
+    character(len=:), allocatable :: table_file, traction_file, creep_file, creep_map_file
+    character(len=:), allocatable :: pressure_file, contact_mask_file   !< shape 'gap' only
+    ! &normal (shape 'gap')
+    character(len=:), allocatable :: gap_file, contact_inp
+    integer :: contact_inp_case = 1
+    type(polynomial_gap_t) :: poly              !< rx, ry (+ linear, cubic terms)
+    logical :: approach_given = .false., force_given = .false.
+    real(real64) :: approach = 0, normal_force = 0
+    integer :: cells_across = default_cells_across
+    real(real64) :: margin = default_margin
+    real(real64) :: e(2) = 0, poisson(2) = 0    !< per body, when given (e(1) > 0)
+    type(normal_problem_t) :: normal            !< built by read_config
   end type config_t
 
 contains
@@ -77,6 +107,18 @@ contains
     character(len=max_row_length), allocatable :: mask_rows(:)
     character(len=4096) :: contact_file
     integer :: contact_case
+    ! &normal
+    character(len=4096) :: gap_file, contact_inp, pressure_file, contact_mask_file
+    integer :: contact_inp_case, cells_across, normal_max_iterations
+    real(real64) :: rx, ry, lx, ly, cx, cy, approach, normal_force, margin, e1, nu1, e2, nu2, normal_tolerance
+    ! &fastsim
+    real(real64) :: mu, fn, l1, l2, l3, sweep_direction(3), sweep_from, sweep_to
+    real(real64), allocatable :: creepages(:)
+    integer :: sweep_points
+    character(len=16) :: sweep_spacing, rule, pressure
+    character(len=128) :: flexibility
+    character(len=4096) :: pressure_input_file, creep_file, creep_map_file
+    logical :: maps
     !> "not given": g, nu and spin_shift default differently for shape = 'contact',
     !> and a value the user wrote is either used or refused, never replaced
     real(real64), parameter :: unset = -huge(1.0_real64)
@@ -88,7 +130,12 @@ contains
     namelist /solver/ scheme, alpha, spin_shift, load_cases, extrapolate, extrapolate_levels, refine_ratio, refine, &
                       method, tolerance, max_iterations, restart, split_systems, spin_centre, spin_centre_x, &
                       spin_centre_y
-    namelist /output/ table_file, traction_file
+    namelist /output/ table_file, traction_file, pressure_file, contact_mask_file, creep_file, &
+                      creep_map_file
+    namelist /normal/ gap_file, contact_inp, contact_inp_case, rx, ry, lx, ly, cx, cy, approach, normal_force, &
+                      cells_across, margin, e1, nu1, e2, nu2, normal_tolerance, normal_max_iterations
+    namelist /fastsim/ mu, creepages, sweep_direction, sweep_from, sweep_to, sweep_points, sweep_spacing, &
+                       pressure, pressure_input_file, fn, flexibility, l1, l2, l3, rule, maps
 
     integer :: unit, ios, nrows
     logical :: group_present(size(group_names)), group_closed(size(group_names)), last_line_open
@@ -129,6 +176,46 @@ contains
     split_systems = cfg%solve%split_systems
     table_file = ''
     traction_file = ''
+    pressure_file = ''
+    contact_mask_file = ''
+    gap_file = ''
+    contact_inp = ''
+    contact_inp_case = 1
+    rx = 0
+    ry = 0
+    lx = 0
+    ly = 0
+    cx = 0
+    cy = 0
+    approach = unset
+    normal_force = unset
+    cells_across = default_cells_across
+    margin = default_margin
+    e1 = unset
+    nu1 = unset
+    e2 = unset
+    nu2 = unset
+    normal_tolerance = cfg%normal%options%tolerance
+    normal_max_iterations = cfg%normal%options%max_iterations
+    creep_file = ''
+    creep_map_file = ''
+    mu = unset
+    allocate (creepages(3 * max_creepages + 1))
+    creepages = unset
+    sweep_direction = 0
+    sweep_from = 0
+    sweep_to = 0
+    sweep_points = 0
+    sweep_spacing = 'linear'
+    pressure = 'auto'
+    pressure_input_file = ''
+    fn = unset
+    flexibility = 'exact'
+    l1 = 0
+    l2 = 0
+    l3 = 0
+    rule = 'separate'
+    maps = .false.
 
     cfg%input_path = path
     ! the whole file first: a folder, a binary file, text outside the groups,
@@ -159,6 +246,12 @@ contains
     rewind (unit)
     if (group_present(4)) read (unit, nml=output, iostat=ios, iomsg=msg)
     call check_read('output', 4)
+    rewind (unit)
+    if (group_present(5)) read (unit, nml=normal, iostat=ios, iomsg=msg)
+    call check_read('normal', 5)
+    rewind (unit)
+    if (group_present(6)) read (unit, nml=fastsim, iostat=ios, iomsg=msg)
+    call check_read('fastsim', 6)
     close (unit)
     if (status%failed()) return
 
@@ -186,6 +279,9 @@ contains
     cfg%spin_centre = lower(trim(adjustl(spin_centre)))
     select case (cfg%spin_centre)
     case ('origin', 'centroid')
+      if (cfg%spin_centre == 'centroid' .and. cfg%shape == 'gap') call fail(status, exit_bad_input, where// &
+          '&solver spin_centre = ''centroid'' is not available with shape = ''gap'' (the patch is found by the '// &
+          'normal problem; spin about the origin)')
       if (spin_centre_x /= unset .or. spin_centre_y /= unset) call fail(status, exit_bad_input, where// &
           '&solver spin_centre_x, spin_centre_y are only used by spin_centre = ''point'' (spin_centre = '''// &
           cfg%spin_centre//''')')
@@ -196,6 +292,8 @@ contains
         call fail(status, exit_bad_input, where//'&solver spin_centre_x, spin_centre_y = '// &
                   rtoa(spin_centre_x)//', '//rtoa(spin_centre_y)//' (allowed: 0 or 1e-30 <= |x|, |y| <= 1e30)')
       cfg%spin_centre_xy = [spin_centre_x, spin_centre_y]
+      if (cfg%shape == 'gap') call fail(status, exit_bad_input, where//'&solver spin_centre = ''point'' '// &
+          'is not available with shape = ''gap'' (the patch is found by the normal problem; spin about the origin)')
     case default
       call fail(status, exit_bad_input, where//'&solver spin_centre = '''//cfg%spin_centre// &
                 ''' (allowed: ''origin'', ''centroid'', ''point'' with spin_centre_x, spin_centre_y)')
@@ -243,14 +341,240 @@ contains
     cfg%solve%split_systems = split_systems
     cfg%table_file = resolve_path(trim(table_file), folder_of(path))
     if (len(cfg%table_file) == 0) cfg%table_file = default_table_name(path)
+    ! every file name written in the namelist is relative to the namelist's folder
     cfg%traction_file = resolve_path(trim(traction_file), folder_of(path))
     cfg%mask_file = resolve_path(cfg%mask_file, folder_of(path))
     cfg%contact_file = resolve_path(cfg%contact_file, folder_of(path))
+    cfg%pressure_file = resolve_path(trim(pressure_file), folder_of(path))
+    cfg%contact_mask_file = resolve_path(trim(contact_mask_file), folder_of(path))
+    cfg%gap_file = resolve_path(trim(gap_file), folder_of(path))
+    cfg%contact_inp = resolve_path(trim(contact_inp), folder_of(path))
+    cfg%contact_inp_case = contact_inp_case
+    cfg%poly = polynomial_gap_t(rx=rx, ry=ry, lx=lx, ly=ly, cx=cx, cy=cy)
+    cfg%approach_given = approach /= unset
+    cfg%force_given = normal_force /= unset
+    if (cfg%approach_given) cfg%approach = approach
+    if (cfg%force_given) cfg%normal_force = normal_force
+    cfg%cells_across = cells_across
+    cfg%margin = margin
+    cfg%normal%options%tolerance = normal_tolerance
+    cfg%normal%options%max_iterations = normal_max_iterations
+
+    cfg%fastsim_on = group_present(6)
+    ! (like the default table, the default outputs go to the working folder)
+    cfg%creep_file = resolve_path(trim(creep_file), folder_of(path))
+    if (len(cfg%creep_file) == 0) cfg%creep_file = default_output_name(path, '.creep')
+    cfg%creep_map_file = resolve_path(trim(creep_map_file), folder_of(path))
+    if (maps .and. len(cfg%creep_map_file) == 0) cfg%creep_map_file = default_output_name(path, '.creepmap')
+    cfg%pressure_input_file = resolve_path(trim(pressure_input_file), folder_of(path))
 
     call validate(cfg, mask_rows, nrows, load_cases, status)
+    if (cfg%fastsim_on .and. .not. status%failed()) call validate_fastsim(status)
     if (cfg%shape == 'contact' .and. .not. status%failed()) call load_contact_case(cfg, material_given, status)
+    if (.not. status%failed()) call validate_normal(cfg, group_present(5), material_given, [e1, nu1, e2, nu2], &
+                                                    unset, status)
+    if (cfg%shape == 'gap' .and. .not. status%failed()) call load_gap(cfg, status)
+    if (cfg%fastsim_on .and. cfg%pressure == 'contact' .and. .not. status%failed()) then
+      if (.not. allocated(cfg%contact%pn)) call fail(status, exit_bad_input, 'input '''//path// &
+          ''': &fastsim pressure = ''contact'' needs the element file (.mat) of the case with its PN column')
+    end if
 
   contains
+
+    !> &fastsim: friction, creepages (list and sweep), pressure, flexibility sources, rule.
+    subroutine validate_fastsim(status)
+      type(status_t), intent(inout) :: status
+      character(len=:), allocatable :: where, word
+      character(len=len(flexibility)) :: rest
+      integer :: n_values, n_list, k, cut, s
+      real(real64) :: t
+
+      where = 'input '''//path//''': &fastsim '
+      if (mu == unset) then
+        call fail(status, exit_bad_input, where//'mu is required (the friction coefficient, > 0)')
+        return
+      end if
+      if (.not. (mu > 0 .and. mu <= 1e3_real64)) then
+        call fail(status, exit_bad_input, where//'mu = '//rtoa(mu)//' (allowed: 0 < mu <= 1000)')
+        return
+      end if
+      cfg%fastsim%mu = mu
+      ! the list: numbers up to the last one given, three per point
+      n_values = size(creepages)
+      do while (n_values > 0)
+        if (creepages(n_values) /= unset) exit
+        n_values = n_values - 1
+      end do
+      if (n_values > 3 * max_creepages) then
+        call fail(status, exit_bad_input, where//'creepages: more than '//itoa(max_creepages)//' points')
+        return
+      end if
+      if (mod(n_values, 3) /= 0) then
+        call fail(status, exit_bad_input, where//'creepages: '//itoa(n_values)//' numbers given (allowed: '// &
+                  '(xi, eta, phi) triples, a multiple of 3)')
+        return
+      end if
+      if (any(creepages(1:n_values) == unset) .or. .not. all(abs(creepages(1:n_values)) <= 1e6_real64)) then
+        call fail(status, exit_bad_input, where//'creepages: a value is missing or not finite (allowed: '// &
+                  'finite numbers, |value| <= 1e6)')
+        return
+      end if
+      n_list = n_values / 3
+      if (sweep_points /= 0) then
+        if (sweep_points < 2 .or. sweep_points > max_creepages - n_list) then
+          call fail(status, exit_bad_input, where//'sweep_points = '//itoa(sweep_points)//' (allowed: 0 for '// &
+                    'no sweep, or 2 to '//itoa(max_creepages - n_list)//')')
+          return
+        end if
+        if (.not. any(sweep_direction /= 0) .or. .not. all(abs(sweep_direction) <= 1e6_real64)) then
+          call fail(status, exit_bad_input, where//'sweep_direction = '//rtoa(sweep_direction(1))//', '// &
+                    rtoa(sweep_direction(2))//', '//rtoa(sweep_direction(3))//' (a finite (xi, eta, phi), not all 0)')
+          return
+        end if
+        select case (lower(trim(adjustl(sweep_spacing))))
+        case ('linear')
+          if (.not. (abs(sweep_from) <= 1e6_real64 .and. abs(sweep_to) <= 1e6_real64)) call fail(status, &
+              exit_bad_input, where//'sweep_from, sweep_to = '//rtoa(sweep_from)//', '//rtoa(sweep_to)// &
+              ' (allowed: finite, |value| <= 1e6)')
+        case ('log')
+          if (.not. (sweep_from > 0 .and. sweep_to > 0 .and. sweep_from <= 1e6_real64 .and. &
+                     sweep_to <= 1e6_real64)) call fail(status, exit_bad_input, where//'sweep_from, sweep_to = '// &
+              rtoa(sweep_from)//', '//rtoa(sweep_to)//' (sweep_spacing = ''log'' needs 0 < value <= 1e6)')
+        case default
+          call fail(status, exit_bad_input, where//'sweep_spacing = '''//trim(sweep_spacing)// &
+                    ''' (allowed: ''linear'', ''log'')')
+        end select
+        if (status%failed()) return
+      end if
+      if (n_list + sweep_points == 0) then
+        call fail(status, exit_bad_input, where//'no creepage: give creepages (xi, eta, phi triples) or a sweep '// &
+                  '(sweep_direction, sweep_from, sweep_to, sweep_points)')
+        return
+      end if
+      allocate (cfg%fastsim%creepages(3, n_list + sweep_points))
+      cfg%fastsim%creepages(:, 1:n_list) = reshape(creepages(1:n_values), [3, n_list])
+      do k = 1, sweep_points
+        t = real(k - 1, real64) / (sweep_points - 1)
+        if (lower(trim(adjustl(sweep_spacing))) == 'log') then
+          t = sweep_from * (sweep_to / sweep_from)**t
+        else
+          t = sweep_from + (sweep_to - sweep_from) * t
+        end if
+        cfg%fastsim%creepages(:, n_list + k) = t * sweep_direction
+      end do
+
+      select case (lower(trim(adjustl(rule))))
+      case ('separate')
+        cfg%fastsim%rule = flexibility_separate
+      case ('weighted')
+        cfg%fastsim%rule = flexibility_weighted
+      case default
+        call fail(status, exit_bad_input, where//'rule = '''//trim(rule)//''' (allowed: ''separate'', ''weighted'')')
+        return
+      end select
+
+      cfg%fastsim%sources = .false.
+      rest = lower(flexibility)
+      do
+        rest = adjustl(rest)
+        if (len_trim(rest) == 0) exit
+        cut = scan(rest, ' ,')
+        if (cut == 0) cut = len(rest) + 1
+        word = trim(rest(1:cut - 1))
+        rest = rest(min(cut + 1, len(rest) + 1):)
+        if (len(word) == 0) cycle
+        select case (word)
+        case ('ellipse')
+          cfg%fastsim%sources(2:3) = .true.
+        case ('all')
+          cfg%fastsim%sources(1:3) = .true.
+        case default
+          ! (a loop: gfortran 12's findloc can miss a deferred-length scalar)
+          s = 0
+          do k = 1, size(source_names)
+            if (source_names(k) == word) s = k
+          end do
+          if (s == 0) then
+            call fail(status, exit_bad_input, where//'flexibility: unknown source '''//word//''' (allowed: '// &
+                      '''exact'', ''ellipse-box'', ''ellipse-moments'', ''ellipse'' (both), ''all'', ''user'')')
+            return
+          end if
+          cfg%fastsim%sources(s) = .true.
+        end select
+      end do
+      if (.not. any(cfg%fastsim%sources)) then
+        call fail(status, exit_bad_input, where//'flexibility is empty (allowed: exact, ellipse-box, '// &
+                  'ellipse-moments, ellipse, all, user)')
+        return
+      end if
+      if (cfg%fastsim%sources(4)) then
+        if (.not. (l1 > 0 .and. l2 > 0 .and. l3 > 0 .and. max(l1, l2, l3) <= huge(1.0_real64))) then
+          call fail(status, exit_bad_input, where//'flexibility = ''user'' needs l1, l2, l3 > 0 (given '// &
+                    rtoa(l1)//', '//rtoa(l2)//', '//rtoa(l3)//')')
+          return
+        end if
+        cfg%fastsim%user_flex = [l1, l2, l3]
+      else if (l1 /= 0 .or. l2 /= 0 .or. l3 /= 0) then
+        call fail(status, exit_bad_input, where//'l1, l2, l3 are used by flexibility = ''user'' only')
+        return
+      end if
+      cfg%fastsim%maps = maps .or. len(cfg%creep_map_file) > 0
+
+      cfg%pressure = lower(trim(adjustl(pressure)))
+      if (cfg%pressure == 'auto') then
+        select case (cfg%shape)
+        case ('ellipse')
+          cfg%pressure = 'hertz'
+        case ('contact')
+          cfg%pressure = 'contact'
+        case ('gap')
+          cfg%pressure = 'normal'
+        case default
+          cfg%pressure = trim(merge('file     ', 'parabolic', len(cfg%pressure_input_file) > 0))
+        end select
+      end if
+      select case (cfg%pressure)
+      case ('hertz')
+        if (cfg%shape /= 'ellipse') call fail(status, exit_bad_input, where//'pressure = ''hertz'' needs '// &
+            '&patch shape = ''ellipse'' (for other patches: ''file'', ''contact'' or ''parabolic'')')
+      case ('contact')
+        if (cfg%shape /= 'contact') call fail(status, exit_bad_input, where//'pressure = ''contact'' needs '// &
+            '&patch shape = ''contact''')
+      case ('normal')
+        if (cfg%shape /= 'gap') call fail(status, exit_bad_input, where//'pressure = ''normal'' needs '// &
+            '&patch shape = ''gap'' (the normal problem gives the pressure)')
+      case ('file')
+        if (len(cfg%pressure_input_file) == 0) call fail(status, exit_bad_input, where//'pressure = ''file'' needs '// &
+            'pressure_input_file')
+      case ('parabolic')
+      case default
+        call fail(status, exit_bad_input, where//'pressure = '''//cfg%pressure//''' (allowed: ''auto'', '// &
+                  '''hertz'', ''contact'', ''normal'', ''file'', ''parabolic'')')
+      end select
+      if (status%failed()) return
+      if (len(cfg%pressure_input_file) > 0 .and. cfg%pressure /= 'file') then
+        call fail(status, exit_bad_input, where//'pressure_input_file is read with pressure = ''file'' only (pressure = '''// &
+                  cfg%pressure//''')')
+        return
+      end if
+      if (fn /= unset) then
+        if (cfg%pressure /= 'hertz' .and. cfg%pressure /= 'parabolic') then  ! contact, normal, file: their own load
+          call fail(status, exit_bad_input, where//'fn applies to pressure = ''hertz'' or ''parabolic'' only '// &
+                    '(the pressure '''//cfg%pressure//''' carries its own load)')
+          return
+        end if
+        if (.not. (fn > 0 .and. fn <= 1e30_real64)) then
+          call fail(status, exit_bad_input, where//'fn = '//rtoa(fn)//' (allowed: 0 < fn <= 1e30)')
+          return
+        end if
+        cfg%fn = fn
+      end if
+      if (cfg%extrapolate .and. (cfg%pressure == 'file' .or. cfg%pressure == 'contact')) then
+        call fail(status, exit_bad_input, where//'pressure = '''//cfg%pressure//''' is given on the patch''s '// &
+                  'own grid: not with &solver extrapolate = .true. (FASTSIM runs on the finest level)')
+        return
+      end if
+    end subroutine validate_fastsim
 
     subroutine check_read(group, k)
       character(len=*), intent(in) :: group
@@ -335,9 +659,13 @@ contains
           cfg%dy /= 0 .or. cfg%x0_given .or. cfg%y0_given) call fail(status, exit_bad_input, where// &
           '&patch shape = ''contact'' takes its grid and mask from contact_file (leave out mask_file, '// &
           'mask_rows, mx, my, dx, dy, x0, y0)')
+    case ('gap')
+      if (len(cfg%mask_file) > 0 .or. nrows > 0 .or. len(cfg%contact_file) > 0) call fail(status, exit_bad_input, &
+          where//'&patch shape = ''gap'' takes no mask_file, mask_rows or contact_file (the patch is the '// &
+          'contact area the &normal group finds)')
     case default
       call fail(status, exit_bad_input, where//'&patch shape = '''//cfg%shape// &
-                ''' (allowed: ''ellipse'', ''mask'', ''contact'')')
+                ''' (allowed: ''ellipse'', ''mask'', ''contact'', ''gap'')')
     end select
 
     if (.not. modulus_in_range(cfg%g)) call fail(status, exit_bad_input, where// &
@@ -433,6 +761,9 @@ contains
         if (status%failed()) return
         call mask_patch(inside, cfg%dx, cfg%dy, cfg%x0, cfg%y0, where, patch, status)
       end if
+    case ('gap')
+      ! found by the normal solve (kcreep_solve): nothing to build here
+      patch%kind = 'gap'
     case ('contact')
       ! CONTACT's grid: corner (XL, YL), so the first cell centre is half a cell in
       call mask_patch(cfg%contact%inside, cfg%contact%dx, cfg%contact%dy, cfg%contact%xl + cfg%contact%dx / 2, &
@@ -482,18 +813,197 @@ contains
     case default
       problem%spin_centre = 0
     end select
+    if (cfg%shape == 'gap') problem%normal = cfg%normal
   end function problem_of
+
+  !> The &normal group: only with shape = 'gap', one gap source, one of
+  !> approach and normal_force, the material either in &material or per body.
+  subroutine validate_normal(cfg, normal_present, material_given, body, unset, status)
+    type(config_t), intent(inout) :: cfg
+    logical, intent(in) :: normal_present, material_given
+    real(real64), intent(in) :: body(4)      !< e1, nu1, e2, nu2 as read
+    real(real64), intent(in) :: unset
+    type(status_t), intent(inout) :: status
+    character(len=:), allocatable :: where
+    integer :: sources
+
+    where = 'input '''//cfg%input_path//''': '
+    if (cfg%shape /= 'gap') then
+      if (normal_present) call fail(status, exit_bad_input, where//'&normal is only read with &patch shape = '// &
+                                    '''gap'' (shape = '''//cfg%shape//''')')
+      if (len(cfg%pressure_file) > 0 .or. len(cfg%contact_mask_file) > 0) call fail(status, exit_bad_input, &
+          where//'&output pressure_file and contact_mask_file need &patch shape = ''gap''')
+      return
+    end if
+    sources = count([len(cfg%gap_file) > 0, len(cfg%contact_inp) > 0, cfg%poly%rx /= 0 .or. cfg%poly%ry /= 0])
+    if (sources /= 1) then
+      call fail(status, exit_bad_input, where//'&normal: give exactly one undeformed distance: gap_file, '// &
+                'contact_inp, or the principal radii rx and ry (given: '//itoa(sources)//')')
+      return
+    end if
+    if (len(cfg%contact_inp) > 0) then
+      if (cfg%approach_given .or. cfg%force_given) call fail(status, exit_bad_input, where// &
+          '&normal: approach and normal_force come from contact_inp (PEN or FN; leave them out)')
+      if (material_given .or. body(1) /= unset) call fail(status, exit_bad_input, where// &
+          '&material g, nu and &normal e1, nu1, e2, nu2 are not allowed with contact_inp (its GG and POISS are used)')
+      if (cfg%contact_inp_case < 1) call fail(status, exit_bad_input, where//'&normal contact_inp_case = '// &
+          itoa(cfg%contact_inp_case)//' (must be >= 1)')
+      return
+    end if
+    if (cfg%approach_given .eqv. cfg%force_given) then
+      call fail(status, exit_bad_input, where//'&normal: give exactly one of approach and normal_force')
+    else if (cfg%force_given .and. .not. (cfg%normal_force > 0 .and. cfg%normal_force < 1e300_real64)) then
+      call fail(status, exit_bad_input, where//'&normal normal_force = '//rtoa(cfg%normal_force)// &
+                ' (must be > 0)')
+    else if (cfg%approach_given .and. .not. (abs(cfg%approach) < 1e30_real64)) then
+      call fail(status, exit_bad_input, where//'&normal approach = '//rtoa(cfg%approach)//' (|approach| < 1e30)')
+    end if
+    if (len(cfg%gap_file) == 0) then
+      if (.not. (cfg%poly%rx > 0 .and. cfg%poly%ry > 0 .and. cfg%poly%rx < 1e30_real64 .and. &
+                 cfg%poly%ry < 1e30_real64)) call fail(status, exit_bad_input, where//'&normal rx, ry = '// &
+          rtoa(cfg%poly%rx)//', '//rtoa(cfg%poly%ry)//' (principal relative radii: both > 0 and < 1e30)')
+      if (any(abs([cfg%poly%lx, cfg%poly%ly, cfg%poly%cx, cfg%poly%cy]) >= 1e30_real64)) &
+        call fail(status, exit_bad_input, where//'&normal lx, ly, cx, cy: each |value| < 1e30')
+    else if (cfg%mx /= 0 .or. cfg%my /= 0 .or. cfg%dx /= 0 .or. cfg%dy /= 0 .or. cfg%x0 /= 0 .or. cfg%y0 /= 0) then
+      call fail(status, exit_bad_input, where//'&patch mx, my, dx, dy, x0, y0: the grid comes from gap_file''s '// &
+                'header (leave them out)')
+    end if
+    if (cfg%cells_across < 2 .or. cfg%cells_across > 2000) call fail(status, exit_bad_input, where// &
+        '&normal cells_across = '//itoa(cfg%cells_across)//' (allowed: 2 to 2000)')
+    if (.not. (cfg%margin >= 0 .and. cfg%margin <= 10)) call fail(status, exit_bad_input, where// &
+        '&normal margin = '//rtoa(cfg%margin)//' (allowed: 0 to 10, a fraction of the interpenetration size)')
+    if (.not. (cfg%normal%options%tolerance > 0 .and. cfg%normal%options%tolerance < 1)) &
+      call fail(status, exit_bad_input, where//'&normal normal_tolerance = '//rtoa(cfg%normal%options%tolerance)// &
+                ' (allowed: 0 < tolerance < 1)')
+    if (cfg%normal%options%max_iterations < 1) call fail(status, exit_bad_input, where// &
+        '&normal normal_max_iterations = '//itoa(cfg%normal%options%max_iterations)//' (must be >= 1)')
+    if (any(body /= unset)) then
+      if (material_given) then
+        call fail(status, exit_bad_input, where//'give the material either in &material (g, nu) or per body '// &
+                  'in &normal (e1, nu1, e2, nu2), not both')
+      else if (any(body == unset)) then
+        call fail(status, exit_bad_input, where//'&normal e1, nu1, e2, nu2: give all four')
+      else if (.not. (body(1) > 0 .and. body(3) > 0 .and. body(1) < 1e100_real64 .and. body(3) < 1e100_real64)) then
+        call fail(status, exit_bad_input, where//'&normal e1, e2 = '//rtoa(body(1))//', '//rtoa(body(3))// &
+                  ' (Young''s moduli: > 0)')
+      else if (.not. (body(2) >= 0 .and. body(2) <= 0.5_real64 .and. body(4) >= 0 .and. body(4) <= 0.5_real64)) then
+        call fail(status, exit_bad_input, where//'&normal nu1, nu2 = '//rtoa(body(2))//', '//rtoa(body(4))// &
+                  ' (allowed: 0 to 0.5)')
+      else
+        cfg%e = [body(1), body(3)]
+        cfg%poisson = [body(2), body(4)]
+        call combined_g_nu_from_e_nu(body(1), body(2), body(3), body(4), cfg%g, cfg%nu)
+      end if
+    end if
+  end subroutine validate_normal
+
+  !> shape = 'gap': the undeformed distance on its grid (gap_file, contact_inp,
+  !> or the polynomial on the &patch grid or on an automatic one), the load and
+  !> the combined compliance, into cfg%normal.
+  subroutine load_gap(cfg, status)
+    type(config_t), intent(inout) :: cfg
+    type(status_t), intent(inout) :: status
+    character(len=:), allocatable :: where
+    type(contact_input_t) :: inp
+    type(hertz_t) :: hz
+    real(real64) :: level, extent, dx, dy, x0, y0, compliance
+    integer :: mx, my
+
+    where = 'input '''//cfg%input_path//''': '
+    associate (np => cfg%normal)
+      np%active = .true.
+      if (len(cfg%contact_inp) > 0) then
+        call read_contact_input(cfg%contact_inp, cfg%contact_inp_case, inp, status)
+        if (status%failed()) return
+        np%gap = inp%gap
+        call combined_material(inp%gg, inp%poiss, cfg%g, cfg%nu)
+        cfg%force_given = inp%norm == 1
+        cfg%approach_given = .not. cfg%force_given
+        cfg%approach = inp%pen
+        cfg%normal_force = inp%fn
+      else if (len(cfg%gap_file) > 0) then
+        call read_gap_file(cfg%gap_file, np%gap, status)
+        if (status%failed()) return
+      end if
+      if (cfg%e(1) > 0) then
+        compliance = compliance_from_e_nu(cfg%e(1), cfg%poisson(1), cfg%e(2), cfg%poisson(2))
+      else
+        compliance = compliance_from_g_nu(cfg%g, cfg%nu)
+      end if
+      np%compliance = compliance
+      if (len(cfg%contact_inp) == 0 .and. len(cfg%gap_file) == 0) then
+        if (cfg%mx > 0 .and. cfg%my > 0 .and. cfg%dx > 0 .and. cfg%dy > 0) then
+          mx = cfg%mx
+          my = cfg%my
+          dx = cfg%dx
+          dy = cfg%dy
+          x0 = cfg%x0
+          y0 = cfg%y0
+        else if (cfg%mx /= 0 .or. cfg%my /= 0 .or. cfg%dx /= 0 .or. cfg%dy /= 0) then
+          call fail(status, exit_bad_input, where//'&patch mx, my, dx, dy: give all four (a grid for the gap) '// &
+                    'or none (an automatic grid from &normal cells_across and margin)')
+          return
+        else
+          ! the interpenetration area at the approach (or at Hertz's approach for the force)
+          if (cfg%force_given) then
+            hz = hertz_from_force(1 / (2 * cfg%poly%rx), 1 / (2 * cfg%poly%ry), compliance, cfg%normal_force)
+            level = hz%approach
+          else
+            level = cfg%approach
+          end if
+          extent = 4 * sqrt(2 * max(cfg%poly%rx, cfg%poly%ry) * max(abs(level), tiny(level))) + &
+                   2 * (abs(cfg%poly%lx) * cfg%poly%rx + abs(cfg%poly%ly) * cfg%poly%ry)
+          call auto_grid(cfg%poly, level, extent, cfg%cells_across, cfg%margin, mx, my, dx, dy, x0, y0, status)
+          if (status%failed()) then
+            if (cfg%force_given) then
+              status%message = where//'&normal: '//status%message
+            else
+              status%message = where//'&normal approach = '//rtoa(cfg%approach)//': the surfaces do not '// &
+                               'interpenetrate (the undeformed distance from rx, ry, lx, ly, cx, cy is larger everywhere)'
+            end if
+            return
+          end if
+        end if
+        call check_grid_size(mx, my, where//'&normal: the gap grid: ', status)
+        if (status%failed()) return
+        call gap_from_polynomial(cfg%poly, mx, my, dx, dy, x0, y0, np%gap, status)
+        if (status%failed()) return
+      end if
+      call check_grid_size(np%gap%mx, np%gap%my, where//'&normal: the gap grid: ', status)
+      if (status%failed()) return
+      np%force_given = cfg%force_given
+      np%approach = cfg%approach
+      np%normal_force = cfg%normal_force
+      if (.not. np%force_given .and. .not. any(np%gap%h < np%approach)) then
+        call fail(status, exit_bad_input, where//'&normal approach = '//rtoa(np%approach)// &
+                  ': the surfaces do not interpenetrate (the smallest undeformed distance is '// &
+                  rtoa(minval(np%gap%h))//'; the approach must exceed it)')
+        return
+      end if
+      if (np%force_given .and. .not. (np%normal_force > 0)) then
+        call fail(status, exit_bad_input, where//'normal force = '//rtoa(np%normal_force)//' (must be > 0)')
+        return
+      end if
+    end associate
+  end subroutine load_gap
 
   !> '<input name without folder and extension>.tab' in the working folder.
   pure function default_table_name(path) result(name)
     character(len=*), intent(in) :: path
+    character(len=:), allocatable :: name
+    name = default_output_name(path, '.tab')
+  end function default_table_name
+
+  !> '<input name without folder and extension><extension>' in the working folder.
+  pure function default_output_name(path, extension) result(name)
+    character(len=*), intent(in) :: path, extension
     character(len=:), allocatable :: name
     integer :: slash, dot
     slash = index(path, '/', back=.true.)
     name = path(slash + 1:)
     dot = index(name, '.', back=.true.)
     if (dot > 1) name = name(1:dot - 1)
-    name = name//'.tab'
-  end function default_table_name
+    name = name//extension
+  end function default_output_name
 
 end module kcreep_namelist

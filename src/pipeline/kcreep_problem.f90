@@ -12,9 +12,24 @@ module kcreep_problem
   use kcreep_assembly, only: scheme_t, n_load_cases
   use kcreep_solver_options, only: solver_options_t
   use kcreep_verdict, only: verdict_ok, message_length
+  use kcreep_gap, only: gap_t
+  use kcreep_normal_solve, only: normal_options_t
+  use kcreep_equivalent_ellipse, only: equivalent_ellipse_t
   implicit none
   private
-  public :: problem_t, result_t, default_problem
+  public :: problem_t, result_t, default_problem, normal_problem_t
+
+  !> The normal contact problem that finds the patch: when active, the patch
+  !> is the set of cells with positive pressure on the gap's grid (cropped
+  !> to its bounding box), and problem%patch is not used.
+  type :: normal_problem_t
+    logical :: active = .false.
+    type(gap_t) :: gap                          !< undeformed distance on its grid
+    real(real64) :: compliance = 0              !< 1/E*; 0: (1 - nu)/g of the problem's material
+    logical :: force_given = .false.            !< normal_force prescribed, else approach
+    real(real64) :: approach = 0, normal_force = 0
+    type(normal_options_t) :: options
+  end type normal_problem_t
 
   type :: problem_t
     type(patch_t) :: patch
@@ -30,6 +45,7 @@ module kcreep_problem
     !> taken (the rigid slip is xi - phi (y - ys), eta + phi (x - xs)); the
     !> coordinate origin by default.
     real(real64) :: spin_centre(2) = 0
+    type(normal_problem_t) :: normal            !< patch from the normal contact problem
   end type problem_t
 
   type :: result_t
@@ -43,6 +59,9 @@ module kcreep_problem
     real(real64) :: fastsim(3) = 0              !< FASTSIM flexibilities L1, L2, L3
     real(real64) :: centroid(2) = 0             !< centre of area of the patch cells
     real(real64) :: spin_centre(2) = 0          !< as given in the problem
+    !> the equivalent ellipses (same area; a/b of the bounding box, of the second moments) with
+    !> Kalker's coefficients and flexibilities (kcreep_equivalent_ellipse)
+    type(equivalent_ellipse_t) :: ellipse(2)
     ! Richardson extrapolation (problem%extrapolate): limits, error estimates, orders used
     logical :: extrapolated = .false.
     real(real64) :: ext(3) = 0, ext_error(3) = 0, ext_order(3) = 0
@@ -62,6 +81,13 @@ module kcreep_problem
     !> (2 n, 3): px (1:n) and py (n+1:2n) of each load case per unit creepage,
     !> NaN for cases not requested; cells numbered as in the patch
     real(real64), allocatable :: traction(:, :)
+    ! the normal contact problem (problem%normal%active)
+    logical :: normal_solved = .false.
+    real(real64) :: fn = 0, approach = 0, pmax = 0   !< total force, approach, maximum pressure
+    real(real64) :: normal_residual = 0         !< final complementarity residual (relative)
+    integer :: normal_iterations = 0
+    real(real64) :: bbox(4) = 0                 !< xmin xmax ymin ymax of the contact cells (cell edges)
+    real(real64), allocatable :: pressure(:)    !< per patch cell
   end type result_t
 
 contains

@@ -4,12 +4,14 @@ module kcreep_run
   use, intrinsic :: iso_fortran_env, only: real64, int64
   use, intrinsic :: ieee_arithmetic, only: ieee_value, ieee_quiet_nan
   use kcreep_status, only: status_t
+  use kcreep_patch, only: patch_t
   use kcreep_assembly, only: operator_table_t, build_operator_table
   use kcreep_dense, only: dense_diagnostics_t
   use kcreep_linear_solve, only: solve_load_cases
   use kcreep_creep_matrix, only: creep_matrix, normalised
   use kcreep_kalker_table, only: kalker_coefficients
   use kcreep_fastsim, only: fastsim_flexibilities
+  use kcreep_equivalent_ellipse, only: equivalent_ellipses
   use kcreep_verdict, only: judge
   use kcreep_problem, only: problem_t, result_t
   implicit none
@@ -26,6 +28,10 @@ module kcreep_run
     real(real64) :: dx = 0, dy = 0, nu = 0, g = 0, alpha = 0, spin_shift = 0
     character(len=:), allocatable :: scheme
     integer :: reused = 0                   !< solves that found the table here
+    !> The last solution on this grid, by grid cell (mx, my, 2 components, 3
+    !> cases; 0 outside the last patch): the iterative solver's starting
+    !> guess for the next mask, which in a time-stepping loop differs little.
+    real(real64), allocatable :: last_traction(:, :, :, :)
   end type solve_cache_t
 
 contains
@@ -61,8 +67,20 @@ contains
       t_table = real(t1 - t0, real64) / rate
 
       ! dense or iterative, only the systems the requested cases need
-      call solve_load_cases(problem%solve, problem%scheme, problem%nu, patch, table, problem%requested, &
-                            problem%refine, result%traction, diag, status)
+      if (present(cache)) then
+        if (allocated(cache%last_traction)) then
+          call solve_load_cases(problem%solve, problem%scheme, problem%nu, patch, table, problem%requested, &
+                                problem%refine, result%traction, diag, status, &
+                                initial=guess_from(cache%last_traction, patch))
+        else
+          call solve_load_cases(problem%solve, problem%scheme, problem%nu, patch, table, problem%requested, &
+                                problem%refine, result%traction, diag, status)
+        end if
+        if (.not. status%failed()) call keep_solution(cache, patch, result%traction)
+      else
+        call solve_load_cases(problem%solve, problem%scheme, problem%nu, patch, table, problem%requested, &
+                              problem%refine, result%traction, diag, status)
+      end if
       if (status%failed()) return
 
       result%scheme = problem%scheme%name
@@ -79,6 +97,8 @@ contains
       result%f = creep_matrix(patch, result%traction, problem%requested)
       result%cn = normalised(result%f, problem%g, result%c)
       result%fastsim = fastsim_flexibilities(patch, result%f(1, 1), result%f(2, 2), result%f(2, 3))
+      result%ellipse = equivalent_ellipses(patch%inside, patch%dx, patch%dy, patch%x0, patch%y0, &
+                                           problem%nu, problem%g)
       if (patch%kind == 'ellipse') then
         result%klt = kalker_coefficients(patch%semi_a / patch%semi_b, problem%nu)
       else
@@ -116,10 +136,41 @@ contains
     end associate
   end function cache_matches
 
+  !> The last solution by grid cell, 0 where there was no cell (or no case solved).
+  pure subroutine keep_solution(cache, patch, traction)
+    type(solve_cache_t), intent(inout) :: cache
+    type(patch_t), intent(in) :: patch
+    real(real64), intent(in) :: traction(:, :)
+    integer :: k, j
+    if (allocated(cache%last_traction)) deallocate (cache%last_traction)
+    allocate (cache%last_traction(patch%mx, patch%my, 2, 3))
+    cache%last_traction = 0
+    do j = 1, 3
+      if (traction(1, j) /= traction(1, j)) cycle   ! NaN: case not solved
+      do k = 1, patch%n
+        cache%last_traction(patch%ix(k), patch%iy(k), 1, j) = traction(k, j)
+        cache%last_traction(patch%ix(k), patch%iy(k), 2, j) = traction(patch%n + k, j)
+      end do
+    end do
+  end subroutine keep_solution
+
+  !> The starting guess on patch from the last solution on the same grid.
+  pure function guess_from(last, patch) result(guess)
+    real(real64), intent(in) :: last(:, :, :, :)
+    type(patch_t), intent(in) :: patch
+    real(real64) :: guess(2 * patch%n, 3)
+    integer :: k
+    do k = 1, patch%n
+      guess(k, :) = last(patch%ix(k), patch%iy(k), 1, :)
+      guess(patch%n + k, :) = last(patch%ix(k), patch%iy(k), 2, :)
+    end do
+  end function guess_from
+
   pure subroutine remember(cache, problem)
     type(solve_cache_t), intent(inout) :: cache
     type(problem_t), intent(in) :: problem
     cache%filled = .true.
+    if (allocated(cache%last_traction)) deallocate (cache%last_traction)   ! another grid or operator
     cache%mx = problem%patch%mx
     cache%my = problem%patch%my
     cache%dx = problem%patch%dx

@@ -111,7 +111,10 @@ contains
   !> refine: 'auto' refines once when the backward error is above round-off,
   !> 'always' / 'never' force it, 'lapack' solves the whole unsplit system with
   !> LAPACK's expert driver (dgesvx, equilibration and refinement) for comparison.
-  subroutine solve_load_cases(opts, scheme, nu, patch, table, requested, refine, traction, diag, status)
+  !> initial: a guess of the tractions (2n, 3), e.g. the solution on the
+  !> previous mask of a time-stepping loop; the iterative path starts from it
+  !> (and stops at once when it already meets the tolerance), dense ignores it.
+  subroutine solve_load_cases(opts, scheme, nu, patch, table, requested, refine, traction, diag, status, initial)
     type(solver_options_t), intent(in) :: opts
     type(scheme_t), intent(in) :: scheme
     real(real64), intent(in) :: nu
@@ -122,6 +125,7 @@ contains
     real(real64), allocatable, intent(out) :: traction(:, :)
     type(dense_diagnostics_t), intent(out) :: diag
     type(status_t), intent(inout) :: status
+    real(real64), intent(in), optional :: initial(:, :)
     type(subsystem_t), allocatable :: subs(:)
     real(real64), allocatable :: rhs(:, :)
     integer :: j, n
@@ -152,7 +156,7 @@ contains
     else
       call check_iterative_memory(opts, patch, count(requested), status)
       if (status%failed()) return
-      call solve_iterative(opts, nu, patch, table, requested, rhs, traction, diag, status)
+      call solve_iterative(opts, nu, patch, table, requested, rhs, traction, diag, status, initial)
       fallback = status%code == exit_numerical .and. opts%method == 'auto'
       if (fallback) fallback = dense_fits(subs, opts%memory_limit)
       if (fallback) then
@@ -391,7 +395,7 @@ contains
     norm_inf = maxval(row_sums)
   end subroutine norms_1_inf
 
-  subroutine solve_iterative(opts, nu, patch, table, requested, rhs, traction, diag, status)
+  subroutine solve_iterative(opts, nu, patch, table, requested, rhs, traction, diag, status, initial)
     type(solver_options_t), intent(in) :: opts
     real(real64), intent(in) :: nu
     type(patch_t), intent(in) :: patch
@@ -401,6 +405,7 @@ contains
     real(real64), intent(inout) :: traction(:, :)
     type(dense_diagnostics_t), intent(inout) :: diag
     type(status_t), intent(inout) :: status
+    real(real64), intent(in), optional :: initial(:, :)
     type(fft_block_t) :: a
     type(strip_block_t) :: m_inv
     type(gmres_result_t) :: result
@@ -452,6 +457,7 @@ contains
     x = 0
     b = 0
     do i = 1, nc
+      if (present(initial)) call restrict_to(subs(sub_of(i)), n, initial(:, case_of(i)), x(1:subs(sub_of(i))%m, i))
       call restrict_to(subs(sub_of(i)), n, rhs(:, case_of(i)), b(1:subs(sub_of(i))%m, i))
     end do
     call gmres(a, m_inv, b, x, opts%tolerance, opts%restart, opts%max_iterations, result)

@@ -1,0 +1,197 @@
+!> The undeformed distance (gap) between the two surfaces on a grid.
+!>
+!> Grid convention as patch_t: mx x my cells of size dx x dy, (x0, y0) the
+!> centre of cell (1, 1); h(ix, iy) is the distance at the cell centre
+!> (x0 + (ix-1) dx, y0 + (iy-1) dy). Values >= 1e29 mark cells outside the
+!> potential contact.
+module kcreep_gap
+  use, intrinsic :: iso_fortran_env, only: real64
+  use kcreep_status, only: status_t, fail, exit_bad_input
+  use kcreep_strings, only: itoa, rtoa
+  implicit none
+  private
+  public :: gap_t, polynomial_gap_t, gap_from_array, gap_from_polynomial, auto_grid, polynomial_value
+  public :: max_gap_cells
+
+  !> Larger grids are refused (memory of the normal solve ~ 15 doubles per cell).
+  integer, parameter :: max_gap_cells = 4000 * 4000
+
+  type :: gap_t
+    integer :: mx = 0, my = 0
+    real(real64) :: dx = 0, dy = 0, x0 = 0, y0 = 0
+    real(real64), allocatable :: h(:, :)
+  contains
+    procedure :: cell_x, cell_y
+  end type gap_t
+
+  !> h = x^2/(2 rx) + y^2/(2 ry) + lx x + ly y + cx x^3 + cy y^3 + h0
+  !> (rx, ry <= 0 or huge: no curvature in that direction).
+  type :: polynomial_gap_t
+    real(real64) :: rx = 0, ry = 0
+    real(real64) :: lx = 0, ly = 0, cx = 0, cy = 0, h0 = 0
+  end type polynomial_gap_t
+
+contains
+
+  elemental real(real64) function cell_x(self, ix) result(x)
+    class(gap_t), intent(in) :: self
+    integer, intent(in) :: ix
+    x = self%x0 + (ix - 1) * self%dx
+  end function cell_x
+
+  elemental real(real64) function cell_y(self, iy) result(y)
+    class(gap_t), intent(in) :: self
+    integer, intent(in) :: iy
+    y = self%y0 + (iy - 1) * self%dy
+  end function cell_y
+
+  elemental real(real64) function polynomial_value(poly, x, y) result(h)
+    type(polynomial_gap_t), intent(in) :: poly
+    real(real64), intent(in) :: x, y
+    h = poly%h0 + poly%lx * x + poly%ly * y + poly%cx * x**3 + poly%cy * y**3
+    if (poly%rx > 0) h = h + x**2 / (2 * poly%rx)
+    if (poly%ry > 0) h = h + y**2 / (2 * poly%ry)
+  end function polynomial_value
+
+  !> Check a grid description; source names the input in messages.
+  subroutine check_grid(mx, my, dx, dy, source, status)
+    integer, intent(in) :: mx, my
+    real(real64), intent(in) :: dx, dy
+    character(len=*), intent(in) :: source
+    type(status_t), intent(inout) :: status
+    if (mx < 1 .or. my < 1) then
+      call fail(status, exit_bad_input, source//': mx, my = '//itoa(mx)//', '//itoa(my)//' (both must be >= 1)')
+    else if (real(mx, real64) * my > max_gap_cells) then
+      call fail(status, exit_bad_input, source//': mx * my = '//itoa(mx)//' * '//itoa(my)// &
+                ' cells (at most '//itoa(max_gap_cells)//')')
+    else if (.not. (dx > 0 .and. dy > 0 .and. dx < huge(dx) .and. dy < huge(dy))) then
+      call fail(status, exit_bad_input, source//': dx, dy = '//rtoa(dx)//', '//rtoa(dy)//' (cell sizes must be > 0)')
+    end if
+  end subroutine check_grid
+
+  !> A gap from values on a grid (e.g. read from a file); NaN/Inf refused.
+  subroutine gap_from_array(h, dx, dy, x0, y0, source, gap, status)
+    real(real64), intent(in) :: h(:, :)
+    real(real64), intent(in) :: dx, dy, x0, y0
+    character(len=*), intent(in) :: source
+    type(gap_t), intent(out) :: gap
+    type(status_t), intent(inout) :: status
+    integer :: ix, iy
+    call check_grid(size(h, 1), size(h, 2), dx, dy, source, status)
+    if (status%failed()) return
+    do iy = 1, size(h, 2)
+      do ix = 1, size(h, 1)
+        if (h(ix, iy) /= h(ix, iy) .or. abs(h(ix, iy)) > huge(1.0_real64)) then
+          call fail(status, exit_bad_input, source//': gap value at cell ('//itoa(ix)//', '//itoa(iy)// &
+                    ') is '//rtoa(h(ix, iy))//' (finite numbers only)')
+          return
+        end if
+      end do
+    end do
+    gap%mx = size(h, 1)
+    gap%my = size(h, 2)
+    gap%dx = dx
+    gap%dy = dy
+    gap%x0 = x0
+    gap%y0 = y0
+    gap%h = h
+  end subroutine gap_from_array
+
+  !> A polynomial gap evaluated at the cell centres of the given grid.
+  subroutine gap_from_polynomial(poly, mx, my, dx, dy, x0, y0, gap, status)
+    type(polynomial_gap_t), intent(in) :: poly
+    integer, intent(in) :: mx, my
+    real(real64), intent(in) :: dx, dy, x0, y0
+    type(gap_t), intent(out) :: gap
+    type(status_t), intent(inout) :: status
+    integer :: ix, iy
+    call check_grid(mx, my, dx, dy, 'gap grid', status)
+    if (status%failed()) return
+    gap%mx = mx
+    gap%my = my
+    gap%dx = dx
+    gap%dy = dy
+    gap%x0 = x0
+    gap%y0 = y0
+    allocate (gap%h(mx, my))
+    do iy = 1, my
+      do ix = 1, mx
+        gap%h(ix, iy) = polynomial_value(poly, gap%cell_x(ix), gap%cell_y(iy))
+      end do
+    end do
+  end subroutine gap_from_polynomial
+
+  !> A grid chosen from the interpenetration area {h < level} of a polynomial
+  !> gap: the bounding box of that area (found on a fine sampling of the
+  !> search box [-extent, extent]^2), widened by the relative margin on every
+  !> side, with cells_across cells across its larger side (square cells).
+  subroutine auto_grid(poly, level, extent, cells_across, margin, mx, my, dx, dy, x0, y0, status)
+    type(polynomial_gap_t), intent(in) :: poly
+    real(real64), intent(in) :: level, extent, margin
+    integer, intent(in) :: cells_across
+    integer, intent(out) :: mx, my
+    real(real64), intent(out) :: dx, dy, x0, y0
+    type(status_t), intent(inout) :: status
+    integer, parameter :: ns = 2001
+    real(real64) :: xs, ys, xlo, xhi, ylo, yhi, s, wx, wy
+    integer :: i, j
+    logical :: found
+
+    mx = 0
+    my = 0
+    dx = 0
+    dy = 0
+    x0 = 0
+    y0 = 0
+    if (cells_across < 2) then
+      call fail(status, exit_bad_input, 'cells_across = '//itoa(cells_across)//' (must be >= 2)')
+      return
+    end if
+    if (.not. (margin >= 0 .and. margin <= 10)) then
+      call fail(status, exit_bad_input, 'margin = '//rtoa(margin)//' (allowed 0 to 10, a fraction of the patch size)')
+      return
+    end if
+    found = .false.
+    xlo = huge(1.0_real64)
+    xhi = -huge(1.0_real64)
+    ylo = xlo
+    yhi = xhi
+    s = 2 * extent / (ns - 1)
+    do j = 1, ns
+      ys = -extent + (j - 1) * s
+      do i = 1, ns
+        xs = -extent + (i - 1) * s
+        if (polynomial_value(poly, xs, ys) < level) then
+          found = .true.
+          xlo = min(xlo, xs)
+          xhi = max(xhi, xs)
+          ylo = min(ylo, ys)
+          yhi = max(yhi, ys)
+        end if
+      end do
+    end do
+    if (.not. found) then
+      call fail(status, exit_bad_input, 'the surfaces do not interpenetrate at approach '//rtoa(level)// &
+                ' (the undeformed distance is larger everywhere)')
+      return
+    end if
+    ! the sampled box is exact to one sampling step: widen by it
+    xlo = xlo - s
+    xhi = xhi + s
+    ylo = ylo - s
+    yhi = yhi + s
+    wx = xhi - xlo
+    wy = yhi - ylo
+    xlo = xlo - margin * wx
+    xhi = xhi + margin * wx
+    ylo = ylo - margin * wy
+    yhi = yhi + margin * wy
+    dx = max(xhi - xlo, yhi - ylo) / cells_across
+    dy = dx
+    mx = max(1, ceiling((xhi - xlo) / dx - 1e-9_real64))
+    my = max(1, ceiling((yhi - ylo) / dy - 1e-9_real64))
+    x0 = (xlo + xhi) / 2 - (mx - 1) * dx / 2
+    y0 = (ylo + yhi) / 2 - (my - 1) * dy / 2
+  end subroutine auto_grid
+
+end module kcreep_gap

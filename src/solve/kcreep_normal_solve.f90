@@ -1,0 +1,332 @@
+!> The normal contact problem of two elastic half-spaces on a grid.
+!>
+!> Unknown: the pressure p >= 0 per cell (piecewise constant). With the
+!> undeformed distance h, the approach delta and the normal displacement
+!> difference u = A p (kcreep_normal_influence), the deformed distance
+!>   g = h - delta + u
+!> must satisfy g >= 0, p >= 0 and p g = 0 in every cell. Either delta is
+!> prescribed, or the total force Fn = dx dy sum(p) (then delta is the
+!> Lagrange multiplier of that constraint and comes out of the solve).
+!>
+!> Method: the constrained conjugate gradient of Polonsky and Keer (Wear 231,
+!> 1999, 206-219): CG on the cells carrying pressure, negative pressures cut
+!> to zero, cells that interpenetrate without pressure added to the active
+!> set (and the conjugation restarted). A p is a 2-D linear convolution with
+!> the offset table, done with zero-padded real FFTs (FFTW), so memory and
+!> work per iteration are O(grid) and O(grid log grid). Each step needs
+!> r = A t; u = A p is updated along the step (u - tau r) when the active set
+!> did not change and recomputed otherwise, every 25 steps, and before
+!> convergence is accepted.
+!>
+!> Stopping: the complementarity residual
+!>   max( max_{p>0} |g|, max_{p=0} max(-g, 0) ) / max(u)
+!> (relative to the elastic displacement, i.e. to the size of the
+!> deformation) below the tolerance.
+module kcreep_normal_solve
+  use, intrinsic :: iso_c_binding
+  use, intrinsic :: iso_fortran_env, only: real64
+  use kcreep_status, only: status_t, fail, exit_bad_input, exit_numerical
+  use kcreep_strings, only: itoa, rtoa
+  use kcreep_normal_influence, only: normal_offset_table
+  !$ use omp_lib, only: omp_get_max_threads
+  implicit none
+  private
+  public :: normal_options_t, normal_result_t, solve_normal
+  public :: normal_operator_t, create_normal_operator, apply_normal_operator, destroy_normal_operator
+
+  include 'fftw3.f03'
+
+  type :: normal_options_t
+    real(real64) :: tolerance = 1e-10_real64   !< on the complementarity residual
+    integer :: max_iterations = 5000
+  end type normal_options_t
+
+  type :: normal_result_t
+    real(real64), allocatable :: pressure(:, :)   !< (mx, my)
+    real(real64) :: approach = 0                  !< delta (prescribed or found)
+    real(real64) :: fn = 0                        !< dx dy sum(pressure)
+    real(real64) :: pmax = 0
+    real(real64) :: residual = huge(1.0_real64)   !< final complementarity residual (relative)
+    integer :: iterations = 0
+    integer :: products = 0                       !< FFT products A x (about 1 per iteration)
+    integer :: n_contact = 0                      !< cells with p > 0
+    logical :: converged = .false.
+    logical :: touches_edge = .false.             !< pressure on the grid's outer cells
+  end type normal_result_t
+
+  !> A p on an mx x my grid by FFT (the kernel is even: its spectrum is real).
+  type :: normal_operator_t
+    integer :: mx = 0, my = 0, nx = 0, ny = 0
+    integer :: applications = 0                 !< products A p done
+    type(c_ptr) :: p_real = c_null_ptr, p_spec = c_null_ptr
+    real(c_double), pointer :: grid(:, :) => null()
+    complex(c_double_complex), pointer :: spec(:, :) => null()
+    real(real64), allocatable :: kernel(:, :)   !< real spectrum / (nx ny)
+    type(c_ptr) :: forward = c_null_ptr, backward = c_null_ptr
+  end type normal_operator_t
+
+contains
+
+  !> Smallest n' >= n, even, whose prime factors are 2, 3, 5, 7.
+  pure integer function fast_even_size(n) result(m)
+    integer, intent(in) :: n
+    integer :: r, k
+    integer, parameter :: primes(4) = [2, 3, 5, 7]
+    m = max(n, 2)
+    if (mod(m, 2) /= 0) m = m + 1
+    do
+      r = m
+      do k = 1, 4
+        do while (mod(r, primes(k)) == 0)
+          r = r / primes(k)
+        end do
+      end do
+      if (r == 1) return
+      m = m + 2
+    end do
+  end function fast_even_size
+
+  subroutine create_normal_operator(mx, my, dx, dy, compliance, op)
+    integer, intent(in) :: mx, my
+    real(real64), intent(in) :: dx, dy, compliance
+    type(normal_operator_t), intent(out) :: op
+    real(real64), allocatable :: table(:, :)
+    integer :: i, j, nh, threads
+
+    op%mx = mx
+    op%my = my
+    op%nx = fast_even_size(2 * mx)
+    op%ny = fast_even_size(2 * my)
+    nh = op%nx / 2 + 1
+    threads = 1
+    !$ threads = omp_get_max_threads()
+    if (real(op%nx, real64) * op%ny < 6.5e4_real64) threads = 1
+    if (threads > 1) then
+      if (fftw_init_threads() == 0) threads = 1
+      call fftw_plan_with_nthreads(int(threads, c_int))
+    end if
+    op%p_real = fftw_alloc_real(int(op%nx, c_size_t) * op%ny)
+    op%p_spec = fftw_alloc_complex(int(nh, c_size_t) * op%ny)
+    call c_f_pointer(op%p_real, op%grid, [op%nx, op%ny])
+    call c_f_pointer(op%p_spec, op%spec, [nh, op%ny])
+    ! FFTW's dimensions are row-major: (ny, nx) is our (nx, ny).
+    op%forward = fftw_plan_dft_r2c_2d(op%ny, op%nx, op%grid, op%spec, FFTW_ESTIMATE)
+    op%backward = fftw_plan_dft_c2r_2d(op%ny, op%nx, op%spec, op%grid, FFTW_ESTIMATE)
+
+    call normal_offset_table(mx, my, dx, dy, compliance, table)
+    op%grid = 0
+    do j = -(my - 1), my - 1
+      do i = -(mx - 1), mx - 1
+        op%grid(modulo(i, op%nx) + 1, modulo(j, op%ny) + 1) = table(abs(i), abs(j))
+      end do
+    end do
+    call fftw_execute_dft_r2c(op%forward, op%grid, op%spec)
+    op%kernel = real(op%spec, real64) / (real(op%nx, real64) * op%ny)
+  end subroutine create_normal_operator
+
+  subroutine destroy_normal_operator(op)
+    type(normal_operator_t), intent(inout) :: op
+    if (.not. c_associated(op%p_real)) return
+    call fftw_free(op%p_real)
+    call fftw_free(op%p_spec)
+    call fftw_destroy_plan(op%forward)
+    call fftw_destroy_plan(op%backward)
+    op%p_real = c_null_ptr
+    op%p_spec = c_null_ptr
+    nullify (op%grid, op%spec)
+  end subroutine destroy_normal_operator
+
+  !> u = A p on the grid.
+  subroutine apply_normal_operator(op, p, u)
+    type(normal_operator_t), intent(inout) :: op
+    real(real64), intent(in) :: p(:, :)
+    real(real64), intent(out) :: u(:, :)
+    integer :: j
+    op%applications = op%applications + 1
+    op%grid = 0
+    do j = 1, op%my
+      op%grid(1:op%mx, j) = p(:, j)
+    end do
+    call fftw_execute_dft_r2c(op%forward, op%grid, op%spec)
+    op%spec = op%spec * op%kernel
+    call fftw_execute_dft_c2r(op%backward, op%spec, op%grid)
+    do j = 1, op%my
+      u(:, j) = op%grid(1:op%mx, j)
+    end do
+  end subroutine apply_normal_operator
+
+  !> Solve the normal problem on the grid of h (cell sizes dx, dy; compliance
+  !> 1/E*). Exactly one of approach and normal_force must be present.
+  !> Cells with h >= 1e29 are outside the potential contact (never loaded).
+  subroutine solve_normal(h, dx, dy, compliance, options, res, status, approach, normal_force)
+    real(real64), intent(in) :: h(:, :)
+    real(real64), intent(in) :: dx, dy, compliance
+    type(normal_options_t), intent(in) :: options
+    type(normal_result_t), intent(out) :: res
+    type(status_t), intent(inout) :: status
+    real(real64), intent(in), optional :: approach, normal_force
+
+    type(normal_operator_t) :: op
+    real(real64), allocatable :: p(:, :), g(:, :), t(:, :), u(:, :), r(:, :)
+    logical, allocatable :: active(:, :)
+    logical :: force_given, restart, fresh, changed
+    integer :: since_fresh
+    real(real64) :: factor
+    !> steps between recomputations of u = A p (round-off drift of the update)
+    integer, parameter :: refresh_every = 25
+    real(real64) :: delta, fn, gg, gg_old, tau, num, den, mean, scale, cell_area
+    integer :: mx, my, it, nc
+
+    mx = size(h, 1)
+    my = size(h, 2)
+    force_given = present(normal_force)
+    if (force_given .eqv. present(approach)) then
+      call fail(status, exit_bad_input, 'normal problem: give exactly one of approach and normal_force')
+      return
+    end if
+    if (mx < 1 .or. my < 1) then
+      call fail(status, exit_bad_input, 'normal problem: empty grid')
+      return
+    end if
+    if (any(h /= h)) then
+      call fail(status, exit_bad_input, 'normal problem: the undeformed distance contains NaN')
+      return
+    end if
+    cell_area = dx * dy
+    allocate (p(mx, my), g(mx, my), t(mx, my), u(mx, my), r(mx, my), active(mx, my))
+    delta = 0
+    fn = 0
+    if (force_given) then
+      fn = normal_force
+      if (.not. (fn > 0)) then
+        call fail(status, exit_bad_input, 'normal problem: normal_force = '//rtoa(fn)//' (must be > 0)')
+        return
+      end if
+      where (h < 1e29_real64)
+        p = fn / (cell_area * count(h < 1e29_real64))
+      elsewhere
+        p = 0
+      end where
+      if (count(h < 1e29_real64) == 0) then
+        call fail(status, exit_bad_input, 'normal problem: no cell of the grid can come into contact')
+        return
+      end if
+    else
+      delta = approach
+      g = max(delta - h, 0.0_real64)
+      if (.not. any(g > 0)) then
+        call fail(status, exit_bad_input, 'normal problem: approach = '//rtoa(delta)// &
+                  ' gives no interpenetration (the smallest undeformed distance is '//rtoa(minval(h))// &
+                  '; the approach must exceed it)')
+        return
+      end if
+    end if
+
+    call create_normal_operator(mx, my, dx, dy, compliance, op)
+    if (.not. force_given) then
+      ! first estimate: the best multiple of the interpenetration
+      call apply_normal_operator(op, g, u)
+      p = g * (sum(g * g) / sum(g * u))
+    end if
+
+    gg_old = 1
+    restart = .true.
+    t = 0
+    fresh = .false.
+    since_fresh = 0
+    do it = 0, options%max_iterations
+      ! u = A p: updated along the CG step when the active set did not change,
+      ! recomputed otherwise, every refresh_every steps, and before accepting convergence
+      if (.not. fresh .or. since_fresh >= refresh_every) then
+        call apply_normal_operator(op, p, u)
+        since_fresh = 0
+      end if
+      do
+        g = h + u
+        if (.not. force_given) g = g - delta
+        active = p > 0
+        nc = count(active)
+        if (force_given .and. nc > 0) then
+          mean = sum(g, mask=active) / nc
+          g = g - mean
+          delta = mean
+        end if
+        scale = max(maxval(u), tiny(1.0_real64))
+        res%residual = max(maxval(abs(g), mask=active), maxval(-g, mask=.not. active), 0.0_real64) / scale
+        if (res%residual > options%tolerance .or. since_fresh == 0) exit
+        call apply_normal_operator(op, p, u)
+        since_fresh = 0
+      end do
+      res%iterations = it
+      if (res%residual <= options%tolerance) then
+        res%converged = .true.
+        exit
+      end if
+      if (it == options%max_iterations) exit
+      if (nc == 0) then
+        ! everything was cut off: restart from the interpenetration
+        t = max(-g, 0.0_real64)
+        call apply_normal_operator(op, t, u)
+        p = t * (sum(t * t) / sum(t * u))
+        restart = .true.
+        fresh = .false.
+        cycle
+      end if
+      gg = sum(g * g, mask=active)
+      if (restart) then
+        where (active)
+          t = g
+        elsewhere
+          t = 0
+        end where
+      else
+        where (active)
+          t = g + (gg / gg_old) * t
+        elsewhere
+          t = 0
+        end where
+      end if
+      gg_old = gg
+      call apply_normal_operator(op, t, r)
+      num = sum(g * t, mask=active)
+      den = sum(r * t, mask=active)
+      if (force_given) den = den - sum(r, mask=active) / nc * sum(t, mask=active)
+      if (.not. (den > 0)) then
+        tau = 0
+      else
+        tau = num / den
+      end if
+      where (active) p = p - tau * t
+      changed = any(p < 0)
+      p = max(p, 0.0_real64)
+      ! cells without pressure that interpenetrate join the active set
+      active = p <= 0 .and. g < 0
+      restart = any(active)
+      changed = changed .or. restart
+      where (active) p = p - tau * g
+      factor = 1
+      if (force_given) factor = fn / (cell_area * sum(p))
+      if (force_given) p = p * factor
+      fresh = .not. changed
+      if (fresh) then
+        u = factor * (u - tau * r)
+        since_fresh = since_fresh + 1
+      end if
+    end do
+    res%products = op%applications
+    call destroy_normal_operator(op)
+
+    if (.not. res%converged) then
+      call fail(status, exit_numerical, 'normal problem: no convergence in '//itoa(options%max_iterations)// &
+                ' iterations (complementarity residual '//rtoa(res%residual)//', tolerance '// &
+                rtoa(options%tolerance)//')')
+    end if
+    res%approach = delta
+    res%fn = cell_area * sum(p)
+    res%pmax = maxval(p)
+    res%n_contact = count(p > 0)
+    res%touches_edge = any(p(1, :) > 0) .or. any(p(mx, :) > 0) .or. any(p(:, 1) > 0) .or. any(p(:, my) > 0)
+    call move_alloc(p, res%pressure)
+  end subroutine solve_normal
+
+end module kcreep_normal_solve

@@ -1,0 +1,70 @@
+"""The architecture, checked on the sources: every file under src/ and app/
+holds the module of its name with the kcreep_ prefix; dependencies between
+pipeline stages run one way (io is used by nothing below it, app by nothing
+in src/); and the library prints nothing, reads no environment and calls
+nothing of the operating system (the command line in app/ does that).
+
+usage: test_layout.py SOURCE_DIR
+"""
+import os
+import re
+import sys
+
+import kctest as kc
+
+root = os.path.abspath(sys.argv[1])
+# stage -> stages it may use (the facade src/kcreep.f90 is stage 'facade')
+allowed = {
+    "core": {"core"},
+    "geometry": {"core", "geometry"},
+    "discretisation": {"core", "geometry", "discretisation"},
+    "solve": {"core", "geometry", "discretisation", "solve"},
+    "coefficients": {"core", "geometry", "discretisation", "solve", "coefficients"},
+    "pipeline": {"core", "geometry", "discretisation", "solve", "coefficients", "pipeline"},
+    "facade": {"core", "geometry", "discretisation", "solve", "coefficients", "pipeline"},
+    "io": {"core", "geometry", "discretisation", "solve", "coefficients", "pipeline", "facade", "io"},
+    "api": {"core", "geometry", "discretisation", "solve", "coefficients", "pipeline", "facade"},
+    "app": {"core", "geometry", "discretisation", "solve", "coefficients", "pipeline", "facade", "io", "app"},
+}
+stage_of, files = {}, []
+for folder in ("src", "app"):
+    for dirpath, _, names in os.walk(os.path.join(root, folder)):
+        for name in sorted(names):
+            if not name.endswith(".f90"):
+                continue
+            path = os.path.join(dirpath, name)
+            rel = os.path.relpath(path, root)
+            text = open(path).read()
+            if rel == "app/main.f90":
+                stage = "app"
+            elif rel == "src/kcreep.f90":
+                stage = "facade"
+            else:
+                stage = "app" if folder == "app" else rel.split(os.sep)[1]
+            files.append((rel, stage, text))
+            module = re.search(r"^\s*module\s+(\w+)\s*$", text, re.M | re.I)
+            if module:
+                stage_of[module.group(1).lower()] = stage
+                kc.check(module.group(1).lower() == name[:-4] and name.startswith("kcreep"),
+                         f"{rel}: module {module.group(1)} named after its file, kcreep_ prefix")
+            else:
+                kc.check(rel == "app/main.f90", f"{rel}: holds a module")
+
+for rel, stage, text in files:
+    used = {u.lower() for u in re.findall(r"^\s*use\s+(?!,)(\w+)", text, re.M | re.I)}
+    for u in sorted(used):
+        if u in stage_of and stage_of[u] not in allowed[stage]:
+            kc.check(False, f"{rel} ({stage}) uses {u} ({stage_of[u]}): against the pipeline direction")
+    if stage not in ("app", "io"):
+        code = "\n".join(line.split("!")[0] for line in text.splitlines())
+        for pattern, what in ((r"\bprint\b", "print"), (r"output_unit|error_unit", "standard output/error"),
+                              (r"get_environment_variable", "environment"), (r"\bopen\s*\(", "open a file"),
+                              (r"execute_command_line", "a shell"), (r"/proc/", "/proc"),
+                              (r"name\s*=\s*'(rename|getpid|flock|exit|getenv)'", "a POSIX call")):
+            kc.check(not re.search(pattern, code, re.I), f"{rel}: no {what} in the library")
+    if stage == "io":
+        code = "\n".join(line.split("!")[0] for line in text.splitlines())
+        kc.check(not re.search(r"action\s*=\s*'(write|readwrite)'|status\s*=\s*'(new|replace)'", code, re.I),
+                 f"{rel}: io reads, it writes no files (app/ does)")
+kc.check(len(files) > 30, f"{len(files)} Fortran files checked")
+kc.finish()

@@ -1,0 +1,132 @@
+"""The Python package (python/kcreep) on the build tree's libkcreep:
+solve_ellipse and solve_mask with numpy arrays, errors as KcreepError with
+kcreep's message, tractions, operator-table reuse on one Solver, the
+table module, and `pip install ./python` into a scratch folder.
+
+usage: /usr/bin/python3 test_python_api.py KCREEP SOURCE_DIR   (needs numpy)
+"""
+import os
+import subprocess
+import sys
+
+import kctest as kc
+
+folder = kc.setup()
+source_dir = os.path.abspath(sys.argv[2])
+sys.path.insert(0, os.path.join(source_dir, "python"))
+import numpy as np  # noqa: E402
+import kcreep  # noqa: E402
+
+# the package finds build/libkcreep.so of the source tree without any setting
+os.environ.pop("KCREEP_LIBRARY", None)
+r = kcreep.solve_ellipse(1.0, 1.0, nu=0.25, g=1.0, mx=30, my=30, scheme="backward")
+kc.check(isinstance(r.f, np.ndarray) and r.f.shape == (3, 3), "Result.f is a 3 x 3 numpy array")
+kc.check(r.c.shape == (3,) and np.allclose(r.c, [r.f[0, 0], r.f[1, 1], r.f[1, 2]]), "c = (C11, C22, C23), c = 1, g = 1")
+kc.check(r.verdict == "ok" and r.verdict_flags == 0, f"verdict ok ({r.verdict})")
+kc.check(kcreep.version().count(".") == 2, f"version {kcreep.version()}")
+
+# the same patch through the command line: the same numbers
+row = kc.coefficients(kc.namelist(patch="mx = 30, my = 30", solver="scheme = 'backward'"), folder, "circle")
+cli = np.array([[row[f"f{i}{j}"] for j in (1, 2, 3)] for i in (1, 2, 3)])
+kc.check(np.max(np.abs(cli - r.f)) <= 1e-14 * np.max(np.abs(cli)), "Python f == command-line f (to the last digit)")
+
+# masks: rows in increasing y, a boolean array; x0, y0 the centre of cell [0, 0]
+y, x = np.mgrid[0:24, 0:36]
+inside = ((x - 17.5) / 18) ** 2 + ((y - 11.5) / 12) ** 2 <= 1
+m = kcreep.solve_mask(inside, 1.0 / 12, 1.0 / 12, x0=-1.5 + 1 / 24, y0=-1 + 1 / 24, nu=0.3, g=2.0,
+                      scheme="backward", tractions=True)
+kc.check(m.n == inside.sum(), f"cells in the patch: {m.n}")
+kc.check(m.traction.shape == (m.n, 2, 3), "traction: n x (px, py) x (xi, eta, phi)")
+# f11 is minus the sum of px over the cells times the cell area (the table's definition)
+kc.close(-m.traction[:, 0, 0].sum() * (1 / 12) ** 2, m.f[0, 0], 1e-12, "f11 from the tractions")
+kc.check(m.ix.min() >= 1 and m.ix.max() <= 36 and m.iy.max() <= 24, "cell indices 1-based on the grid")
+transposed = kcreep.solve_mask(inside.T, 1.0 / 12, 1.0 / 12, x0=-1 + 1 / 24, y0=-1.5 + 1 / 24, nu=0.3, g=2.0,
+                               scheme="backward")
+kc.check(abs(transposed.f[0, 0] - m.f[0, 0]) > 1e-3 * m.f[0, 0], "rows are y: the transposed patch differs")
+
+# errors carry kcreep's message and status
+for call, words in ((lambda: kcreep.solve_ellipse(1, 1, nu=0.7), ["nu", "0.5"]),
+                    (lambda: kcreep.solve_ellipse(1, -1), ["semi_a", "> 0"]),
+                    (lambda: kcreep.solve_mask(np.zeros((4, 4), bool), 1, 1), ["empty"]),
+                    (lambda: kcreep.solve_mask(np.ones(4, bool), 1, 1), ["2-D"]),
+                    (lambda: kcreep.solve_ellipse(1, 1, scheme="upwind"), ["scheme", "backward"])):
+    try:
+        call()
+        kc.check(False, f"refused: {words}")
+    except kcreep.KcreepError as e:
+        kc.check(e.code == 2 and all(w in str(e) for w in words), f"KcreepError {e.code}: {e}")
+
+# one Solver, the in-loop case: new masks on the same grid reuse the operator table
+s = kcreep.Solver(nu=0.25, g=1.0, scheme="backward")
+first = s.solve_mask(inside, 1.0 / 12, 1.0 / 12)
+inside[0, 17] = False
+second = s.solve_mask(inside, 1.0 / 12, 1.0 / 12)
+kc.check(s.reuse_count == 1 and second.n == first.n - 1, f"operator table reused ({s.reuse_count})")
+# the warm start (GMRES from the last solution on the grid) meets the same
+# tolerance as a cold one: coefficients agree to the solver's accuracy (the
+# iterative path agrees with dense LU to ~1e-10 at tolerance 1e-11, see
+# test_solver_paths; 1e-9 leaves room)
+iterative = dict(nu=0.25, g=1.0, scheme="backward", method="iterative")
+warm_solver = kcreep.Solver(**iterative)
+warm_solver.solve_mask(~inside[::-1], 1.0 / 12, 1.0 / 12)      # another patch on the same grid first
+warm = warm_solver.solve_mask(inside, 1.0 / 12, 1.0 / 12)
+cold = kcreep.Solver(**iterative).solve_mask(inside, 1.0 / 12, 1.0 / 12)
+kc.check(np.max(np.abs(warm.f - cold.f)) <= 1e-9 * np.max(np.abs(cold.f)),
+         f"warm-started solve == cold solve (max diff {np.max(np.abs(warm.f - cold.f)):.2e})")
+s.set_material(g=1.0, nu=0.3)
+s.solve_mask(inside, 1.0 / 12, 1.0 / 12)
+kc.check(s.reuse_count == 1, "a new material rebuilds the table")
+
+# extrapolation gives an error estimate
+e = kcreep.Solver(nu=0.25, scheme="backward", extrapolate_levels=2).solve_ellipse(1, 1, 20, 20)
+kc.check(np.all(np.isfinite(e.ext_error)) and np.all(e.ext_error > 0), f"error estimate {e.ext_error}")
+kc.check(np.all(np.isnan(r.ext_error)), "no estimate without extrapolation: NaN")
+
+# the normal problem from a gap (Hertz: a sphere-like quadratic gap) and FASTSIM on its pressure
+gy, gx = np.mgrid[0:64, 0:64]
+xs, ys = -1.6 + (gx + 0.5) * 0.05, -1.6 + (gy + 0.5) * 0.05
+quadratic = xs ** 2 / (2 * 10.0) + ys ** 2 / (2 * 10.0)
+hs = kcreep.Solver(nu=0.28, g=82000.0, scheme="backward")
+rg = hs.solve_gap(quadratic, 0.05, 0.05, -1.6 + 0.025, -1.6 + 0.025, normal_force=5000.0)
+kc.close(rg.fn, 5000.0, 1e-8, "normal_force prescribed through Python")
+# Hertz: a = (3 F R / (4 E*))^(1/3), R = 10 the relative radius of the gap, E* = g / (1 - nu)
+# for identical bodies; a is 14 cells here and the staircase area was measured 1.6 % above
+# pi a^2, so 5 %
+estar = 82000.0 / (1 - 0.28)
+a_hertz = (3 * 5000.0 * 10.0 / (4 * estar)) ** (1 / 3)
+kc.close(rg.n * 0.05 ** 2, np.pi * a_hertz ** 2, 0.05, "contact area near Hertz's")
+forces, adhesion = hs.fastsim(0.3, [[1e-7, 0, 0], [1e-1, 0, 0]])
+kc.close(-forces[0, 0] / 1e-7, rg.f[0, 0], 1e-3, "FASTSIM slope on the normal pressure = f11")
+kc.close(-forces[1, 0], 0.3 * rg.fn, 1e-3, "FASTSIM saturates at mu Fn")
+kc.check(adhesion[0] > 0.99 and adhesion[1] < 0.05, f"adhesion {adhesion}")
+try:
+    kcreep.Solver().solve_gap(quadratic, 0.05, 0.05, approach=0.01, normal_force=10.0)
+    kc.check(False, "approach and normal_force together refused")
+except kcreep.KcreepError as e:
+    kc.check("exactly one" in str(e), f"KcreepError: {e}")
+
+# kcreep.table reads the command line's table
+rows = kcreep.table.read(os.path.join(folder, "circle.tab"))
+kc.check(len(rows) == 1 and rows[0]["case"] == "circle" and rows[0]["f11"] == row["f11"], "kcreep.table.read")
+
+# pip install ./python (Debian's setuptools, no network), then import it with KCREEP_LIBRARY
+# (from a copy: pip builds in the source folder, which must stay clean)
+import shutil  # noqa: E402
+target, package_copy = os.path.join(folder, "site"), os.path.join(folder, "python")
+shutil.copytree(os.path.join(source_dir, "python"), package_copy, ignore=shutil.ignore_patterns("__pycache__"))
+proc = subprocess.run([sys.executable, "-m", "pip", "install", "--no-build-isolation", "--no-deps", "--no-index",
+                       "--target", target, package_copy], capture_output=True, text=True)
+kc.check(proc.returncode == 0, "pip install ./python" + ("" if proc.returncode == 0 else ": " + proc.stderr[-500:]))
+library = os.path.join(source_dir, "build", "libkcreep.so")
+if not os.path.exists(library):
+    library = os.path.join(os.path.dirname(os.path.abspath(sys.argv[1])), "libkcreep.so")
+code = "import kcreep, sys; print(kcreep.__file__); print(kcreep.solve_ellipse(1, 1, mx=30, my=30, scheme='backward').f[0, 0])"
+proc = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, cwd=folder,
+                      env=dict(os.environ, PYTHONPATH=target, KCREEP_LIBRARY=library))
+lines = proc.stdout.split()
+kc.check(proc.returncode == 0 and lines[0].startswith(target) and abs(float(lines[1]) - r.f[0, 0]) <= 1e-14 * r.f[0, 0],
+         "the installed package with KCREEP_LIBRARY gives the same f11" + ("" if proc.returncode == 0 else proc.stderr[-500:]))
+proc = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, cwd=folder,
+                      env=dict(os.environ, PYTHONPATH=target, KCREEP_LIBRARY=os.path.join(folder, "nowhere.so")))
+kc.check(proc.returncode != 0 and "KCREEP_LIBRARY" in proc.stderr, "a wrong KCREEP_LIBRARY is named in the error")
+kc.finish()
