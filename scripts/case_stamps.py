@@ -8,7 +8,8 @@ is done only while nothing it reads has changed since its table was made.
 
 NAMELISTS: one namelist path per line on standard input. The fingerprint of
 a case is the SHA-256 over the contents of the kcreep binary, the namelist
-and every file the namelist names for reading: mask_file, contact_file and
+and every file the namelist names for reading: mask_file, contact_file,
+gap_file, contact_inp, pressure_input_file and
 the CONTACT element files <contact_file without .out>.NNNN.mat beside it
 (all of them, whichever case is chosen). Relative names are taken from the
 namelist's folder, as kcreep does. A file that is missing counts as
@@ -21,7 +22,7 @@ import hashlib
 import os
 import sys
 
-INPUT_VARIABLES = ("mask_file", "contact_file")
+INPUT_VARIABLES = ("mask_file", "contact_file", "gap_file", "contact_inp", "pressure_input_file")
 
 
 def string_assignments(text):
