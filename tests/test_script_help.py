@@ -87,7 +87,7 @@ def main():
             proc = subprocess.Popen(command_for(copy, rel) + [flag], cwd=cwd, env=env, text=True,
                                     stdout=subprocess.PIPE, stderr=subprocess.PIPE, start_new_session=True)
             try:
-                out, err = proc.communicate(timeout=30)
+                out, err = proc.communicate(timeout=60)
                 rc = proc.returncode
             except subprocess.TimeoutExpired:
                 os.killpg(proc.pid, signal.SIGKILL)
