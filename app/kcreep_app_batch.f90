@@ -12,7 +12,8 @@
 !> file is removed. A case that fails gets a row all the same: NaN numbers
 !> and the verdict error:bad-input, error:numerical or error:io; its
 !> message goes to standard error and into the table's comments, and the
-!> batch goes on.
+!> batch goes on. The partial table is locked (flock) while the batch runs:
+!> a second batch on the same table is refused at once.
 module kcreep_app_batch
   use, intrinsic :: iso_fortran_env, only: real64, int64, output_unit, error_unit
   use, intrinsic :: ieee_arithmetic, only: ieee_value, ieee_quiet_nan
@@ -25,6 +26,10 @@ module kcreep_app_batch
   use kcreep_table, only: run_record_t, table_lines, table_row, traction_lines, case_name, table_columns, pressure_lines, &
                           contact_mask_lines, line_length
   use kcreep_app_files, only: write_text_file, check_output_path
+  use kcreep_app_fastsim, only: run_fastsim
+  use kcreep_app_lock, only: lock_exclusive, truncate_locked, real_path
+  use kcreep_namelist, only: read_config
+  use, intrinsic :: iso_c_binding, only: c_int
   implicit none
   private
   public :: run_batch, read_case_list, estimate_memory, default_batch_table, text_t, count_error_rows
@@ -46,13 +51,17 @@ contains
     character(len=*), intent(in) :: list_path, out_path
     integer, intent(out) :: n_failed
     type(status_t), intent(inout) :: status
-    type(text_t), allocatable :: cases(:), partial(:)
+    type(text_t), allocatable :: cases(:), partial(:), names(:)
     character(len=:), allocatable :: partial_path, signature
     integer :: n_done, k, unit, ios
+    integer(c_int) :: lock_fd
+    logical :: held
     character(len=512) :: msg
 
     n_failed = 0
-    call read_case_list(list_path, cases, status)
+    call read_case_list(list_path, cases, names, status)
+    if (status%failed()) return
+    call check_traction_files(list_path, cases, status)
     if (status%failed()) return
     call check_output_path(out_path, 'batch table', status)
     if (status%failed()) return
@@ -60,7 +69,17 @@ contains
     signature = '# kcreep batch in progress: '//itoa(size(cases))//' cases, list signature '// &
                 list_signature(cases)
 
-    call resume_partial(partial_path, signature, size(cases), partial, status)
+    ! one batch per table: the lock is held on the partial table until the end
+    call lock_exclusive(partial_path, lock_fd, held)
+    if (held) then
+      call fail(status, exit_io, 'batch table '''//partial_path//''' is locked: another kcreep --batch is '// &
+                'writing '''//out_path//''' now (wait for it to finish, or give another OUT_TABLE)')
+      return
+    else if (lock_fd < 0) then
+      call fail(status, exit_io, 'batch table '''//partial_path//''': cannot create it')
+      return
+    end if
+    call resume_partial(partial_path, lock_fd, signature, size(cases), partial, status)
     if (status%failed()) return
     n_done = count_rows(partial)
     n_failed = count_error_rows(partial)
@@ -74,7 +93,7 @@ contains
       return
     end if
     do k = n_done + 1, size(cases)
-      call run_one(k, size(cases), cases(k)%s, unit, n_failed, status)
+      call run_one(k, size(cases), cases(k)%s, names(k)%s, unit, n_failed, status)
       if (status%failed()) then
         close (unit)
         return
@@ -86,20 +105,23 @@ contains
   end subroutine run_batch
 
   !> Solve case k and append its row (and any comments) to the partial table.
-  subroutine run_one(k, n, input_path, unit, n_failed, status)
+  subroutine run_one(k, n, input_path, name, unit, n_failed, status)
     integer, intent(in) :: k, n, unit
-    character(len=*), intent(in) :: input_path
+    character(len=*), intent(in) :: input_path, name
     integer, intent(inout) :: n_failed
     type(status_t), intent(inout) :: status
     type(config_t) :: cfg
     type(run_record_t) :: record
     type(status_t) :: case_status
     character(len=:), allocatable :: label
+    character(len=400), allocatable :: creep(:)
+    character(len=200), allocatable :: maps(:), fastsim_summary(:), fastsim_warnings(:)
     integer :: i, ios
     character(len=512) :: msg
 
     label = 'case '//itoa(k)//' '''//input_path//''''
-    call solve_input(input_path, folder_of(input_path), .false., cfg, record, case_status)
+    allocate (fastsim_warnings(0))
+    call solve_input(input_path, .false., cfg, record, case_status)
     if (.not. case_status%failed() .and. len(cfg%traction_file) > 0) &
       call write_text_file(cfg%traction_file, traction_lines(record%patch, record%traction, cfg%requested), &
                            'traction_file', case_status)
@@ -108,10 +130,17 @@ contains
                            record%approach), 'pressure_file', case_status)
     if (.not. case_status%failed() .and. len(cfg%contact_mask_file) > 0 .and. record%normal_solved) &
       call write_text_file(cfg%contact_mask_file, contact_mask_lines(record%patch), 'contact_mask_file', case_status)
+    ! &fastsim: the case's creep-force table (and maps) as in a single run
+    if (.not. case_status%failed() .and. cfg%fastsim_on) then
+      call run_fastsim(cfg, record, creep, maps, fastsim_summary, fastsim_warnings, case_status)
+      if (.not. case_status%failed()) call write_text_file(cfg%creep_file, creep, 'creep_file', case_status)
+      if (.not. case_status%failed() .and. cfg%fastsim%maps) &
+        call write_text_file(cfg%creep_map_file, maps, 'creep_map_file', case_status)
+    end if
 
     if (case_status%failed()) then
       n_failed = n_failed + 1
-      record = failed_record(input_path, case_status%code)
+      record = failed_record(name, case_status%code)
       write (error_unit, '(a)') 'kcreep: '//label//': error: '//case_status%message
       write (unit, '(a)', iostat=ios, iomsg=msg) '# '//label//': error: '//case_status%message
     else
@@ -120,7 +149,12 @@ contains
         write (error_unit, '(a)') 'kcreep: '//label//': warning: '//trim(record%warnings(i))
         if (ios == 0) write (unit, '(a)', iostat=ios, iomsg=msg) '# '//label//': warning: '//trim(record%warnings(i))
       end do
+      do i = 1, size(fastsim_warnings)
+        write (error_unit, '(a)') 'kcreep: '//label//': warning: '//trim(fastsim_warnings(i))
+        if (ios == 0) write (unit, '(a)', iostat=ios, iomsg=msg) '# '//label//': warning: '//trim(fastsim_warnings(i))
+      end do
     end if
+    record%case_name = name
     if (ios == 0) write (unit, '(a)', iostat=ios, iomsg=msg) table_row(record)
     if (ios == 0) flush (unit, iostat=ios, iomsg=msg)
     if (ios /= 0) then
@@ -137,13 +171,13 @@ contains
   end subroutine run_one
 
   !> The row of a case that could not be solved: its name, NaN numbers, the error word.
-  function failed_record(input_path, code) result(record)
-    character(len=*), intent(in) :: input_path
+  function failed_record(name, code) result(record)
+    character(len=*), intent(in) :: name
     integer, intent(in) :: code
     type(run_record_t) :: record
     real(real64) :: nan
     nan = ieee_value(1.0_real64, ieee_quiet_nan)
-    record%case_name = case_name(input_path)
+    record%case_name = name
     record%scheme = '-'
     record%alpha = nan
     record%nu = nan
@@ -153,6 +187,7 @@ contains
     record%cn = nan
     record%klt = nan
     record%fastsim = nan
+    record%centroid = nan
     record%t_assemble = nan
     record%t_factor = nan
     record%t_solve = nan
@@ -174,8 +209,9 @@ contains
   !> Open (or start) the partial table. An existing one must come from the
   !> same list (same first line); a torn last line, left by a kill in the
   !> middle of a write, is dropped so the case is simply run again.
-  subroutine resume_partial(partial_path, signature, n_cases, lines, status)
+  subroutine resume_partial(partial_path, lock_fd, signature, n_cases, lines, status)
     character(len=*), intent(in) :: partial_path, signature
+    integer(c_int), intent(in) :: lock_fd
     integer, intent(in) :: n_cases
     type(text_t), allocatable, intent(out) :: lines(:)
     type(status_t), intent(inout) :: status
@@ -207,8 +243,30 @@ contains
       allocate (lines(1))
       lines(1)%s = signature
     end if
-    call write_text_file(partial_path, joined(lines), 'batch table', status)
+    call rewrite_locked(partial_path, lock_fd, lines, status)
   end subroutine resume_partial
+
+  !> Replace the contents of the locked partial table in place (a new file
+  !> renamed over it would not carry the lock).
+  subroutine rewrite_locked(path, lock_fd, lines, status)
+    character(len=*), intent(in) :: path
+    integer(c_int), intent(in) :: lock_fd
+    type(text_t), intent(in) :: lines(:)
+    type(status_t), intent(inout) :: status
+    integer :: unit, ios, k
+    character(len=512) :: msg
+    if (.not. truncate_locked(lock_fd)) then
+      call fail(status, exit_io, 'batch table '''//path//''': cannot empty it to start over')
+      return
+    end if
+    open (newunit=unit, file=path, status='old', action='write', position='rewind', iostat=ios, iomsg=msg)
+    do k = 1, size(lines)
+      if (ios == 0) write (unit, '(a)', iostat=ios, iomsg=msg) lines(k)%s
+    end do
+    if (ios == 0) flush (unit, iostat=ios, iomsg=msg)
+    if (ios == 0) close (unit, iostat=ios, iomsg=msg)
+    if (ios /= 0) call fail(status, exit_io, 'batch table '''//path//''': cannot write ('//trim(msg)//')')
+  end subroutine rewrite_locked
 
   !> Write the finished table from the partial one, then remove the partial one.
   subroutine finish_table(partial_path, out_path, list_path, n_cases, n_failed, status)
@@ -248,16 +306,21 @@ contains
     if (ios == 0) close (unit, status='delete')
   end subroutine finish_table
 
-  !> The cases of a list file: one path per line, relative to the list's folder.
-  subroutine read_case_list(list_path, cases, status)
+  !> The cases of a list file: one path per line, relative to the list's
+  !> folder; names: each case's name in the table, its path relative to the
+  !> list's folder without the extension (listed_case_name).
+  subroutine read_case_list(list_path, cases, names, status)
     character(len=*), intent(in) :: list_path
-    type(text_t), allocatable, intent(out) :: cases(:)
+    type(text_t), allocatable, intent(out) :: cases(:), names(:)
     type(status_t), intent(inout) :: status
     type(text_t), allocatable :: lines(:)
-    character(len=:), allocatable :: tail, entry
+    character(len=:), allocatable :: tail, entry, list_folder, name
     integer :: k
 
-    allocate (cases(0))
+    allocate (cases(0), names(0))
+    list_folder = folder_of(list_path)
+    if (len(list_folder) == 0) list_folder = '.'
+    list_folder = real_path(list_folder)
     call read_text_file(list_path, 'batch list', lines, tail, status)
     if (status%failed()) return
     if (len(tail) > 0) lines = [lines, text_t(tail)]
@@ -266,27 +329,113 @@ contains
       if (len(entry) == 0) cycle
       if (entry(1:1) == '#') cycle
       cases = [cases, text_t(resolve_path(entry, folder_of(list_path)))]
+      name = listed_case_name(entry, list_folder)   ! (a temporary: gfortran 12 fails on the function result in the constructor)
+      names = [names, text_t(name)]
     end do
     if (size(cases) == 0) call fail(status, exit_bad_input, 'batch list '''//list_path// &
         ''': no cases (expected one namelist path per line)')
   end subroutine read_case_list
 
-  !> Bytes each namelist of paths needs (case_driver%case_memory_bytes);
-  !> relative names inside a namelist are taken from its own folder, as in a batch.
-  subroutine estimate_memory(paths, bytes, status)
+  !> kcreep --estimate-memory: for each namelist one line 'FILE BYTES PATH' on
+  !> standard output (the file as given, the bytes the case needs at its peak,
+  !> the solve path it takes there: dense or iterative; the last two fields
+  !> are single words, so a file name with blanks is read from the right), or
+  !> one error line on standard error; every file is tried. n_failed: the
+  !> files that could not be estimated.
+  subroutine estimate_memory(paths, n_failed)
     type(text_t), intent(in) :: paths(:)
-    integer(int64), intent(out) :: bytes(size(paths))
-    type(status_t), intent(inout) :: status
+    integer, intent(out) :: n_failed
     type(config_t) :: cfg
     type(patch_t) :: patch
+    type(status_t) :: status
+    integer(int64) :: bytes
+    character(len=:), allocatable :: method
     integer :: k
-    bytes = 0
+    n_failed = 0
     do k = 1, size(paths)
-      call load_input(paths(k)%s, folder_of(paths(k)%s), cfg, patch, status)
-      if (status%failed()) return
-      bytes(k) = case_memory_bytes(cfg, patch)
+      status = status_t()
+      call load_input(paths(k)%s, cfg, patch, status)
+      if (.not. status%failed()) call case_memory_bytes(cfg, patch, bytes, method, status)
+      if (status%failed()) then
+        n_failed = n_failed + 1
+        write (error_unit, '(a)') 'kcreep: error: '//status%message
+      else
+        write (output_unit, '(a, 1x, i0, 1x, a)') paths(k)%s, bytes, method
+      end if
     end do
+    flush (output_unit)
   end subroutine estimate_memory
+
+  !> A case's name in a batch table: its path as the list gives it, relative
+  !> to the list's folder (an absolute path inside that folder made relative;
+  !> leading './' dropped), without the extension, blanks replaced. So
+  !> a/case.nml and b/case.nml stay apart as a/case and b/case.
+  !> list_folder: the list's folder as an absolute canonical path, or ''.
+  function listed_case_name(entry, list_folder) result(name)
+    character(len=*), intent(in) :: entry, list_folder
+    character(len=:), allocatable :: name
+    integer :: slash, dot, i
+    name = entry
+    if (len(list_folder) > 0 .and. len(name) > len(list_folder) + 1) then
+      if (name(1:len(list_folder) + 1) == list_folder//'/') name = name(len(list_folder) + 2:)
+    end if
+    do while (len(name) > 2)
+      if (name(1:2) /= './') exit
+      name = name(3:)
+    end do
+    slash = index(name, '/', back=.true.)
+    dot = index(name, '.', back=.true.)
+    if (dot > slash + 1) name = name(1:dot - 1)
+    do i = 1, len(name)
+      if (name(i:i) == ' ' .or. iachar(name(i:i)) < 33) name(i:i) = '_'
+    end do
+    if (len(name) == 0) name = '-'
+  end function listed_case_name
+
+  !> Two cases that write the same traction file would overwrite each other:
+  !> refuse the list before any work. Cases that cannot be read are left to
+  !> their own error rows.
+  subroutine check_traction_files(list_path, cases, status)
+    character(len=*), intent(in) :: list_path
+    type(text_t), intent(in) :: cases(:)
+    type(status_t), intent(inout) :: status
+    type(text_t), allocatable :: traction(:)
+    type(config_t) :: cfg
+    type(status_t) :: case_status
+    integer :: k, j
+    allocate (traction(size(cases)))
+    do k = 1, size(cases)
+      traction(k)%s = ''
+      case_status = status_t()
+      call read_config(cases(k)%s, cfg, case_status)
+      if (case_status%failed() .or. len(cfg%traction_file) == 0) cycle
+      traction(k)%s = canonical_output(cfg%traction_file)
+      do j = 1, k - 1
+        if (traction(j)%s == traction(k)%s) then
+          call fail(status, exit_bad_input, 'batch list '''//list_path//''': cases '//itoa(j)//' '''// &
+                    cases(j)%s//''' and '//itoa(k)//' '''//cases(k)%s//''' both write traction_file '''// &
+                    traction(k)%s//''' (the second would overwrite the first; give each case its own)')
+          return
+        end if
+      end do
+    end do
+  end subroutine check_traction_files
+
+  !> An output path made comparable: its folder resolved (the file itself may not exist yet).
+  function canonical_output(path) result(canonical)
+    character(len=*), intent(in) :: path
+    character(len=:), allocatable :: canonical, folder
+    integer :: slash
+    slash = index(path, '/', back=.true.)
+    folder = folder_of(path)
+    if (len(folder) == 0) folder = '.'
+    folder = real_path(folder)
+    if (len(folder) == 0) then
+      canonical = path
+    else
+      canonical = folder//'/'//path(slash + 1:)
+    end if
+  end function canonical_output
 
   !> '<list name without folder and extension>.tab' in the working folder.
   pure function default_batch_table(list_path) result(name)

@@ -7,7 +7,7 @@ module kcreep_app_case
   use, intrinsic :: iso_fortran_env, only: real64
   use kcreep, only: problem_t, patch_t, kcreep_solve, mask_patch
   use kcreep_namelist, only: config_t, read_config, build_patch, problem_of
-  use kcreep_linear_solve, only: solve_memory_bytes
+  use kcreep_extrapolation, only: memory_need
   use kcreep_table, only: run_record_t, case_name
   use kcreep_app_files, only: check_output_path
   use kcreep_app_memory, only: memory_limit_bytes
@@ -17,18 +17,15 @@ module kcreep_app_case
 
 contains
 
-  !> Read and check the namelist at input_path and build its patch. When
-  !> base_folder is not empty, relative file names inside the namelist
-  !> (mask_file, contact_file, table_file, traction_file) are taken relative to it, as if
-  !> kcreep ran in that folder (the batch's convention); when it is empty
-  !> they stay relative to the working folder (the single-case convention).
-  subroutine load_input(input_path, base_folder, cfg, patch, status)
-    character(len=*), intent(in) :: input_path, base_folder
+  !> Read and check the namelist at input_path and build its patch (relative
+  !> file names inside the namelist are taken from the namelist's folder).
+  subroutine load_input(input_path, cfg, patch, status)
+    character(len=*), intent(in) :: input_path
     type(config_t), intent(out) :: cfg
     type(patch_t), intent(out) :: patch
     type(status_t), intent(inout) :: status
 
-    call read_config(input_path, cfg, status, base_folder)
+    call read_config(input_path, cfg, status)
     if (status%failed()) return
     call build_patch(cfg, patch, status)
   end subroutine load_input
@@ -37,8 +34,8 @@ contains
   !> library. With check_table false the namelist's table_file is not checked
   !> (the batch writes its own table); the traction file, when asked for,
   !> always is. The record holds the finest grid solved and its tractions.
-  subroutine solve_input(input_path, base_folder, check_table, cfg, record, status)
-    character(len=*), intent(in) :: input_path, base_folder
+  subroutine solve_input(input_path, check_table, cfg, record, status)
+    character(len=*), intent(in) :: input_path
     logical, intent(in) :: check_table
     type(config_t), intent(out) :: cfg
     type(run_record_t), intent(out) :: record
@@ -46,7 +43,7 @@ contains
     type(patch_t) :: patch
     type(problem_t) :: problem
 
-    call load_input(input_path, base_folder, cfg, patch, status)
+    call load_input(input_path, cfg, patch, status)
     if (check_table .and. .not. status%failed()) call check_output_path(cfg%table_file, 'table_file', status)
     if (.not. status%failed() .and. len(cfg%traction_file) > 0) &
       call check_output_path(cfg%traction_file, 'traction_file', status)
@@ -65,18 +62,21 @@ contains
     record%case_name = case_name(cfg%input_path)
   end subroutine solve_input
 
-  !> Bytes a case needs at its peak: what its solve path needs
-  !> (kcreep_linear_solve%solve_memory_bytes: the dense subsystem matrix or the
-  !> iterative solver's storage) and the operator table with its influence
-  !> coefficients (about 40 reals per grid cell). The program itself (code,
+  !> Bytes a case needs at its peak and the solve path it takes there
+  !> (kcreep_extrapolation%memory_need: the dense subsystem matrix or the
+  !> iterative solver's storage, and the operator table, of the grid or the
+  !> extrapolation level that needs most). The program itself (code,
   !> OpenBLAS buffers) is not included: a few tens of MiB, see docs/cluster.md.
-  function case_memory_bytes(cfg, patch) result(bytes)
+  subroutine case_memory_bytes(cfg, patch, bytes, method, status)
     type(config_t), intent(in) :: cfg
     type(patch_t), intent(in) :: patch
-    integer(int64) :: bytes
+    integer(int64), intent(out) :: bytes
+    character(len=:), allocatable, intent(out) :: method
+    type(status_t), intent(inout) :: status
     type(problem_t) :: problem
+    integer :: level
+    integer(int64) :: need
     type(patch_t) :: bound
-    type(status_t) :: status
     problem = problem_of(cfg, patch)
     problem%solve%memory_limit = memory_limit_bytes()
     if (cfg%shape == 'gap') then
@@ -92,11 +92,13 @@ contains
         bytes = 120 * int(gap%mx, int64) * gap%my
       end associate
       if (status%failed()) return
-      bytes = bytes + solve_memory_bytes(problem%solve, cfg%nu, bound, cfg%requested) + &
-              320 * int(bound%mx, int64) * bound%my
+      problem%patch = bound
+      problem%extrapolate = .false.
+      call memory_need(problem, need, method, level, status)
+      bytes = bytes + need
       return
     end if
-    bytes = solve_memory_bytes(problem%solve, cfg%nu, patch, cfg%requested) + 320 * int(patch%mx, int64) * patch%my
-  end function case_memory_bytes
+    call memory_need(problem, bytes, method, level, status)
+  end subroutine case_memory_bytes
 
 end module kcreep_app_case

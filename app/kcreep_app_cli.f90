@@ -70,7 +70,7 @@ contains
       write (output_unit, '(a)') 'kcreep '//kcreep_version//': creep coefficients of any contact patch', &
         'usage: kcreep INPUT.nml', &
         '       kcreep --batch LIST [OUT_TABLE]   (one namelist path per line; table <LIST name>.tab)', &
-        '       kcreep --estimate-memory INPUT.nml...   (bytes each case needs)', &
+        '       kcreep --estimate-memory INPUT.nml...   (per file: FILE BYTES dense|iterative)', &
         'The namelist groups &patch, &material, &solver and &output are described in docs/input.md.'
     case ('version')
       write (output_unit, '(a)') 'kcreep '//kcreep_version
@@ -96,7 +96,7 @@ contains
     logical :: with_maps
     integer :: i, k, np
 
-    call solve_input(input_path, '', .true., cfg, record, status)
+    call solve_input(input_path, .true., cfg, record, status)
     if (status%failed()) return
     with_maps = .false.
     if (cfg%fastsim_on) then
@@ -175,18 +175,15 @@ contains
     write (output_unit, '(a)') 'kcreep: batch table '//out_path
   end subroutine batch_mode
 
-  !> kcreep --estimate-memory INPUT.nml...: one number of bytes per input.
+  !> kcreep --estimate-memory INPUT.nml...: one line 'FILE BYTES PATH' per
+  !> input, an error line for each one that cannot be estimated (the others
+  !> still are); exit status 2 when any could not.
   subroutine estimate_mode(args, status)
     type(text_t), intent(in) :: args(:)
     type(status_t), intent(inout) :: status
-    integer(int64), allocatable :: bytes(:)
-    integer :: k
-    allocate (bytes(size(args)))
-    call estimate_memory(args, bytes, status)
-    if (status%failed()) return
-    do k = 1, size(args)
-      write (output_unit, '(i0)') bytes(k)
-    end do
+    integer :: n_failed
+    call estimate_memory(args, n_failed)
+    if (n_failed > 0) call fail(status, exit_bad_input, '')   ! the errors are printed already
   end subroutine estimate_mode
 
   !> The one place where errors are reported: one line, then exit with the code.
@@ -199,7 +196,7 @@ contains
         integer(c_int), value :: code
       end subroutine c_exit
     end interface
-    write (error_unit, '(a)') 'kcreep: error: '//status%message
+    if (len(status%message) > 0) write (error_unit, '(a)') 'kcreep: error: '//status%message
     flush (output_unit)
     flush (error_unit)
     call c_exit(int(status%code, c_int))   ! STOP n would add a second line

@@ -27,6 +27,8 @@ contains
     write (output_unit, '(a)') 'kcreep '//kcreep_version//': '//input_path
     write (output_unit, '(2x, a, i0, a, i0, a, i0, a, es10.3)') 'patch: '//patch%kind//', grid ', &
       patch%mx, ' x ', patch%my, ', ', patch%n, ' cells, c = ', record%c
+    write (output_unit, '(2x, a, 2es14.6, a, 2es14.6, a)') 'centroid (xc, yc):', record%centroid, &
+      ';  spin centre:', record%spin_centre, ' ('//cfg%spin_centre//')'
     if (cfg%scheme%name == 'collocation') then
       write (output_unit, '(2x, a, f6.3, a, g0.4, a, es10.3)') 'scheme: collocation, alpha = ', &
         cfg%scheme%alpha, ', nu = ', cfg%nu, ', G = ', cfg%g

@@ -7,6 +7,11 @@ compare the default estimator (levels 16-48) against a reference from levels
 
     /usr/bin/python3 scripts/aspect_correction_study.py
 """
+import sys as _sys
+
+if __name__ == "__main__" and any(a in ("-h", "--help") for a in _sys.argv[1:]):
+    print("usage: scripts/aspect_correction_study.py\n" + __doc__)
+    _sys.exit(0)
 import math
 import os
 import statistics

@@ -1,7 +1,12 @@
 """Driver of scripts/bench.sh (standard-library Python): runs kcreep on a
 ladder of unit-circle grids per solution path under /usr/bin/time -v, takes
 medians of repeats, measures dgemm/dgetrf with kcreep_blas_bench, compares the
-paths and writes docs/performance.md with a gnuplot figure."""
+paths and writes docs/performance.md with a gnuplot figure.
+
+    scripts/bench.py BUILD_DIR REPOSITORY_ROOT   (scripts/bench.sh builds first, then calls this)
+    scripts/bench.py --help                      this text
+Environment: REPEATS (runs per point, default 3), QUICK=1 (small sizes only).
+"""
 import math
 import os
 import platform
@@ -15,6 +20,11 @@ import time
 sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "python"))
 from kcreep import table, docsection  # noqa: E402  (standard library only)
 
+if any(a in ("-h", "--help") for a in sys.argv[1:]):
+    print(__doc__.strip())
+    sys.exit(0)
+if len(sys.argv) != 3:
+    sys.exit("usage: bench.py BUILD_DIR REPOSITORY_ROOT (see --help)")
 build, root = sys.argv[1], sys.argv[2]
 KCREEP = os.path.join(build, "kcreep")
 BLAS = os.path.join(build, "kcreep_blas_bench")
@@ -44,7 +54,8 @@ def run_kcreep(path, m, scheme="collocation"):
     with open(nml, "w") as f:
         f.write(f"&patch shape='ellipse', semi_a=1, semi_b=1, mx={m}, my={m} /\n"
                 f"&material g=1, nu=0.25 /\n"
-                f"&solver scheme='{scheme}', alpha=0.5, method='{method}', split_systems={split}, target_error=0 /\n"
+                f"&solver scheme='{scheme}'{', alpha=0.5' if scheme == 'collocation' else ''}, method='{method}', "
+                f"split_systems={split}, target_error=0 /\n"
                 f"&output table_file='{name}.tab' /\n")
     samples = []
     for _ in range(REPEATS):

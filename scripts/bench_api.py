@@ -1,10 +1,17 @@
-"""Body of scripts/bench_api.sh (needs numpy: /usr/bin/python3)."""
+"""Body of scripts/bench_api.sh (needs numpy: /usr/bin/python3).
+
+    scripts/bench_api.py BUILD_DIR REPOSITORY_ROOT [ARGS]   (scripts/bench_api.sh calls it)
+    scripts/bench_api.py --help                            this text
+"""
 import os
 import statistics
 import subprocess
 import sys
 import tempfile
 import time
+if any(a in ("-h", "--help") for a in sys.argv[1:]):
+    print(__doc__.strip())
+    sys.exit(0)
 
 build, root = sys.argv[1], sys.argv[2]
 args = sys.argv[3:]

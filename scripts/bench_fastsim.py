@@ -5,12 +5,17 @@ pressure, best and median of 21 repetitions) on 100 x 100 and 200 x 200 grids, a
 end on a 100 x 100 circle with a 100-point &fastsim sweep (the exact coefficients solved once),
 then replaces the section '## FASTSIM creep curves' of docs/performance.md (appends it when
 missing). scripts/bench.sh calls it at its end; alone:
-  flock /tmp/kcreep-bench.lock python3 scripts/bench_fastsim.py build ."""
+  flock /tmp/kcreep-bench.lock python3 scripts/bench_fastsim.py build .
+  scripts/bench_fastsim.py --help    this text
+"""
 import os
 import re
 import subprocess
 import sys
 import tempfile
+if any(a in ("-h", "--help") for a in sys.argv[1:]):
+    print(__doc__.strip())
+    sys.exit(0)
 
 build, root = os.path.abspath(sys.argv[1]), os.path.abspath(sys.argv[2])
 bench = os.path.join(build, 'kcreep_fastsim_bench')

@@ -7,6 +7,9 @@
 #   QUICK=1 scripts/bench_normal.sh      sizes up to 200 (checks the script, not the targets)
 #   KCREEP_BUILD_DIR=dir                 build somewhere else (default build/)
 # Every timing runs under flock /tmp/kcreep-bench.lock (one benchmark at a time).
+#   scripts/bench_normal.sh --help       this text (nothing is built or run)
+usage() { awk 'NR > 1 && /^#/ { sub(/^# ?/, ""); print; next } NR > 1 { exit }' "${BASH_SOURCE[0]}"; }
+for arg in "$@"; do case $arg in -h | --help) usage; exit 0 ;; --) break ;; esac; done
 set -euo pipefail
 here=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
 build_dir=${KCREEP_BUILD_DIR:-$here/build}

@@ -3,6 +3,10 @@
 # both schemes: C11, C22, C23 against Kalker's table and the wall time
 # (median of --repeats runs, default 3) with the chosen solver method.
 #   scripts/circle_check.sh [--repeats N] [--grids "40 60 80"] [--method auto|dense|iterative]
+#   scripts/circle_check.sh --help    this text
+# KCREEP: the binary (default build/kcreep of this repository).
+usage() { awk 'NR > 1 && /^#/ { sub(/^# ?/, ""); print; next } NR > 1 { exit }' "${BASH_SOURCE[0]}"; }
+for arg in "$@"; do case $arg in -h | --help) usage; exit 0 ;; --) break ;; esac; done
 set -euo pipefail
 here=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
 kcreep=${KCREEP:-$here/build/kcreep}
@@ -11,6 +15,8 @@ grids="40 60 80"
 method=auto
 while (($#)); do
   case $1 in
+    --repeats | --grids | --method)
+      (($# >= 2)) || { echo "circle_check.sh: error: $1 needs a value (see --help)" >&2; exit 2; } ;;&
     --repeats) repeats=$2; shift 2 ;;
     --grids) grids=$2; shift 2 ;;
     --method) method=$2; shift 2 ;;
@@ -24,10 +30,12 @@ echo "# unit circle, nu = 0.25, method = $method; dCij: against Kalker's table; 
 printf '%-12s %5s %6s %9s %9s %9s %8s %8s %8s %9s\n' scheme grid n C11 C22 C23 'dC11%' 'dC22%' 'dC23%' 't_total_s'
 for scheme in collocation backward; do
   for m in $grids; do
+    point=""   # the collocation point belongs to the collocation scheme only
+    [[ $scheme == collocation ]] && point=", alpha=0.5"
     cat > "$work/c.nml" <<EON
 &patch shape='ellipse', semi_a=1, semi_b=1, mx=$m, my=$m /
 &material g=1, nu=0.25 /
-&solver scheme='$scheme', alpha=0.5, method='$method', target_error=0 /
+&solver scheme='$scheme'$point, method='$method', target_error=0 /
 EON
     times=()
     for ((r = 0; r < repeats; r++)); do

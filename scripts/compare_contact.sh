@@ -17,11 +17,14 @@
 # Exit status: 0 all judged cases agree, 1 some differ, 2 a file/case could
 # not be read or run (its error is printed).
 #   KCREEP=path/to/kcreep   the binary (default: build/kcreep of this checkout)
+#   scripts/compare_contact.sh --help   this text
+usage() { awk 'NR > 1 && /^#/ { sub(/^# ?/, ""); print; next } NR > 1 { exit }' "${BASH_SOURCE[0]}"; }
+for arg in "$@"; do case $arg in -h | --help) usage; exit 0 ;; --) break ;; esac; done
 set -uo pipefail
 here=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
 kcreep=${KCREEP:-$here/build/kcreep}
 if (($# == 0)); then
-  echo "usage: $0 FILE.out [FILE.out ...]" >&2
+  echo "usage: $0 FILE.out [FILE.out ...] (see --help)" >&2
   exit 2
 fi
 if [[ ! -x $kcreep ]]; then

@@ -7,6 +7,11 @@ Prints, per a/b and nu, Kalker's C11, C22, C23, the refined values with their
 uncertainty and the relative difference Kalker - refined (%), then the median
 and worst differences; --markdown prints the summary table for docs/accuracy.md.
 """
+import sys as _sys
+
+if __name__ == "__main__" and any(a in ("-h", "--help") for a in _sys.argv[1:]):
+    print("usage: scripts/compare_kalker_refined.py\n" + __doc__)
+    _sys.exit(0)
 import os
 import statistics
 import sys

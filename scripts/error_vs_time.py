@@ -1,7 +1,8 @@
 #!/usr/bin/env python3
 """Errors and run times of the error_vs_time study.
 
-    error_vs_time.py RUNS_TABLE
+    scripts/error_vs_time.py RUNS_TABLE    (scripts/error_vs_time.sh calls it)
+    scripts/error_vs_time.py --help        this text
 
 Case names are <scheme>_rep<k>_m<M>. Per scheme and mesh: the median wall
 time over the repeats (t_total) and the coefficients (identical in every
@@ -25,6 +26,11 @@ COEFS = ("c11", "c22", "c23")
 
 
 def main():
+    if any(a in ("-h", "--help") for a in sys.argv[1:]):
+        print(__doc__.strip())
+        return 0
+    if len(sys.argv) != 2:
+        sys.exit("usage: error_vs_time.py RUNS_TABLE (see --help)")
     rows = read_table(sys.argv[1])
     runs = {}
     for row in rows:
@@ -122,4 +128,4 @@ def kcreep_extrapolation(f, ratio=2.0):
 
 
 if __name__ == "__main__":
-    main()
+    sys.exit(main())

@@ -15,6 +15,7 @@
 #     --jobs N              cases in parallel [1: timings of runs that share
 #                           the cores with each other are not worth much]
 #     --slurm "OPTS"        run through the SLURM back-end with these options
+#     --help                this text
 #     --docs                also copy plots and tables into docs/
 # Reference: each scheme is Richardson-extrapolated through its three finest
 # meshes in ratio 2 (default 20, 40, 80; add 100 or 160 to go further); the reference is the mean of the
@@ -36,7 +37,7 @@ while (($#)); do
     --jobs) jobs=(--jobs "$2"); shift 2 ;;
     --slurm) read -r -a slurm <<<"--slurm $2"; jobs=(); shift 2 ;;
     --docs) docs=1; shift ;;
-    -h | --help) sed -n '2,22p' "$0" | sed 's/^# \{0,1\}//'; exit 0 ;;
+    -h | --help) study_usage; exit 0 ;;
     *) study_die "unknown option '$1' (see --help)" ;;
   esac
 done

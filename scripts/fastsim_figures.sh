@@ -5,6 +5,9 @@
 # one line per flexibility source, CONTACT's points) and fastsim_combined.png (the
 # error of each combined case under the weighted and the separate flexibility rule).
 #   scripts/fastsim_figures.sh [SHARED_FOLDER]      (default ../shared beside the repository)
+#   scripts/fastsim_figures.sh --help                this text
+usage() { awk 'NR > 1 && /^#/ { sub(/^# ?/, ""); print; next } NR > 1 { exit }' "${BASH_SOURCE[0]}"; }
+for arg in "$@"; do case $arg in -h | --help) usage; exit 0 ;; --) break ;; esac; done
 set -euo pipefail
 here=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
 shared=$(cd "${1:-$here/../shared}" && pwd)

@@ -8,6 +8,11 @@ error-control tests. An ellipse with semi-axes a = sqrt(r), b = 1/sqrt(r)
 area of the cells inside the ellipse (c^2 = staircase area / pi): that is what
 makes the backward scheme converge cleanly at first order (docs/convergence.md).
 """
+import sys as _sys
+
+if __name__ == "__main__" and any(a in ("-h", "--help") for a in _sys.argv[1:]):
+    print("usage: scripts/kcreep_levels.py\n" + __doc__)
+    _sys.exit(0)
 import math
 import os
 import subprocess

@@ -4,6 +4,8 @@
     scripts/make_report.py           write docs/convergence.md
     scripts/make_report.py --check   exit 1 if docs/convergence.md is not what
                                      the template and the data give
+    scripts/make_report.py --list    print the computed numbers
+    scripts/make_report.py --help    this text
 
 Every number in the report comes from docs/data/*.dat, which the study
 scripts write with --docs (sweep_alpha.sh, sweep_n.sh, error_vs_time.sh).
@@ -400,6 +402,14 @@ def render():
 
 
 def main():
+    args = sys.argv[1:]
+    if any(a in ("-h", "--help") for a in args):
+        print(__doc__.strip())
+        return 0
+    if len(args) > 1 or (args and args[0] not in ("--check", "--list")):
+        print(f"make_report.py: error: unknown arguments {' '.join(args)!r} (allowed: --check, --list, --help)",
+              file=sys.stderr)
+        return 2
     text, values = render()
     path = os.path.join(REPO, "docs", "convergence.md")
     if "--list" in sys.argv:

@@ -6,9 +6,14 @@ Lengths in mm, x along the rolling direction; cells of 0.2 mm.
   twin            two separate patches (tread and flange)
   rectangle       8 mm (x) by 4 mm (y)
   superellipse    |x/4|^4 + |y/5|^4 <= 1
-usage: scripts/make_shapes.py [FOLDER]   (default input/)"""
+usage: scripts/make_shapes.py [FOLDER]   (default input/)
+       scripts/make_shapes.py --help     this text
+"""
 import os
 import sys
+if any(a in ("-h", "--help") for a in sys.argv[1:]):
+    print(__doc__.strip())
+    sys.exit(0)
 
 H = 0.2
 

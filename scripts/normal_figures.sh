@@ -3,6 +3,9 @@
 #   docs/figures/normal_hertz_convergence.png   errors against Hertz vs cells across (Rx/Ry = 1 and 10)
 #   docs/figures/normal_wheel_rail.png          pressure of the worn-wheel-on-rail example
 #   scripts/normal_figures.sh          (from the repository root; about 10 s)
+#   scripts/normal_figures.sh --help   this text
+usage() { awk 'NR > 1 && /^#/ { sub(/^# ?/, ""); print; next } NR > 1 { exit }' "${BASH_SOURCE[0]}"; }
+for arg in "$@"; do case $arg in -h | --help) usage; exit 0 ;; --) break ;; esac; done
 set -euo pipefail
 here=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
 build_dir=${KCREEP_BUILD_DIR:-$here/build}

@@ -10,6 +10,9 @@
 # usage: scripts/plot_creep.sh CASE.creep [--table CASE.tab] [--map CASE.creepmap [--row K]]
 #                              [--contact CSV --patch NAME] [--out FOLDER]
 # The table defaults to the .creep's name with .tab; output goes to the working folder.
+# scripts/plot_creep.sh --help: this text
+usage() { awk 'NR > 1 && /^#/ { sub(/^# ?/, ""); print; next } NR > 1 { exit }' "${BASH_SOURCE[0]}"; }
+for arg in "$@"; do case $arg in -h | --help) usage; exit 0 ;; --) break ;; esac; done
 set -euo pipefail
 here=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
 creep=${1:?usage: scripts/plot_creep.sh CASE.creep [--table T] [--map M [--row K]] [--contact CSV --patch P]}

@@ -4,6 +4,8 @@
 # Heavy: about an hour on 2 cores for all 57 points; runs under nice.
 #   scripts/refine_kalker_table.sh [extra options of refine_kalker_table.py]
 set -euo pipefail
+usage() { echo "usage: scripts/refine_kalker_table.sh [options]"; sed -n '2,5p' "${BASH_SOURCE[0]}" | sed 's/^# \{0,1\}//'; }
+for a in "$@"; do [[ $a == -h || $a == --help ]] && { usage; exit 0; }; done
 here=$(cd "$(dirname "$0")" && pwd)
 export KCREEP=${KCREEP:-$here/../build/kcreep}
 for chunk in $(seq 1 40); do

@@ -98,8 +98,9 @@ def main():
 
     print("# Richardson extrapolation f(h) = f0 + K h^p through three meshes, h = 1/sqrt(mx my)")
     print("# p: observed order (nan: differences change sign, not asymptotic); f0: limit;")
-    print("# err3: |f0 - f(finest)| / f0 (estimated error of the finest mesh); klt: Kalker; f0_vs_klt: f0/klt - 1")
-    print("# series M1 M2 M3 coef f1 f2 f3 p f0 err3 klt f0_vs_klt")
+    print("# err3: |f0 - f(finest)| / f0 (estimated error of the finest mesh); klt: Kalker;")
+    print("# f0_vs_klt_pct: 100 (f0/klt - 1), the limit against Kalker in percent")
+    print("# series M1 M2 M3 coef f1 f2 f3 p f0 err3 klt f0_vs_klt_pct")
     for key in sorted(series):
         pts = sorted(series[key], key=lambda t: -t[0])
         for i in range(len(pts)):

@@ -3,13 +3,18 @@
 #
 #   scripts/run_cases.sh [--jobs N] LIST OUT_TABLE
 #   scripts/run_cases.sh --slurm [options for the SLURM back-end] LIST OUT_TABLE
+#   scripts/run_cases.sh --help
 #
 # LIST: one namelist path per line (blank lines and '#' lines skipped;
 # relative paths are relative to LIST's folder). Each case runs in its own
 # folder, so its default table <name>.tab lands next to the namelist.
 # Cases run in parallel, N at a time (default: the number of cores; each
-# kcreep gets one BLAS thread then). A case whose .tab exists and is newer
-# than its .nml is skipped, so running again resumes an interrupted study.
+# kcreep gets one BLAS thread then). A case is skipped when its .tab exists
+# and nothing it reads has changed since that table was made: the namelist,
+# its mask_file, contact_file (with the .mat files beside it) and the kcreep
+# binary, compared by content (SHA-256, kept in <name>.tab.stamp; see
+# scripts/case_stamps.py). So running again resumes an interrupted study and
+# reruns exactly the cases whose inputs changed.
 # A failed case is reported and the others go on; the summary counts them.
 # Finally all rows are merged into OUT_TABLE (header of the first table,
 # rows in LIST order). Exit status: 0 all done, 1 some cases failed,
@@ -21,7 +26,7 @@ set -uo pipefail
 here=$(cd "$(dirname "${BASH_SOURCE[0]}")" && pwd)
 repo=$(cd "$here/.." && pwd)
 
-usage() { sed -n '2,20p' "${BASH_SOURCE[0]}" | sed 's/^# \{0,1\}//'; exit "${1:-2}"; }
+usage() { awk 'NR > 1 && /^#/ { sub(/^# ?/, ""); print; next } NR > 1 { exit }' "${BASH_SOURCE[0]}"; }
 die() { echo "run_cases: error: $*" >&2; exit 2; }
 
 jobs=$(nproc 2>/dev/null || echo 1)
@@ -37,13 +42,13 @@ fi
 while (($#)); do
   case $1 in
     -j | --jobs) [[ ${2:-} =~ ^[1-9][0-9]*$ ]] || die "--jobs needs a positive integer (got '${2:-}')"; jobs=$2; shift 2 ;;
-    -h | --help) usage 0 ;;
+    -h | --help) usage; exit 0 ;;
     --slurm) die "--slurm must come first: run_cases.sh --slurm [options] LIST OUT_TABLE" ;;
     -*) die "unknown option '$1' (see --help)" ;;
     *) break ;;
   esac
 done
-(($# == 2)) || usage 2
+(($# == 2)) || { usage >&2; exit 2; }
 list=$1
 out=$2
 [[ -r $list ]] || die "case list '$list' cannot be read"
@@ -63,6 +68,9 @@ while IFS= read -r line || [[ -n $line ]]; do
 done <"$list"
 n=${#cases[@]}
 ((n > 0)) || die "case list '$list' names no cases"
+# what each case reads, fingerprinted (one line per case, in list order)
+mapfile -t stamps < <(printf '%s\n' "${cases[@]}" | python3 "$here/case_stamps.py" "$kcreep")
+((${#stamps[@]} == n)) || die "could not fingerprint the inputs of the cases (scripts/case_stamps.py failed)"
 
 # One BLAS thread per case when several cases share the cores.
 if ((jobs > 1)); then
@@ -83,14 +91,20 @@ interrupted() {  # stop the running cases (their kcreep children by id), keep wh
 trap interrupted INT TERM HUP
 
 table_of() { local nml=$1; echo "${nml%.*}.tab"; }
+stamp_of() { echo "$(table_of "$1").stamp"; }
 
 run_one() {  # k nml: run in the namelist's folder, leave k.rc and k.err in $state
-  local k=$1 nml=$2 dir base rc
+  local k=$1 nml=$2 dir base rc stamp
   dir=$(dirname "$nml")
   base=$(basename "$nml")
+  stamp=$(stamp_of "$nml")
+  # no fingerprint while the case runs: a table left by a killed run is not trusted
+  rm -f "$stamp"
   # runs in its own background subshell: cd is local, kcreep is its direct child
   cd "$dir" && "$kcreep" "$base" >"${base%.*}.log" 2>"$state/$k.err"
   rc=$?
+  # the fingerprint of the inputs as they were when the case started
+  if ((rc == 0)); then echo "${stamps[k]}" >"$stamp.tmp" && mv "$stamp.tmp" "$stamp"; fi
   echo "$rc" >"$state/$k.rc"
 }
 
@@ -133,7 +147,8 @@ for ((k = 0; k < n; k++)); do
     continue
   fi
   tab=$(table_of "$nml")
-  if [[ -s $tab && $tab -nt $nml ]]; then
+  stamp=$(stamp_of "$nml")
+  if [[ -s $tab && -f $stamp && $(<"$stamp") == "${stamps[k]}" ]]; then
     echo 0 >"$state/$k.rc"; touch "$state/$k.seen"
     finished=$((finished + 1)); skipped=$((skipped + 1))
     continue

@@ -4,6 +4,9 @@
 # installs what is missing and rebuilds what changed.
 #   scripts/setup.sh            packages + build
 #   KCREEP_BUILD_DIR=dir        build somewhere else
+#   scripts/setup.sh --help     this text (nothing is installed or built)
+usage() { awk 'NR > 1 && /^#/ { sub(/^# ?/, ""); print; next } NR > 1 { exit }' "${BASH_SOURCE[0]}"; }
+for arg in "$@"; do case $arg in -h | --help) usage; exit 0 ;; --) break ;; esac; done
 set -euo pipefail
 here=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
 build_dir=${KCREEP_BUILD_DIR:-$here/build}

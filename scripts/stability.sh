@@ -6,7 +6,10 @@
 # docs/stability.tab (one line per case, '|'-separated).
 #   scripts/stability.sh            full suite (a few minutes; grids up to 120 x 120, ~4 GB)
 #   scripts/stability.sh --quick    the subset CTest runs (stability_quick), report to stdout only
+#   scripts/stability.sh --help     this text
 # Exit 1 when a case fails.
+usage() { awk 'NR > 1 && /^#/ { sub(/^# ?/, ""); print; next } NR > 1 { exit }' "${BASH_SOURCE[0]}"; }
+for arg in "$@"; do case $arg in -h | --help) usage; exit 0 ;; --) break ;; esac; done
 set -euo pipefail
 here=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
 build_dir=${KCREEP_BUILD_DIR:-$here/build}

@@ -1,9 +1,24 @@
-# Shared pieces of the study scripts (sourced, not run).
-# shellcheck shell=bash
+#!/usr/bin/env bash
+# Shared pieces of the study scripts sweep_alpha.sh, sweep_n.sh and
+# error_vs_time.sh; they source it, it is not run on its own.
+#   in a study script:  source "$(dirname "$0")/study_lib.sh"
+#   scripts/study_lib.sh --help                this text
+# Provides study_usage, study_die, ellipse_nml, square_grid, columns and
+# have_gnuplot, and exports KCREEP (default: build/kcreep of this repository).
+
+if [[ ${BASH_SOURCE[0]} == "$0" ]]; then
+  case ${1:-} in
+    -h | --help) awk 'NR > 1 && /^#/ { sub(/^# ?/, ""); print; next } NR > 1 { exit }' "$0"; exit 0 ;;
+    *) echo "study_lib.sh: error: sourced by the study scripts, not run (see --help)" >&2; exit 2 ;;
+  esac
+fi
 
 study_here=$(cd "$(dirname "${BASH_SOURCE[0]}")" && pwd)
 study_repo=$(cd "$study_here/.." && pwd)
 export KCREEP=${KCREEP:-$study_repo/build/kcreep}
+
+# study_usage: the comment block at the top of the running script
+study_usage() { awk 'NR > 1 && /^#/ { sub(/^# ?/, ""); print; next } NR > 1 { exit }' "$0"; }
 
 study_die() { echo "$(basename "$0"): error: $*" >&2; exit 2; }
 
@@ -22,7 +37,7 @@ ellipse_nml() {
 &material nu = $nu /
 &solver target_error=0, $solver /
 EOF
-  # keep the old file (and its timestamp) when nothing changed, so a rerun resumes
+  # keep the old file when nothing changed (run_cases.sh skips a case whose inputs are unchanged)
   if [[ -f $file ]] && cmp -s "$file" "$file.new"; then rm -f "$file.new"; else mv "$file.new" "$file"; fi
 }
 

@@ -12,6 +12,7 @@
 #     --out DIR            output folder [./studies/sweep_alpha]
 #     --jobs N             cases in parallel [number of cores]
 #     --slurm "OPTS"       run through the SLURM back-end with these options
+#     --help               this text
 #     --docs               also copy the plots and the table into docs/
 # Writes DIR/sweep_alpha.tab (all rows) and DIR/sweep_alpha_*.png.
 set -uo pipefail
@@ -31,7 +32,7 @@ while (($#)); do
     --jobs) jobs=(--jobs "$2"); shift 2 ;;
     --slurm) read -r -a slurm <<<"--slurm $2"; shift 2 ;;
     --docs) docs=1; shift ;;
-    -h | --help) sed -n '2,18p' "$0" | sed 's/^# \{0,1\}//'; exit 0 ;;
+    -h | --help) study_usage; exit 0 ;;
     *) study_die "unknown option '$1' (see --help)" ;;
   esac
 done

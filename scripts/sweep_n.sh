@@ -14,6 +14,7 @@
 #     --out DIR              output folder [./studies/sweep_n]
 #     --jobs N               cases in parallel [number of cores]
 #     --slurm "OPTS"         run through the SLURM back-end with these options
+#     --help                 this text
 #     --docs                 also copy plots and tables into docs/
 # Going further: --meshes "10 15 20 30 40 60 80 120 160" (160 x 160 needs
 # about 10 GB and minutes per point with the dense solver).
@@ -35,7 +36,7 @@ while (($#)); do
     --jobs) jobs=(--jobs "$2"); shift 2 ;;
     --slurm) read -r -a slurm <<<"--slurm $2"; shift 2 ;;
     --docs) docs=1; shift ;;
-    -h | --help) sed -n '2,21p' "$0" | sed 's/^# \{0,1\}//'; exit 0 ;;
+    -h | --help) study_usage; exit 0 ;;
     *) study_die "unknown option '$1' (see --help)" ;;
   esac
 done

@@ -14,8 +14,14 @@ ridge between them: at a small approach there are two separate patches
 
   scripts/wheel_rail_gap.py [OUT.gap]       (default input/wheel_rail.gap)
 Grid: 0.2 mm cells, x in [-8, 8], y in [-11, 13] (the file's header).
-Standard library only."""
+Standard library only.
+
+    scripts/wheel_rail_gap.py --help    this text
+"""
 import sys
+if any(a in ("-h", "--help") for a in sys.argv[1:]):
+    print(__doc__.strip())
+    sys.exit(0)
 
 R_RAIL, R1, Y1, R2, Y2, R_WHEEL = 300.0, 200.0, -5.0, 260.0, 7.0, 460.0
 DX = DY = 0.2

@@ -11,6 +11,8 @@
 !> src/api, the Python package on top of it).
 module kcreep
   use, intrinsic :: ieee_arithmetic, only: ieee_value, ieee_quiet_nan
+  use, intrinsic :: iso_fortran_env, only: real64
+  use kcreep_strings, only: rtoa
   use kcreep_status, only: status_t, fail, exit_bad_input, exit_numerical, exit_io
   use kcreep_patch, only: patch_t, ellipse_patch, mask_patch
   use kcreep_assembly, only: scheme_t, n_load_cases, load_case_names
@@ -63,7 +65,7 @@ contains
     type(status_t), intent(inout) :: status
     type(solve_cache_t), intent(inout), optional :: cache
 
-    type(problem_t) :: found
+    type(problem_t) :: found, centred
     type(normal_result_t) :: nres
 
     if (problem%normal%active) then
@@ -82,11 +84,64 @@ contains
     end if
     call check_problem(problem, status)
     if (status%failed()) return
-    if (problem%extrapolate) then
-      call run_extrapolated(problem, result, status)
+    if (all(problem%spin_centre == 0)) then
+      call solve_as_given(problem)
     else
-      call run_controlled(problem, result, status, cache)
+      ! about another point: solve the patch moved so that the point is the
+      ! origin (the operator depends on cell offsets only), then move back
+      centred = problem
+      centred%patch%x0 = problem%patch%x0 - problem%spin_centre(1)
+      centred%patch%y0 = problem%patch%y0 - problem%spin_centre(2)
+      call solve_as_given(centred)
+      if (status%failed()) return
+      result%centroid = result%centroid + problem%spin_centre
+      result%patch%x0 = result%patch%x0 + problem%spin_centre(1)
+      result%patch%y0 = result%patch%y0 + problem%spin_centre(2)
     end if
+    if (status%failed()) return
+    result%spin_centre = problem%spin_centre
+    call warn_spin_centre_outside(problem%patch, problem%spin_centre, result%warnings)
+
+  contains
+
+    !> Extrapolation when asked for, else the run under error control (which
+    !> solves a given grid as given when the target is 0 or refine_grid off).
+    subroutine solve_as_given(p)
+      type(problem_t), intent(in) :: p
+      if (p%extrapolate) then
+        call run_extrapolated(p, result, status)
+      else
+        call run_controlled(p, result, status, cache)
+      end if
+    end subroutine solve_as_given
+
   end subroutine kcreep_solve
+
+  !> f13, f23, f31, f32, f33 refer to the spin centre: when it lies outside
+  !> the patch's bounding box (a mask in profile coordinates, spun about a
+  !> far origin) they are dominated by the lever arm, so say so.
+  subroutine warn_spin_centre_outside(patch, centre, warnings)
+    type(patch_t), intent(in) :: patch
+    real(real64), intent(in) :: centre(2)
+    character(len=message_length), allocatable, intent(inout) :: warnings(:)
+    real(real64) :: xmin, xmax, ymin, ymax
+    character(len=message_length) :: line
+    if (patch%n < 1) return
+    xmin = patch%x0 + (minval(patch%ix) - 1.5_real64) * patch%dx
+    xmax = patch%x0 + (maxval(patch%ix) - 0.5_real64) * patch%dx
+    ymin = patch%y0 + (minval(patch%iy) - 1.5_real64) * patch%dy
+    ymax = patch%y0 + (maxval(patch%iy) - 0.5_real64) * patch%dy
+    if (centre(1) >= xmin .and. centre(1) <= xmax .and. centre(2) >= ymin .and. centre(2) <= ymax) return
+    if (all(centre == 0)) then
+      line = 'the spin centre, the coordinate origin, lies outside the patch''s bounding box ['// &
+             rtoa(xmin)//', '//rtoa(xmax)//'] x ['//rtoa(ymin)//', '//rtoa(ymax)//']: f13, f23, f31, f32, f33 '// &
+             'are about that far point (&solver spin_centre = ''centroid'' takes the patch''s centroid)'
+    else
+      line = 'the spin centre ('//rtoa(centre(1))//', '//rtoa(centre(2))//') lies outside the patch''s '// &
+             'bounding box ['//rtoa(xmin)//', '//rtoa(xmax)//'] x ['//rtoa(ymin)//', '//rtoa(ymax)//']'
+    end if
+    if (.not. allocated(warnings)) allocate (warnings(0))
+    warnings = [warnings, line]
+  end subroutine warn_spin_centre_outside
 
 end module kcreep

@@ -99,3 +99,9 @@ def finish():
 
 def isnan(x):
     return isinstance(x, float) and math.isnan(x)
+
+
+def scheme_setting(scheme, alpha):
+    """&solver text for a scheme: the collocation point only where it is used
+    (kcreep refuses alpha with the backward scheme)."""
+    return f"scheme='{scheme}'" + (f", alpha={alpha}" if scheme == "collocation" else "")

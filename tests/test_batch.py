@@ -55,7 +55,9 @@ table_path = os.path.join(folder, "cases.tab")
 kc.check(proc.returncode == 5, f"exit status 5 when cases failed (got {proc.returncode})")
 rows = kc.read_table(table_path) if os.path.exists(table_path) else []
 names = [r["case"] for r in rows]
-kc.check(names == ["e10", "bad", "e16b", "missing", "m", "elong"], f"one row per case in list order: {names}")
+# named by the path relative to the list (the absolute entry of m.nml too)
+kc.check(names == ["sub/e10", "sub/bad", "sub/e16b", "sub/missing", "sub/m", "sub/elong"],
+         f"one row per case in list order: {names}")
 errs = proc.stderr.strip().splitlines()
 kc.check(any(l.startswith("kcreep: case 2 'sub/bad.nml': error: ") and "shape = 'circle'" in l for l in errs),
          "the bad case's message on stderr, prefixed with the case")
@@ -162,13 +164,16 @@ kc.check(proc.returncode == 2 and "another list" in proc.stderr and len(proc.std
 write(os.path.join(sub, "it80.nml"), "&patch semi_a=1, semi_b=0.8, mx=80, my=80 /\n&solver method='iterative' /\n")
 est = subprocess.run([kc.KCREEP, "--estimate-memory", "sub/s2_60.nml", "sub/e10.nml", "sub/m.nml", "sub/it80.nml"],
                      cwd=folder, capture_output=True, text=True)
-values = [int(v) for v in est.stdout.split()]
+# one line 'FILE BYTES PATH' per file
+values = [int(l.rsplit(" ", 2)[1]) for l in est.stdout.strip().splitlines()]
 n60 = reference[2]["n"]
 dense = 8 * n60 ** 2
 kc.check(est.returncode == 0 and len(values) == 4, f"one estimate per file: {est.stdout.split()}")
+kc.check([l.rsplit(" ", 2)[2] for l in est.stdout.strip().splitlines()] == ["dense", "dense", "dense", "iterative"],
+         f"the solve path of each: {est.stdout.strip()}")
 # measured (GNU time, OPENBLAS_NUM_THREADS=1, unit circle): dense 80 x 80 estimate 205e6 B,
 # peak RSS 227e6 B; dense 40 x 40 13.5e6 / 26.5e6 B (the program itself adds 10-20 MB);
-# iterative 80 x 80 24e6 / 28e6 B, 200 x 200 213e6 / 137e6 B (the estimate is generous)
+# iterative 200 x 200 155e6 / 138e6 B, 400 x 400 792e6 / 553e6 B (the estimate stays above)
 kc.check(dense <= values[0] <= 1.05 * dense, f"dense 60 x 60: estimate {values[0]} within 5 % above 8 n^2 = {dense}")
 n80 = 5024 * 0.8   # about: the 80 x 80 ellipse with b/a = 0.8 has as many cells as 0.8 of the circle
 kc.check(0 < values[3] < 8 * n80 ** 2 / 4, f"iterative 80 x 80: estimate {values[3]} far below a dense matrix")

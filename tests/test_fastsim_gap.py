@@ -33,6 +33,17 @@ kc.check(abs(creep[-1]["fx_mufn"]) > 0.99 and abs(creep[-1]["fx_mufn"]) <= 1 + 1
          f"saturation |Fx|/(mu Fn) = {abs(creep[-1]['fx_mufn']):.4f}")
 kc.check(all(abs(a["fx"]) <= abs(b["fx"]) + 1e-9 for a, b in zip(creep, creep[1:])), "|Fx| grows with xi")
 
+# the same case in a batch: its creep table is written as in a single run
+with open(os.path.join(folder, "one.list"), "w") as f:
+    f.write("wheel.nml\n")
+os.remove(os.path.join(folder, "wheel.creep"))
+import subprocess  # noqa: E402
+proc = subprocess.run([kc.KCREEP, "--batch", "one.list"], cwd=folder, capture_output=True, text=True)
+batch_creep = kc.read_table(os.path.join(folder, "wheel.creep")) if os.path.exists(os.path.join(folder, "wheel.creep")) else []
+kc.check(proc.returncode == 0 and len(batch_creep) == len(creep) and
+         all(abs(a["fx"] - b["fx"]) <= 1e-12 * abs(b["fx"]) + 1e-300 for a, b in zip(batch_creep, creep)),
+         f"--batch runs &fastsim too: the same creep table ({proc.stderr.strip()[:200]})")
+
 bad = "&patch semi_a = 1, semi_b = 1, mx = 20, my = 20 /\n&fastsim mu = 0.3, creepages = 1e-3 0 0, pressure = 'normal' /\n"
 code, out, err, _ = kc.run(bad, folder, "bad", expect_ok=False)
 kc.check(code == 2 and "pressure = 'normal'" in err and "gap" in err and len(err.strip().splitlines()) == 1,

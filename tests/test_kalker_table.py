@@ -17,7 +17,7 @@ for scheme, tol in tolerance.items():
     for a, b, mx, my in grids:
         for nu in (0.0, 0.25, 0.5):
             row = kc.coefficients(kc.namelist(
-                f"semi_a={a}, semi_b={b}, mx={mx}, my={my}", f"nu={nu}", f"scheme='{scheme}', alpha=0.5"), folder)
+                f"semi_a={a}, semi_b={b}, mx={mx}, my={my}", f"nu={nu}", f"{kc.scheme_setting(scheme, 0.5)}"), folder)
             label = f"{scheme} a/b={a/b:g} nu={nu:g}"
             for k, name in enumerate(("11", "22", "23")):
                 kc.close(row["c" + name], row["klt" + name], tol[k], f"{label} C{name} vs Kalker")

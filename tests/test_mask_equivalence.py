@@ -15,7 +15,7 @@ mask_file = f"{mx} {my} {dx!r} {dy!r} {x0!r} {y0!r}\n" + "\n".join(rows) + "\n"
 inline = ", ".join(f"'{r}'" for r in rows)
 names = ["f11", "f12", "f13", "f21", "f22", "f23", "f31", "f32", "f33"]
 for scheme in ("collocation", "backward"):
-    solver = f"scheme='{scheme}', alpha=0.4"
+    solver = f"{kc.scheme_setting(scheme, 0.4)}"
     e = kc.coefficients(kc.namelist(f"semi_a={a}, semi_b={b}, mx={mx}, my={my}", "nu=0.2", solver), folder, "e")
     _, _, _, t = kc.run(kc.namelist("shape='mask', mask_file='ell.mask'", "nu=0.2", solver), folder, "f",
                         files={"ell.mask": mask_file})

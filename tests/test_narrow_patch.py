@@ -14,7 +14,7 @@ tolerance = {"collocation": 0.095, "backward": 0.048}
 for scheme, tol in tolerance.items():
     for nu in (0.0, 0.25, 0.5):
         row = kc.coefficients(kc.namelist("semi_a=0.05, semi_b=1, mx=10, my=200", f"nu={nu}",
-                                          f"scheme='{scheme}', alpha=0.5"), folder)
+                                          f"{kc.scheme_setting(scheme, 0.5)}"), folder)
         kc.close(row["klt11"], math.pi**2 / (4 * (1 - nu)), 1e-12, f"asymptote C11 nu={nu}")
         kc.close(row["klt22"], math.pi**2 / 4, 1e-12, f"asymptote C22 nu={nu}")
         kc.close(row["c11"], row["klt11"], tol, f"{scheme} nu={nu} C11 vs narrow asymptote")

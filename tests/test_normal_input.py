@@ -163,7 +163,8 @@ import subprocess
 with open(os.path.join(folder, "est.nml"), "w") as f:
     f.write("&patch shape='gap' /\n&normal rx=1, ry=2, approach=0.01 /\n")
 proc = subprocess.run([kc.KCREEP, "--estimate-memory", "est.nml"], cwd=folder, capture_output=True, text=True)
-kc.check(proc.returncode == 0 and int(proc.stdout.split()[0]) > 0,
+# one line 'FILE BYTES PATH'
+kc.check(proc.returncode == 0 and int(proc.stdout.split()[-2]) > 0,
          f"--estimate-memory of a gap case: exit {proc.returncode}, {proc.stdout.strip()} bytes")
 
 # 5. bad input

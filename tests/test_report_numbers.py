@@ -33,12 +33,38 @@ with open(os.path.join(data, "richardson_sweep_n.dat")) as f:
         if not line.startswith("#") and line.strip():
             w = line.split()
             richardson[(w[0], w[1], w[2], w[3], w[4])] = w
+# The header of every docs/data/richardson*.dat must say what its last column
+# holds: 100 (f0/klt - 1), in percent (the values are percent, e.g. +1.1560
+# for a limit 1.156 % above Kalker's).
+for name in sorted(os.listdir(data)):
+    if not (name.startswith("richardson") and name.endswith(".dat")):
+        continue
+    with open(os.path.join(data, name)) as f:
+        lines = f.read().splitlines()
+    comments = [l for l in lines if l.startswith("#")]
+    columns = comments[-1][1:].split()
+    last = columns[-1]
+    described = [l for l in comments[:-1] if f"{last}:" in l]
+    text = described[0].split(f"{last}:", 1)[1] if described else ""
+    kc.check("percent" in text and "100" in text,
+             f"{name}: the header describes column {last} as a percentage ({text.strip()!r})")
+    worst = 0.0
+    for l in lines:
+        if l.startswith("#") or not l.strip():
+            continue
+        w = dict(zip(columns, l.split()))
+        f0, klt, vs = float(w["f0"]), float(w["klt"]), float(w[last])
+        if f0 == f0 and klt == klt:
+            worst = max(worst, abs(vs - 100 * (f0 / klt - 1)))
+    # the limit is printed with 6 decimals, the percentage with 4: 1e-3 covers both roundings
+    kc.check(worst <= 1e-3, f"{name}: {last} = 100 (f0/klt - 1) on every row (largest difference {worst:.1e})")
+
 fresh = {}
 for scheme in ("collocation", "backward"):
     for m in (10, 20, 40):
         name = f"r1_paper_{scheme}_m{m}"
         row = kc.coefficients(kc.namelist(f"shape='ellipse', semi_a=1, semi_b=1, mx={m}, my={m}", "nu=0.25",
-                                          f"scheme='{scheme}', alpha=0.5"), folder, name)
+                                          f"{kc.scheme_setting(scheme, 0.5)}"), folder, name)
         fresh[(scheme, m)] = row
         quoted = sweep[name]
         for c in ("c11", "c22", "c23"):
@@ -59,7 +85,7 @@ for scheme in ("collocation", "backward"):
 ext = {}
 for scheme in ("collocation", "backward"):
     ext[scheme] = kc.coefficients(kc.namelist("shape='ellipse', semi_a=1, semi_b=1, mx=10, my=10", "nu=0.25",
-                                              f"scheme='{scheme}', alpha=0.5, extrapolate=.true."),
+                                              f"{kc.scheme_setting(scheme, 0.5)}, extrapolate=.true."),
                                   folder, f"ext_{scheme}")
 evt = os.path.join(data, "error_vs_time.dat")
 with open(evt) as f:

@@ -79,7 +79,9 @@ def compare(local_rows, slurm_rows, what):
 sweep = []
 for k in range(8):
     m = 10 + 2 * k
-    name = f"p{k}_{m}"
+    # the last case in a sub-folder: named sub/p7_24 locally and after the gather
+    name = f"p{k}_{m}" if k < 7 else f"sub/p{k}_{m}"
+    os.makedirs(os.path.join(folder, os.path.dirname(name)), exist_ok=True)
     solver = "&solver scheme='backward', spin_shift=0.1666666666666667 /\n" if k % 3 == 2 else ""
     with open(os.path.join(folder, name + ".nml"), "w") as f:
         f.write(f"&patch semi_a=1, semi_b={1 - 0.08 * k:.2f}, mx={m}, my={m} /\n&material nu={0.1 * (k % 4):.1f} /\n"
@@ -97,6 +99,7 @@ local = run([kc.KCREEP, "--batch", "sweep.list", "local.tab"], cwd=folder)
 t_local = time.time() - t0
 kc.check(local.returncode == 5, f"local batch: exit 5 (one bad case) ({local.returncode})")
 local_rows = kc.read_table(os.path.join(folder, "local.tab"))
+kc.check(local_rows[-1]["case"] == "sub/p7_24", f"a case in a sub-folder is named by its path ({local_rows[-1]['case']})")
 
 state = tempfile.mkdtemp(prefix="kcreep-slurm-")
 os.chmod(state, 0o755)                # munged wants every folder above its socket searchable
@@ -179,6 +182,21 @@ try:
     compare(local_rows, kc.read_table(os.path.join(folder, "full.tab")), "whole SLURM sweep vs local")
     print(f"timing (not asserted): {n_cases} cases locally with kcreep --batch {t_local:.2f} s, "
           f"through SLURM (5 array tasks + gather, --wait) {t_slurm:.2f} s")
+
+    # --- an input of one case changes (its mtime set back): only its chunk runs again
+    changed = os.path.join(folder, sweep[2])
+    old = os.path.getmtime(changed)
+    with open(changed, "w") as f:
+        f.write("&patch semi_a=1, semi_b=0.5, mx=14, my=14 /\n")
+    os.utime(changed, (old - 3600, old - 3600))
+    redo = run([run_cases, "sweep.list", "full.tab", "--chunk", "2", "--wait"], env=env, cwd=folder, timeout=150)
+    kc.check(redo.returncode == 5 and "submitted 1 array task(s)" in redo.stdout
+             and "chunk 2: its cases' inputs changed" in redo.stdout,
+             f"a changed namelist: its chunk alone runs again ({redo.returncode}) {redo.stdout.strip()}")
+    redo_rows = kc.read_table(os.path.join(folder, "full.tab"))
+    ratio = redo_rows[2]["c"] ** 2 if redo_rows else None       # c^2 = a b = 0.5 now
+    kc.check(ratio is not None and abs(ratio - 0.5) < 1e-9, f"the gathered row is the new case's (c^2 = {ratio})")
+    compare(local_rows[:2] + local_rows[3:], redo_rows[:2] + redo_rows[3:], "the other cases after the rerun")
 finally:
     stop = subprocess.run([local_cluster, "stop", cluster], capture_output=True, text=True, timeout=90)
     if stop.returncode != 0:

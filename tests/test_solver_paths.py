@@ -42,13 +42,13 @@ patches = {"ellipse": "semi_a=1.3, semi_b=0.9, mx=30, my=24",
 for scheme in ("collocation", "backward"):
     for nu in (0.3, 0.0):
         for pname, patch in patches.items():
-            solver = f"scheme='{scheme}', alpha=0.5, method='dense'"
+            solver = f"{kc.scheme_setting(scheme, 0.5)}, method='dense'"
             tag = f"{scheme} nu={nu} {pname}"
             split = kc.coefficients(kc.namelist(patch, f"nu={nu}", solver), folder, "split")
             whole = kc.coefficients(kc.namelist(patch, f"nu={nu}", solver + ", split_systems=.false."), folder, "whole")
             agree(split, whole, 1e-12, f"{tag}: split dense = unsplit dense")
             kc.check(split["iterations"] == 0, f"{tag}: dense reports 0 iterations")
-            it = kc.coefficients(kc.namelist(patch, f"nu={nu}", f"scheme='{scheme}', alpha=0.5, method='iterative'"),
+            it = kc.coefficients(kc.namelist(patch, f"nu={nu}", f"{kc.scheme_setting(scheme, 0.5)}, method='iterative'"),
                                  folder, "iter")
             agree(it, whole, 1e-8, f"{tag}: iterative = dense")
             kc.check(it["iterations"] > 0 and kc.isnan(it["rcond"]) and it["berr"] <= 1e-10,

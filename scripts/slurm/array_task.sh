@@ -3,8 +3,12 @@
 # chunk of cases, writing the chunk's own table. A chunk whose table exists
 # is done; a chunk killed before (time-out, node failure, scancel) resumes
 # from its .partial table, so no finished case is run twice.
-#   sbatch --array=... array_task.sh WORKDIR KCREEP
+#   sbatch --array=... scripts/slurm/array_task.sh WORKDIR KCREEP
+#   scripts/slurm/array_task.sh --help    this text
+usage() { awk 'NR > 1 && /^#/ { sub(/^# ?/, ""); print; next } NR > 1 { exit }' "${BASH_SOURCE[0]}"; }
+for arg in "$@"; do case $arg in -h | --help) usage; exit 0 ;; --) break ;; esac; done
 set -euo pipefail
+(($# == 2)) || { echo "array_task.sh: error: needs WORKDIR KCREEP (see --help)" >&2; exit 2; }
 workdir=$1
 kcreep=$2
 chunk=$workdir/chunks/$(printf '%05d' "${SLURM_ARRAY_TASK_ID:?not in a SLURM array task}")

@@ -2,7 +2,8 @@
 """Gather step of run_cases_slurm.sh: merge the chunk tables of a sweep into
 one table, checking that every case of the list is present exactly once.
 
-    gather.py WORKDIR OUT_TABLE
+    scripts/slurm/gather.py WORKDIR OUT_TABLE
+    scripts/slurm/gather.py --help    this text
 
 WORKDIR holds cases.list (one absolute namelist path per line), chunk_size
 and chunks/NNNNN.{list,tab,tab.partial}. Every row must stand at its place
@@ -28,9 +29,29 @@ case_name = table.case_name
 read_chunk = table.read_chunk
 
 
+def listed_name(entry, folder):
+    """The table's case column as kcreep --batch writes it for a list entry:
+    relative to the list's folder (an absolute path inside it made relative,
+    leading './' dropped), without the extension, blanks replaced."""
+    name = entry
+    if folder and name.startswith(folder + "/") and len(name) > len(folder) + 1:
+        name = name[len(folder) + 1:]
+    while len(name) > 2 and name.startswith("./"):
+        name = name[2:]
+    slash, dot = name.rfind("/"), name.rfind(".")
+    if dot > slash + 1:
+        name = name[:dot]
+    name = "".join("_" if (c == " " or ord(c) < 33) else c for c in name)
+    return name or "-"
+
+
 def main():
+    if any(a in ("-h", "--help") for a in sys.argv[1:]):
+        print(__doc__.strip())
+        return 0
     if len(sys.argv) != 3:
-        sys.exit("usage: gather.py WORKDIR OUT_TABLE")
+        print("usage: gather.py WORKDIR OUT_TABLE (see --help)", file=sys.stderr)
+        return 2
     workdir, out = sys.argv[1], sys.argv[2]
     try:
         cases = [l.rstrip("\n") for l in open(os.path.join(workdir, "cases.list")) if l.strip()]
@@ -39,6 +60,14 @@ def main():
         print(f"gather: error: {workdir} is not a run_cases_slurm.sh folder ({e})", file=sys.stderr)
         return 2
     n_chunks = (len(cases) + chunk_size - 1) // chunk_size
+    # the chunk tables name each case by its absolute path (the chunk lists hold
+    # those); the gathered table names it as kcreep --batch of the whole list
+    # would: relative to the list's folder
+    try:
+        list_dir = open(os.path.join(workdir, "list_dir")).read().rstrip("\n")
+    except OSError:
+        list_dir = None
+    chunks_dir = os.path.realpath(os.path.join(workdir, "chunks"))
 
     header, columns, per_case_comments, rows = None, None, [], []
     missing, problems = [], []
@@ -65,10 +94,12 @@ def main():
             missing += expected
             continue
         names = [r.split(None, 1)[0] for r in chunk_rows]
-        if names != [case_name(p) for p in expected]:
+        if names != [listed_name(p, chunks_dir) for p in expected]:
             problems.append(f"chunk {i}: rows {names} do not match its cases")
             missing += expected
             continue
+        chunk_rows = [(listed_name(p, list_dir) if list_dir else case_name(p)) + r[len(name):]
+                      for p, r, name in zip(expected, chunk_rows, names)]
         for c in comments:            # per-case messages, renumbered to the place in the whole list
             m = re.match(r"# case (\d+) (.*)", c)
             if m:

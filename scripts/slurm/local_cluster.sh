@@ -8,15 +8,18 @@
 #                                              prints: export SLURM_CONF=DIR/slurm.conf
 #   scripts/slurm/local_cluster.sh stop DIR    cancel the jobs, stop the daemons
 #                                              started in DIR, by their pids
+#   scripts/slurm/local_cluster.sh --help      this text
 #   scripts/slurm/local_cluster.sh check       exit 0 if a cluster can be started
 #                                              here, else say why and exit 1
 #
 # Everything lives in DIR (munge key, socket, pid and log files, slurm.conf,
 # state and spool folders); nothing outside it is changed. Ports are free
 # ones picked at start. Every wait has a time limit.
+usage() { awk 'NR > 1 && /^#/ { sub(/^# ?/, ""); print; next } NR > 1 { exit }' "${BASH_SOURCE[0]}"; }
+for arg in "$@"; do case $arg in -h | --help) usage; exit 0 ;; --) break ;; esac; done
 set -euo pipefail
 
-usage() { echo "usage: $0 start DIR | stop DIR | check" >&2; exit 2; }
+bad_usage() { echo "usage: $0 start DIR | stop DIR | check (see --help)" >&2; exit 2; }
 started_dir=
 # On an error while starting, stop what was already started.
 die() {
@@ -181,11 +184,11 @@ stop() {
 }
 
 case ${1:-} in
-  start) [[ $# -eq 2 ]] || usage; start "$2" ;;
-  stop) [[ $# -eq 2 ]] || usage; stop "$2" ;;
+  start) [[ $# -eq 2 ]] || bad_usage; start "$2" ;;
+  stop) [[ $# -eq 2 ]] || bad_usage; stop "$2" ;;
   check)
     reason=$(why_not)
     [[ -z $reason ]] || { echo "local_cluster: cannot start a cluster here: $reason" >&2; exit 1; }
     ;;
-  *) usage ;;
+  *) bad_usage ;;
 esac

@@ -5,6 +5,7 @@
 # checks that every case is there exactly once and names the missing ones.
 #
 #   scripts/slurm/run_cases_slurm.sh LIST OUT_TABLE [options]
+#   scripts/slurm/run_cases_slurm.sh --help
 #
 # LIST: one namelist path per line, relative to LIST's folder; blank lines
 # and lines starting with # are skipped (as for kcreep --batch).
@@ -33,6 +34,10 @@
 # Restart: run the same command again. Chunks whose table exists are not
 # resubmitted; a chunk that was killed (time-out, node failure, scancel)
 # resumes after its last finished case (its kcreep --batch .partial table).
+# Unless something its cases read changed since it was submitted (namelist,
+# mask_file, contact_file and its .mat files, the kcreep binary; compared by
+# content, see scripts/case_stamps.py): then the chunk runs again from the
+# start (its old table is kept as NNNNN.tab.stale).
 # When every chunk is done, the gather runs at once, here, without SLURM.
 #
 # Exit status: 0 submitted (with --wait: 0 table complete, 5 complete with
@@ -43,7 +48,7 @@ here=$(cd "$(dirname "${BASH_SOURCE[0]}")" && pwd)
 repo=$(cd "$here/../.." && pwd)
 
 die() { echo "run_cases_slurm: error: $*" >&2; exit "${2:-2}"; }
-usage() { sed -n '2,/^set -euo/p' "${BASH_SOURCE[0]}" | sed -e '$d' -e 's/^# \{0,1\}//'; exit "${1:-2}"; }
+usage() { awk 'NR > 1 && /^#/ { sub(/^# ?/, ""); print; next } NR > 1 { exit }' "${BASH_SOURCE[0]}"; }
 
 partition= cpus=1 mem_mb= time_limit=01:00:00 chunk= max_running= workdir= wait=0
 kcreep=${KCREEP:-$repo/build/kcreep} job_name=kcreep retry_failed=0
@@ -73,7 +78,7 @@ while (($#)); do
     --sbatch-arg) extra+=("${2:?--sbatch-arg needs a value}"); shift ;;
     --wait) wait=1 ;;
     --retry-failed) retry_failed=1 ;;
-    -h | --help) usage 0 ;;
+    -h | --help) usage; exit 0 ;;
     -*) die "unknown option $1 (see --help)" ;;
     *) positional+=("$1") ;;
   esac
@@ -123,18 +128,35 @@ if [[ -f $workdir/cases.list ]]; then
 else
   cp "$cases_new" "$workdir/cases.list"
   echo "$chunk" >"$workdir/chunk_size"
+  # the gathered table names each case relative to the list's folder, as kcreep --batch does
+  printf '%s\n' "$list_dir" >"$workdir/list_dir"
   split -l "$chunk" -a 5 --numeric-suffixes=1 --additional-suffix=.list "$workdir/cases.list" "$workdir/chunks/"
 fi
+
+# What each case reads (binary, namelist, mask and CONTACT files), fingerprinted
+# by content; a chunk whose fingerprint changed since it was submitted is stale.
+mapfile -t stamps < <(python3 "$repo/scripts/case_stamps.py" "$kcreep" <"$workdir/cases.list")
+((${#stamps[@]} == n_cases)) || die "could not fingerprint the inputs of the cases (scripts/case_stamps.py failed)"
+chunk_stamp() { printf '%s\n' "${stamps[@]:$((($1 - 1) * chunk)):$chunk}" | sha256sum | cut -d' ' -f1; }
 
 # chunks still to run
 pending=()
 for ((i = 1; i <= n_chunks; i++)); do
   table=$workdir/chunks/$(printf '%05d' "$i").tab
+  stamp=$(chunk_stamp "$i")
+  if [[ -f $table || -f $table.partial ]] && [[ ! -f ${table%.tab}.stamp || $(<"${table%.tab}.stamp") != "$stamp" ]]; then
+    echo "run_cases_slurm: chunk $i: its cases' inputs changed since it ran; running it again"
+    [[ ! -f $table ]] || mv "$table" "$table.stale"
+    rm -f "$table.partial"
+  fi
   if ((retry_failed)) && [[ -f $table ]] && awk '/^#/ {for (i = 2; i <= NF; i++) if ($i == "verdict") col = i - 1; next}
       col && $col ~ /^error:/ {found = 1} END {exit !found}' "$table"; then
     mv "$table" "$table.failed"
   fi
-  [[ -f $table ]] || pending+=("$i")
+  if [[ ! -f $table ]]; then
+    pending+=("$i")
+    echo "$stamp" >"${table%.tab}.stamp"
+  fi
 done
 if ((${#pending[@]} == 0)); then
   echo "run_cases_slurm: all $n_chunks chunk(s) done already: gathering here"
@@ -148,7 +170,8 @@ if [[ -z $mem_mb ]]; then
   max_bytes=0
   while IFS= read -r path; do
     # a case kcreep cannot read gets an error row in its task; it needs no memory
-    bytes=$(cd "$(dirname "$path")" && "$kcreep" --estimate-memory "$path" 2>/dev/null) || continue
+    # 'FILE BYTES PATH': the bytes are the last field but one
+    bytes=$("$kcreep" --estimate-memory "$path" 2>/dev/null | awk '{print $(NF - 1)}') && [[ -n $bytes ]] || continue
     ((bytes > max_bytes)) && max_bytes=$bytes
   done <"$todo"
   rm -f "$todo"

@@ -14,7 +14,7 @@ module kcreep_patch
   use kcreep_limits, only: check_grid_size
   implicit none
   private
-  public :: patch_t, ellipse_patch, mask_patch
+  public :: patch_t, ellipse_patch, mask_patch, place_like
 
   type :: patch_t
     character(len=:), allocatable :: kind     !< 'ellipse', 'mask' or 'contact'
@@ -60,6 +60,16 @@ contains
     end do
     call index_cells(patch, 'ellipse', status)
   end subroutine ellipse_patch
+
+  !> Move an ellipse patch regenerated on another grid so that its centre is
+  !> where source's is (source may have been moved, e.g. to put a spin centre
+  !> at the origin).
+  pure subroutine place_like(patch, source)
+    type(patch_t), intent(inout) :: patch
+    type(patch_t), intent(in) :: source
+    patch%x0 = patch%x0 + (source%x0 - (-source%semi_a + source%dx / 2))
+    patch%y0 = patch%y0 + (source%y0 - (-source%semi_b + source%dy / 2))
+  end subroutine place_like
 
   !> A patch from an explicit mask on a grid with given cell sizes and origin.
   subroutine mask_patch(inside, dx, dy, x0, y0, source, patch, status)

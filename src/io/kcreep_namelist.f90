@@ -7,7 +7,7 @@
 module kcreep_namelist
   use, intrinsic :: iso_fortran_env, only: real64, iostat_end
   use kcreep_status, only: status_t, fail, exit_bad_input
-  use kcreep_strings, only: itoa, rtoa, lower, resolve_path
+  use kcreep_strings, only: itoa, rtoa, lower, resolve_path, folder_of
   use kcreep_patch, only: patch_t, ellipse_patch, mask_patch
   use kcreep_mask_file, only: read_mask_file, parse_mask_rows
   use kcreep_assembly, only: scheme_t, load_case_names, n_load_cases
@@ -51,6 +51,7 @@ module kcreep_namelist
     character(len=:), allocatable :: mask_file
     character(len=max_row_length), allocatable :: mask_rows(:)   !< inline rows given
     real(real64) :: dx = 0, dy = 0, x0 = 0, y0 = 0
+    logical :: x0_given = .false., y0_given = .false.   !< x0, y0 written in the namelist
     character(len=:), allocatable :: contact_file   !< shape 'contact': CONTACT .out file
     integer :: contact_case = 0
     type(contact_case_t) :: contact                 !< what was read from it
@@ -65,6 +66,8 @@ module kcreep_namelist
     integer :: extrapolate_levels = 3, refine_ratio = 2
     character(len=:), allocatable :: refine     !< see dense_solver refine_modes
     type(solver_options_t) :: solve           !< method, tolerance, splits
+    character(len=:), allocatable :: spin_centre   !< 'origin', 'centroid' or 'point'
+    real(real64) :: spin_centre_xy(2) = 0          !< the point of spin_centre = 'point'
     ! &fastsim (group absent: fastsim_on false, nothing of it runs)
     logical :: fastsim_on = .false.
     type(creep_request_t) :: fastsim
@@ -88,18 +91,19 @@ module kcreep_namelist
 
 contains
 
-  !> Read and validate the namelist at path. With base_folder, relative file
-  !> names inside it (mask_file, contact_file, table_file, traction_file) are
-  !> taken relative to that folder (the batch's convention), else relative to
-  !> the working folder.
-  subroutine read_config(path, cfg, status, base_folder)
+  !> Read and validate the namelist at path. Relative file names inside it
+  !> (mask_file, contact_file, table_file, traction_file) are taken relative
+  !> to the namelist's own folder, whatever the working folder and the mode
+  !> (single run, batch, memory estimate). Only the default table, which the
+  !> namelist does not name, goes to the working folder.
+  subroutine read_config(path, cfg, status)
     character(len=*), intent(in) :: path
     type(config_t), intent(out) :: cfg
     type(status_t), intent(inout) :: status
-    character(len=*), intent(in), optional :: base_folder
 
     ! namelist variables, with their defaults
-    character(len=32) :: shape, scheme, method, refine
+    character(len=32) :: shape, scheme, method, refine, spin_centre
+    real(real64) :: spin_centre_x, spin_centre_y
     real(real64) :: semi_a, semi_b, dx, dy, x0, y0, g, nu, alpha, spin_shift, tolerance, target_error
     integer :: mx, my, extrapolate_levels, refine_ratio, max_iterations, restart
     logical :: extrapolate, split_systems
@@ -120,13 +124,17 @@ contains
     character(len=128) :: flexibility
     character(len=4096) :: pressure_input_file, creep_file, creep_map_file
     logical :: maps
-    !> "not given": g, nu and spin_shift default differently for shape = 'contact'
+    !> "not given": g, nu and spin_shift default differently for shape = 'contact',
+    !> and a value the user wrote is either used or refused, never replaced
     real(real64), parameter :: unset = -huge(1.0_real64)
+    integer, parameter :: unset_int = -huge(1)
+    character(len=:), allocatable :: where
     logical :: material_given
     namelist /patch/ shape, semi_a, semi_b, mx, my, mask_file, mask_rows, dx, dy, x0, y0, contact_file, contact_case
     namelist /material/ g, nu
-    namelist /solver/ target_error, scheme, alpha, spin_shift, load_cases, extrapolate, extrapolate_levels, refine_ratio, refine, &
-                      method, tolerance, max_iterations, restart, split_systems
+    namelist /solver/ target_error, scheme, alpha, spin_shift, load_cases, extrapolate, extrapolate_levels, &
+                      refine_ratio, refine, method, tolerance, max_iterations, restart, split_systems, spin_centre, &
+                      spin_centre_x, spin_centre_y
     namelist /output/ table_file, traction_file, pressure_file, contact_mask_file, creep_file, &
                       creep_map_file
     namelist /normal/ gap_file, contact_inp, contact_inp_case, rx, ry, lx, ly, cx, cy, approach, normal_force, &
@@ -135,31 +143,34 @@ contains
                        pressure, pressure_input_file, fn, flexibility, l1, l2, l3, rule, maps
 
     integer :: unit, ios, nrows
-    logical :: group_present(size(group_names))
+    logical :: group_present(size(group_names)), group_closed(size(group_names)), last_line_open
     character(len=512) :: msg
     character(len=:), allocatable :: text
 
     shape = 'ellipse'
-    semi_a = 1
-    semi_b = 1
-    mx = 0
-    my = 0
+    semi_a = unset
+    semi_b = unset
+    mx = unset_int
+    my = unset_int
     mask_file = ''
     allocate (mask_rows(max_inline_rows))
     mask_rows = ''
     dx = 0
     dy = 0
-    x0 = 0
-    y0 = 0
+    x0 = unset
+    y0 = unset
     contact_file = ''
     contact_case = 1
     g = unset
     nu = unset
     scheme = ''
     target_error = unset
-    alpha = 0.5_real64
+    alpha = unset
     spin_shift = unset
     load_cases = 'xi eta phi'
+    spin_centre = 'origin'
+    spin_centre_x = unset
+    spin_centre_y = unset
     extrapolate = .false.
     extrapolate_levels = 3
     refine_ratio = 2
@@ -216,8 +227,13 @@ contains
     ! the whole file first: a folder, a binary file, text outside the groups,
     ! unknown or repeated groups are errors the namelist read would not report
     call read_input_file(path, 'input '''//path//'''', text, status)
-    if (.not. status%failed()) call scan_namelist_text(text, 'input '''//path//'''', group_names, group_present, status)
+    if (.not. status%failed()) call scan_namelist_text(text, 'input '''//path//'''', group_names, group_present, &
+                                                       group_closed, status)
     if (status%failed()) return
+    ! a last line without its newline: the namelist read assigns the group and
+    ! then meets the end of the file looking for the next record
+    last_line_open = .false.
+    if (len(text) > 0) last_line_open = text(len(text):len(text)) /= achar(10)
     open (newunit=unit, file=path, status='old', action='read', iostat=ios, iomsg=msg)
     if (ios /= 0) then
       call fail(status, exit_bad_input, 'input '''//path//''': cannot open ('//trim(msg)//')')
@@ -226,27 +242,78 @@ contains
 
     rewind (unit)
     if (group_present(1)) read (unit, nml=patch, iostat=ios, iomsg=msg)
-    call check_read('patch', group_present(1))
+    call check_read('patch', 1)
     rewind (unit)
     if (group_present(2)) read (unit, nml=material, iostat=ios, iomsg=msg)
-    call check_read('material', group_present(2))
+    call check_read('material', 2)
     rewind (unit)
     if (group_present(3)) read (unit, nml=solver, iostat=ios, iomsg=msg)
-    call check_read('solver', group_present(3))
+    call check_read('solver', 3)
     rewind (unit)
     if (group_present(4)) read (unit, nml=output, iostat=ios, iomsg=msg)
-    call check_read('output', group_present(4))
+    call check_read('output', 4)
     rewind (unit)
     if (group_present(5)) read (unit, nml=normal, iostat=ios, iomsg=msg)
-    call check_read('normal', group_present(5))
+    call check_read('normal', 5)
+    rewind (unit)
     if (group_present(6)) read (unit, nml=fastsim, iostat=ios, iomsg=msg)
-    call check_read('fastsim', group_present(6))
+    call check_read('fastsim', 6)
     close (unit)
     if (status%failed()) return
 
     cfg%shape = lower(trim(adjustl(shape)))
     ! shape = 'contact' follows CONTACT's conventions unless &solver says otherwise
     if (len_trim(scheme) == 0) scheme = 'backward'
+    ! values written that the case would not use: refused, not ignored
+    where = 'input '''//path//''': '
+    if (mx /= unset_int .and. mx < 1) call fail(status, exit_bad_input, where//'&patch mx = '//itoa(mx)// &
+        ' (must be >= 1; leave mx out for the default)')
+    if (my /= unset_int .and. my < 1) call fail(status, exit_bad_input, where//'&patch my = '//itoa(my)// &
+        ' (must be >= 1; leave my out for the default)')
+    if (lower(trim(adjustl(scheme))) == 'collocation' .and. spin_shift /= unset) call fail(status, exit_bad_input, &
+        where//'&solver spin_shift = '//rtoa(spin_shift)//' is not used by scheme = ''collocation'' '// &
+        '(it moves the spin creepage of the backward scheme; leave it out or set scheme = ''backward'')')
+    if (lower(trim(adjustl(scheme))) == 'backward' .and. alpha /= unset) call fail(status, exit_bad_input, &
+        where//'&solver alpha = '//rtoa(alpha)//' is not used by scheme = ''backward'' '// &
+        '(it is the collocation point of scheme = ''collocation''; leave it out or change the scheme)')
+    if (cfg%shape /= 'ellipse' .and. semi_a /= unset) call fail(status, exit_bad_input, where// &
+        '&patch semi_a = '//rtoa(semi_a)//' is only used by shape = ''ellipse'' (shape = '''//cfg%shape// &
+        '''; leave it out)')
+    if (cfg%shape /= 'ellipse' .and. semi_b /= unset) call fail(status, exit_bad_input, where// &
+        '&patch semi_b = '//rtoa(semi_b)//' is only used by shape = ''ellipse'' (shape = '''//cfg%shape// &
+        '''; leave it out)')
+    cfg%spin_centre = lower(trim(adjustl(spin_centre)))
+    select case (cfg%spin_centre)
+    case ('origin', 'centroid')
+      if (cfg%spin_centre == 'centroid' .and. cfg%shape == 'gap') call fail(status, exit_bad_input, where// &
+          '&solver spin_centre = ''centroid'' is not available with shape = ''gap'' (the patch is found by the '// &
+          'normal problem; spin about the origin)')
+      if (spin_centre_x /= unset .or. spin_centre_y /= unset) call fail(status, exit_bad_input, where// &
+          '&solver spin_centre_x, spin_centre_y are only used by spin_centre = ''point'' (spin_centre = '''// &
+          cfg%spin_centre//''')')
+    case ('point')
+      if (spin_centre_x == unset .or. spin_centre_y == unset) call fail(status, exit_bad_input, where// &
+          '&solver spin_centre = ''point'' needs both spin_centre_x and spin_centre_y')
+      if (.not. (offset_in_range(spin_centre_x) .and. offset_in_range(spin_centre_y))) &
+        call fail(status, exit_bad_input, where//'&solver spin_centre_x, spin_centre_y = '// &
+                  rtoa(spin_centre_x)//', '//rtoa(spin_centre_y)//' (allowed: 0 or 1e-30 <= |x|, |y| <= 1e30)')
+      cfg%spin_centre_xy = [spin_centre_x, spin_centre_y]
+      if (cfg%shape == 'gap') call fail(status, exit_bad_input, where//'&solver spin_centre = ''point'' '// &
+          'is not available with shape = ''gap'' (the patch is found by the normal problem; spin about the origin)')
+    case default
+      call fail(status, exit_bad_input, where//'&solver spin_centre = '''//cfg%spin_centre// &
+                ''' (allowed: ''origin'', ''centroid'', ''point'' with spin_centre_x, spin_centre_y)')
+    end select
+    if (status%failed()) return
+    if (mx == unset_int) mx = 0        ! 0 from here on: not given
+    if (my == unset_int) my = 0
+    if (semi_a == unset) semi_a = 1
+    if (semi_b == unset) semi_b = 1
+    if (alpha == unset) alpha = 0.5_real64
+    cfg%x0_given = x0 /= unset
+    cfg%y0_given = y0 /= unset
+    if (x0 == unset) x0 = 0
+    if (y0 == unset) y0 = 0
     ! error control: CONTACT's grid is compared as given (no target unless asked);
     ! an ellipse without a grid and a mask are refined by kcreep to meet the target
     if (target_error == unset) target_error = merge(0.0_real64, default_target_error, &
@@ -286,13 +353,16 @@ contains
     cfg%solve%max_iterations = max_iterations
     cfg%solve%restart = restart
     cfg%solve%split_systems = split_systems
-    cfg%table_file = trim(table_file)
+    cfg%table_file = resolve_path(trim(table_file), folder_of(path))
     if (len(cfg%table_file) == 0) cfg%table_file = default_table_name(path)
-    cfg%traction_file = trim(traction_file)
-    cfg%pressure_file = trim(pressure_file)
-    cfg%contact_mask_file = trim(contact_mask_file)
-    cfg%gap_file = trim(gap_file)
-    cfg%contact_inp = trim(contact_inp)
+    ! every file name written in the namelist is relative to the namelist's folder
+    cfg%traction_file = resolve_path(trim(traction_file), folder_of(path))
+    cfg%mask_file = resolve_path(cfg%mask_file, folder_of(path))
+    cfg%contact_file = resolve_path(cfg%contact_file, folder_of(path))
+    cfg%pressure_file = resolve_path(trim(pressure_file), folder_of(path))
+    cfg%contact_mask_file = resolve_path(trim(contact_mask_file), folder_of(path))
+    cfg%gap_file = resolve_path(trim(gap_file), folder_of(path))
+    cfg%contact_inp = resolve_path(trim(contact_inp), folder_of(path))
     cfg%contact_inp_case = contact_inp_case
     cfg%poly = polynomial_gap_t(rx=rx, ry=ry, lx=lx, ly=ly, cx=cx, cy=cy)
     cfg%approach_given = approach /= unset
@@ -303,28 +373,14 @@ contains
     cfg%margin = margin
     cfg%normal%options%tolerance = normal_tolerance
     cfg%normal%options%max_iterations = normal_max_iterations
-    if (present(base_folder)) then
-      cfg%gap_file = resolve_path(cfg%gap_file, base_folder)
-      cfg%contact_inp = resolve_path(cfg%contact_inp, base_folder)
-      cfg%pressure_file = resolve_path(cfg%pressure_file, base_folder)
-      cfg%contact_mask_file = resolve_path(cfg%contact_mask_file, base_folder)
-      cfg%mask_file = resolve_path(cfg%mask_file, base_folder)
-      cfg%contact_file = resolve_path(cfg%contact_file, base_folder)
-      cfg%table_file = resolve_path(cfg%table_file, base_folder)
-      cfg%traction_file = resolve_path(cfg%traction_file, base_folder)
-    end if
 
     cfg%fastsim_on = group_present(6)
-    cfg%creep_file = trim(creep_file)
+    ! (like the default table, the default outputs go to the working folder)
+    cfg%creep_file = resolve_path(trim(creep_file), folder_of(path))
     if (len(cfg%creep_file) == 0) cfg%creep_file = default_output_name(path, '.creep')
-    cfg%creep_map_file = trim(creep_map_file)
+    cfg%creep_map_file = resolve_path(trim(creep_map_file), folder_of(path))
     if (maps .and. len(cfg%creep_map_file) == 0) cfg%creep_map_file = default_output_name(path, '.creepmap')
-    cfg%pressure_input_file = trim(pressure_input_file)
-    if (present(base_folder)) then
-      cfg%creep_file = resolve_path(cfg%creep_file, base_folder)
-      cfg%creep_map_file = resolve_path(cfg%creep_map_file, base_folder)
-      cfg%pressure_input_file = resolve_path(cfg%pressure_input_file, base_folder)
-    end if
+    cfg%pressure_input_file = resolve_path(trim(pressure_input_file), folder_of(path))
 
     call validate(cfg, mask_rows, nrows, load_cases, status)
     if (cfg%fastsim_on .and. .not. status%failed()) call validate_fastsim(status)
@@ -534,11 +590,13 @@ contains
       end if
     end subroutine validate_fastsim
 
-    subroutine check_read(group, was_present)
+    subroutine check_read(group, k)
       character(len=*), intent(in) :: group
-      logical, intent(in) :: was_present
-      if (.not. was_present .or. status%failed()) return
-      if (ios == iostat_end) then
+      integer, intent(in) :: k
+      if (.not. group_present(k) .or. status%failed()) return
+      if (ios == iostat_end .and. group_closed(k) .and. last_line_open) then
+        ios = 0                           ! read whole: its / was there, the newline after it was not
+      else if (ios == iostat_end) then
         call fail(status, exit_bad_input, 'input '''//path//''': namelist &'//group// &
                   ': end of file before the closing /')
       else if (ios /= 0) then
@@ -612,7 +670,7 @@ contains
       if (cfg%contact_case < 1) call fail(status, exit_bad_input, where//'&patch contact_case = '// &
           itoa(cfg%contact_case)//' (must be >= 1)')
       if (len(cfg%mask_file) > 0 .or. nrows > 0 .or. cfg%mx /= 0 .or. cfg%my /= 0 .or. cfg%dx /= 0 .or. &
-          cfg%dy /= 0 .or. cfg%x0 /= 0 .or. cfg%y0 /= 0) call fail(status, exit_bad_input, where// &
+          cfg%dy /= 0 .or. cfg%x0_given .or. cfg%y0_given) call fail(status, exit_bad_input, where// &
           '&patch shape = ''contact'' takes its grid and mask from contact_file (leave out mask_file, '// &
           'mask_rows, mx, my, dx, dy, x0, y0)')
     case ('gap')
@@ -710,6 +768,10 @@ contains
           call fail(status, exit_bad_input, 'input '''//cfg%input_path//''': &patch dx, dy = '// &
                     rtoa(cfg%dx)//', '//rtoa(cfg%dy)//' disagree with the header of mask_file '''// &
                     cfg%mask_file//''' ('//rtoa(patch%dx)//', '//rtoa(patch%dy)//'; leave them out)')
+        if ((cfg%x0_given .and. cfg%x0 /= patch%x0) .or. (cfg%y0_given .and. cfg%y0 /= patch%y0)) &
+          call fail(status, exit_bad_input, 'input '''//cfg%input_path//''': &patch x0, y0 = '// &
+                    rtoa(cfg%x0)//', '//rtoa(cfg%y0)//' disagree with the header of mask_file '''// &
+                    cfg%mask_file//''' ('//rtoa(patch%x0)//', '//rtoa(patch%y0)//'; leave them out)')
       else
         call parse_mask_rows(cfg%mask_rows, where, inside, status)
         if (status%failed()) return
@@ -771,6 +833,14 @@ contains
     problem%refine_grid = cfg%refine_grid .and. .not. cfg%extrapolate
     problem%extrapolate_levels = cfg%extrapolate_levels
     problem%refine_ratio = cfg%refine_ratio
+    select case (cfg%spin_centre)
+    case ('centroid')
+      problem%spin_centre = patch%centroid()
+    case ('point')
+      problem%spin_centre = cfg%spin_centre_xy
+    case default
+      problem%spin_centre = 0
+    end select
     if (cfg%shape == 'gap') problem%normal = cfg%normal
   end function problem_of
 

@@ -14,17 +14,22 @@ module kcreep_namelist_scan
 contains
 
   !> label: how the file is named in messages, e.g. "input 'a.nml'".
-  pure subroutine scan_namelist_text(text, label, group_names, present, status)
+  !> closed: the group's closing / (or &end) was seen.
+  pure subroutine scan_namelist_text(text, label, group_names, present, closed, status)
     character(len=*), intent(in) :: text, label
     character(len=*), intent(in) :: group_names(:)
     logical, intent(out) :: present(size(group_names))
     type(status_t), intent(inout) :: status
-    integer :: i, line, col, k, first, code, first_line(size(group_names))
+    logical, intent(out) :: closed(size(group_names))
+    integer :: i, line, col, k, first, code, first_line(size(group_names)), current
+    logical :: ended(size(group_names))
     logical :: inside
     character :: quote, c
     character(len=:), allocatable :: word
 
     present = .false.
+    ended = .false.
+    current = 0
     first_line = 0
     inside = .false.
     quote = ' '
@@ -60,10 +65,12 @@ contains
           quote = c
         else if (c == '/') then                   ! end of the group; the rest of the line is a comment
           inside = .false.
+          ended(current) = .true.
           call skip_line(text, i)
         else if (c == '&') then
           if (lower(name_at(i + 1)) == 'end') then
             inside = .false.
+            ended(current) = .true.
             call skip_line(text, i)
           end if
         end if
@@ -98,8 +105,10 @@ contains
       end if
       present(k) = .true.
       first_line(k) = line
+      current = k
       inside = .true.
     end do
+    closed = ended
 
   contains
 

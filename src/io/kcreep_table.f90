@@ -26,7 +26,7 @@ module kcreep_table
     'ebox_err11 ebox_err22 ebox_err23 ebox_errL1 ebox_errL2 ebox_errL3 '// &
     'emom_a emom_b emom_c11 emom_c22 emom_c23 emom_L1 emom_L2 emom_L3 '// &
     'emom_err11 emom_err22 emom_err23 emom_errL1 emom_errL2 emom_errL3 '// &
-    'err11 err22 err23'
+    'err11 err22 err23 xc yc'
 
 
 contains
@@ -37,12 +37,13 @@ contains
     type(run_record_t), intent(in) :: records(:)
     character(len=*), intent(in) :: warnings(:)
     character(len=line_length), allocatable :: lines(:)
-    character(len=*), parameter :: fixed(6) = [character(len=160) :: &
+    character(len=*), parameter :: fixed(7) = [character(len=160) :: &
       '# kcreep: creep coefficients of full-adhesion steady rolling', &
-      '# (Fx, Fy, Mz) = -[fij] (xi, eta, phi); rigid slip (xi - phi*y, eta + phi*x), leading edge at +x', &
+      '# (Fx, Fy, Mz) = -[fij] (xi, eta, phi); rigid slip (xi - phi*y, eta + phi*x), x, y from the spin centre', &
       '# c11 = f11/(g c^2), c22 = f22/(g c^2), c23 = f23/(g c^3); kltij: Kalker table E3 (ellipses)', &
       '# ebox_*, emom_*: equivalent ellipses (same area; a/b of the bounding box, of the second moments): '// &
       'Kalker''s C and L, err = ellipse / exact - 1', &
+      '# leading edge at +x; xc, yc: centroid of the patch cells (coordinates of the input)', &
       '# times in s; rcond: LAPACK 1-norm estimate; berr: backward error (iterative: relative residual)', &
       '# shape gap: fn approach pmax of the normal problem (n = cells in contact), its iterations and residual']
     integer :: k, nw
@@ -87,8 +88,10 @@ contains
         r%ellipse(k)%flex, r%ellipse(k)%c / r%cn - 1, r%ellipse(k)%flex / r%fastsim - 1
       line = line//trim(buf)
     end do
-    ! error estimates of c11 c22 c23 (kcreep_error_control): the last columns
+    ! error estimates of c11 c22 c23 (kcreep_error_control), then the centroid
     write (buf, '(3(1x, es10.3e3))') r%err
+    line = line//trim(buf)
+    write (buf, '(2(1x, es23.15e3))') r%centroid
     line = line//trim(buf)
   end function table_row
 

@@ -18,7 +18,7 @@ module kcreep_error_run
   use, intrinsic :: ieee_arithmetic, only: ieee_value, ieee_quiet_nan, ieee_is_nan
   use kcreep_status, only: status_t
   use kcreep_strings, only: itoa, rtoa
-  use kcreep_patch, only: patch_t, ellipse_patch
+  use kcreep_patch, only: patch_t, ellipse_patch, place_like
   use kcreep_problem, only: problem_t, result_t
   use kcreep_run, only: run_case, solve_cache_t
   use kcreep_extrapolation, only: refined_patch
@@ -93,6 +93,7 @@ contains
         end if
         call ellipse_patch(patch%semi_a, patch%semi_b, max(1, nint(patch%mx / 2.0_real64)), &
                            max(1, nint(patch%my / 2.0_real64)), aux%patch, status)
+        call place_like(aux%patch, patch)
       else
         if (4 * patch%n > max_level_cells) then
           line = 'no error estimate: the grid with every cell split in 2 x 2 would have '//itoa(4 * patch%n)// &
@@ -159,6 +160,7 @@ contains
           call ellipse_level_grid(a, b, want(k), mx, my)
           call ellipse_patch(a, b, mx, my, level_problem%patch, status)
           if (status%failed()) return
+          call place_like(level_problem%patch, problem%patch)
           call run_level(level_problem, want(k), result, fnorm, warnings, t, status)
           if (status%failed()) return
           done = [done, want(k)]

@@ -16,22 +16,59 @@
 !>   2 levels: p = 1 (the measured order); error estimate |f0 - f_finest|,
 !>             the size of the correction itself (no third level to judge it).
 module kcreep_extrapolation
-  use, intrinsic :: iso_fortran_env, only: real64
+  use, intrinsic :: iso_fortran_env, only: real64, int64
   use kcreep_status, only: status_t, fail, exit_bad_input
   use kcreep_strings, only: itoa, rtoa
-  use kcreep_patch, only: patch_t, ellipse_patch, mask_patch
-  use kcreep_dense, only: check_dense_memory
+  use kcreep_patch, only: patch_t, ellipse_patch, mask_patch, place_like
+  use kcreep_linear_solve, only: solve_memory_plan
   use kcreep_verdict, only: message_length
   use kcreep_problem, only: problem_t, result_t
   use kcreep_run, only: run_case
   implicit none
   private
-  public :: refined_patch, richardson_limit, run_extrapolated, order_min, order_max
+  public :: refined_patch, richardson_limit, run_extrapolated, order_min, order_max, memory_need
 
   !> Observed orders outside this range are not believed (first order is used).
   real(real64), parameter :: order_min = 0.5_real64, order_max = 3
 
 contains
+
+  !> Bytes the problem needs at its peak and the solve path of that moment:
+  !> each grid it solves (its own, or every extrapolation level) for the
+  !> method that grid will take ('auto' decided as run_case will decide it,
+  !> with the same memory limit), plus the operator table (about 40 reals per
+  !> grid cell). level: the level of the peak (1 without extrapolation).
+  subroutine memory_need(problem, bytes, method, level, status)
+    type(problem_t), intent(in) :: problem
+    integer(int64), intent(out) :: bytes
+    character(len=:), allocatable, intent(out) :: method
+    integer, intent(out) :: level
+    type(status_t), intent(inout) :: status
+    type(patch_t) :: fine
+    integer(int64) :: b
+    character(len=:), allocatable :: m
+    integer :: k, levels
+    bytes = -1
+    level = 1
+    method = ''
+    levels = merge(problem%extrapolate_levels, 1, problem%extrapolate)
+    do k = 1, levels
+      if (k == 1) then
+        call solve_memory_plan(problem%solve, problem%nu, problem%patch, problem%requested, b, m)
+        b = b + 320 * int(problem%patch%mx, int64) * problem%patch%my
+      else
+        call refined_patch(problem%patch, problem%refine_ratio**(k - 1), fine, status)
+        if (status%failed()) return
+        call solve_memory_plan(problem%solve, problem%nu, fine, problem%requested, b, m)
+        b = b + 320 * int(fine%mx, int64) * fine%my
+      end if
+      if (b > bytes) then
+        bytes = b
+        method = m
+        level = k
+      end if
+    end do
+  end subroutine memory_need
 
   !> The patch refined by an integer factor in both directions.
   subroutine refined_patch(patch, factor, fine, status)
@@ -44,6 +81,7 @@ contains
 
     if (patch%kind == 'ellipse') then
       call ellipse_patch(patch%semi_a, patch%semi_b, patch%mx * factor, patch%my * factor, fine, status)
+      call place_like(fine, patch)
       return
     end if
     allocate (inside(patch%mx * factor, patch%my * factor))
@@ -104,18 +142,23 @@ contains
     real(real64) :: values(problem%extrapolate_levels, 3), t(4), area_ratio
     real(real64), parameter :: pi = acos(-1.0_real64)
     logical :: observed
-    integer :: level, i, factor, levels, ratio
+    integer :: level, i, factor, levels, ratio, peak
+    integer(int64) :: need
+    character(len=:), allocatable :: peak_method
 
     allocate (warnings(0))
     levels = problem%extrapolate_levels
     ratio = problem%refine_ratio
     factor = ratio**(levels - 1)
-    ! the finest level decides whether the study fits in memory: say so before any work
-    call check_dense_memory(int(min(huge(1) / 2.0_real64, real(problem%patch%n, real64) * factor**2)), &
-                            problem%solve%memory_limit, status)
-    if (status%failed()) then
-      status%message = status%message//' (the finest of '//itoa(levels)// &
-                       ' extrapolation levels; use a coarser grid, fewer levels or a smaller refine_ratio)'
+    ! every level on the path it will take must fit: say so before any work
+    call memory_need(problem, need, peak_method, peak, status)
+    if (status%failed()) return
+    if (problem%solve%memory_limit > 0 .and. need > problem%solve%memory_limit) then
+      call fail(status, exit_bad_input, 'extrapolation level '//itoa(peak)//' of '//itoa(levels)//' ('// &
+                itoa(problem%patch%mx * ratio**(peak - 1))//' x '//itoa(problem%patch%my * ratio**(peak - 1))// &
+                ' cells, '//peak_method//' solver) needs '//rtoa(real(need, real64) / 2.0_real64**30)// &
+                ' GiB, only '//rtoa(real(problem%solve%memory_limit, real64) / 2.0_real64**30)// &
+                ' GiB are available (use a coarser grid, fewer levels, a smaller refine_ratio or method = ''auto'')')
       return
     end if
     t = 0

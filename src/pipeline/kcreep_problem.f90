@@ -47,6 +47,10 @@ module kcreep_problem
     !> kcreep may choose the grids (ellipse: near-square cells) or split the
     !> cells (mask) to meet target_error; false: the grid is solved as given.
     logical :: refine_grid = .false.
+    !> The point (x, y) about which the spin phi turns and the moment Mz is
+    !> taken (the rigid slip is xi - phi (y - ys), eta + phi (x - xs)); the
+    !> coordinate origin by default.
+    real(real64) :: spin_centre(2) = 0
     type(normal_problem_t) :: normal            !< patch from the normal contact problem
   end type problem_t
 
@@ -60,6 +64,7 @@ module kcreep_problem
     real(real64) :: klt(3) = 0                  !< Kalker's table E3 for an ellipse, NaN otherwise
     real(real64) :: fastsim(3) = 0              !< FASTSIM flexibilities L1, L2, L3
     real(real64) :: centroid(2) = 0             !< centre of area of the patch cells
+    real(real64) :: spin_centre(2) = 0          !< as given in the problem
     !> the equivalent ellipses (same area; a/b of the bounding box, of the second moments) with
     !> Kalker's coefficients and flexibilities (kcreep_equivalent_ellipse)
     type(equivalent_ellipse_t) :: ellipse(2)

@@ -83,8 +83,14 @@ contains
     call check_dense_memory(ceiling(sqrt(2.0_real64) * patch%n), memory_limit, status)   ! two matrices: 2 (2n)^2 doubles
     if (status%failed()) return
     call system_clock(t0, rate)
-    allocate (a(m, m), af(m, m), ipiv(m), rs(m), cs(m), ferr(nrhs), berr(nrhs), work(4 * m), iwork(m))
-    allocate (x(m, nrhs), r(m, nrhs))
+    allocate (a(m, m), af(m, m), ipiv(m), rs(m), cs(m), ferr(nrhs), berr(nrhs), work(4 * m), iwork(m), &
+              x(m, nrhs), r(m, nrhs), stat=info)
+    if (info /= 0) then
+      call fail(status, exit_numerical, 'out of memory: the two dense matrices of '//itoa(m)//' unknowns ('// &
+                rtoa(16 * real(m, real64)**2 / 2.0_real64**30)//' GiB) could not be allocated '// &
+                '(use a coarser grid, another refine mode or method = ''iterative'')')
+      return
+    end if
     call assemble_dense(patch, table, a)
     call system_clock(t1)
     diag%t_assemble = real(t1 - t0, real64) / rate

@@ -1,0 +1,152 @@
+"""scripts/run_cases.sh skips a case only when nothing it reads has changed
+since its table was made: the namelist, the mask file, the CONTACT output
+(and its .mat files) and the kcreep binary, compared by content, whatever
+their modification times say. An unchanged case is still skipped (resume).
+
+    test_run_cases.py PATH/TO/kcreep PATH/TO/run_cases.sh
+"""
+import os
+import re
+import shutil
+import subprocess
+import sys
+
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+import kctest  # noqa: E402
+
+RUN_CASES = os.path.abspath(sys.argv[2]) if len(sys.argv) > 2 else None
+
+
+def write(path, text, mtime=None):
+    with open(path, "w") as f:
+        f.write(text)
+    if mtime is not None:
+        os.utime(path, (mtime, mtime))
+
+
+def mask(mx, my, cells):
+    """A mask file of mx x my cells of size 0.1 whose first `cells` cells (row by row) are in."""
+    rows = []
+    k = 0
+    for _ in range(my):
+        row = ""
+        for _ in range(mx):
+            row += "1" if k < cells else "0"
+            k += 1
+        rows.append(row)
+    return f"{mx} {my} 0.1 0.1 0 0\n" + "\n".join(rows) + "\n"
+
+
+def run_cases(folder, kcreep):
+    proc = subprocess.run(["bash", RUN_CASES, "--jobs", "1", "cases.list", "all.tab"], cwd=folder,
+                          capture_output=True, text=True, env=dict(os.environ, KCREEP=kcreep))
+    m = re.search(r"\((\d+) already done\)", proc.stdout)
+    skipped = int(m.group(1)) if m else -1
+    rows = kctest.read_table(os.path.join(folder, "all.tab")) if proc.returncode == 0 else []
+    return proc.returncode, skipped, rows, proc.stdout + proc.stderr
+
+
+def main():
+    scratch = kctest.setup()
+    if RUN_CASES is None:
+        sys.exit("usage: test_run_cases.py PATH/TO/kcreep PATH/TO/run_cases.sh")
+    folder = os.path.join(scratch, "study")
+    os.makedirs(os.path.join(folder, "m"))
+    # mask case in a sub-folder (mask file beside its namelist), an inline-mask case, an ellipse
+    write(os.path.join(folder, "m", "masked.nml"),
+          "&patch shape = 'mask', mask_file = 'masked.mask' /\n&solver method = 'dense', target_error = 0 /\n")
+    write(os.path.join(folder, "m", "masked.mask"), mask(12, 12, 100))
+    write(os.path.join(folder, "inline.nml"),
+          "&patch shape = 'mask', dx = 0.1, dy = 0.1, mask_rows = '1111', '1111', '1111' /\n&solver target_error = 0 /\n")
+    write(os.path.join(folder, "ellipse.nml"), "&patch mx = 12, my = 12 /\n")
+    write(os.path.join(folder, "cases.list"), "m/masked.nml\ninline.nml\nellipse.nml\n")
+
+    rc, skipped, rows, log = run_cases(folder, kctest.KCREEP)
+    kctest.check(rc == 0 and len(rows) == 3, f"first run: 3 rows (exit {rc}) {log[-300:]!r}")
+    kctest.check(skipped == 0, f"first run: nothing skipped ({skipped})")
+    n_before = rows[0]["n"] if rows else None
+    kctest.check(n_before == 100, f"first run: the mask case has 100 cells ({n_before})")
+
+    rc, skipped, rows, log = run_cases(folder, kctest.KCREEP)
+    kctest.check(rc == 0 and skipped == 3, f"second run, nothing changed: all 3 skipped ({skipped})")
+
+    # Rewrite the mask: 80 cells. Its mtime is set back into the past, older
+    # than the table: only a comparison of contents sees the change.
+    old = os.path.getmtime(os.path.join(folder, "m", "masked.mask"))
+    write(os.path.join(folder, "m", "masked.mask"), mask(12, 12, 80), mtime=old - 3600)
+    rc, skipped, rows, log = run_cases(folder, kctest.KCREEP)
+    kctest.check(rc == 0 and skipped == 2, f"mask rewritten: only the mask case runs again ({skipped} skipped)")
+    n_after = rows[0]["n"] if rows else None
+    kctest.check(n_after == 80, f"mask rewritten: the table has the new cell count 80 ({n_after})")
+
+    # The same for a change of the namelist itself whose mtime stays old.
+    nml = os.path.join(folder, "inline.nml")
+    old = os.path.getmtime(nml)
+    write(nml, "&patch shape = 'mask', dx = 0.1, dy = 0.1, mask_rows = '111', '111', '111' /\n&solver target_error = 0 /\n", mtime=old - 3600)
+    rc, skipped, rows, log = run_cases(folder, kctest.KCREEP)
+    n_inline = rows[1]["n"] if len(rows) > 1 else None
+    kctest.check(rc == 0 and skipped == 2 and n_inline == 9,
+                 f"namelist rewritten with an old mtime: run again, 9 cells ({skipped} skipped, n = {n_inline})")
+
+    # A mask file that is now read from elsewhere: the namelist names another file.
+    write(os.path.join(folder, "m", "other.mask"), mask(12, 12, 50))
+    nml = os.path.join(folder, "m", "masked.nml")
+    old = os.path.getmtime(nml)
+    write(nml, "&patch shape = 'mask', MASK_FILE = \"other.mask\" /\n&solver method = 'dense', target_error = 0 /\n",
+          mtime=old - 3600)
+    rc, skipped, rows, log = run_cases(folder, kctest.KCREEP)
+    kctest.check(rows and rows[0]["n"] == 50, f"namelist names another mask file: 50 cells "
+                 f"({rows[0]['n'] if rows else None})")
+    # ... and that file changes in place (same size, old mtime)
+    old = os.path.getmtime(os.path.join(folder, "m", "other.mask"))
+    write(os.path.join(folder, "m", "other.mask"), mask(12, 12, 51), mtime=old - 3600)
+    rc, skipped, rows, log = run_cases(folder, kctest.KCREEP)
+    kctest.check(rows and rows[0]["n"] == 51, f"the other mask rewritten: 51 cells "
+                 f"({rows[0]['n'] if rows else None})")
+
+    # CONTACT output: the .out and its .mat files are inputs as well.
+    samples = os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "shared", "contact-samples")
+    sample = None
+    if os.path.isdir(samples):
+        for name in sorted(os.listdir(samples)):
+            if name.endswith(".out") and any(f.startswith(name[:-4] + ".") and f.endswith(".mat")
+                                             for f in os.listdir(samples)):
+                sample = name[:-4]
+                break
+    kctest.check(sample is not None, f"a CONTACT sample with .mat files in {samples}")
+    if sample:
+        cdir = os.path.join(folder, "c")
+        os.makedirs(cdir)
+        for f in os.listdir(samples):
+            if f.startswith(sample + "."):
+                shutil.copy(os.path.join(samples, f), cdir)
+        write(os.path.join(cdir, "c.nml"), f"&patch shape = 'contact', contact_file = '{sample}.out' /\n")
+        write(os.path.join(folder, "cases.list"), "c/c.nml\n")
+        rc, skipped, rows, log = run_cases(folder, kctest.KCREEP)
+        kctest.check(rc == 0 and skipped == 0, f"CONTACT case runs ({log[-300:]!r})")
+        rc, skipped, rows, log = run_cases(folder, kctest.KCREEP)
+        kctest.check(rc == 0 and skipped == 1, f"CONTACT case unchanged: skipped ({skipped})")
+        mat = sorted(f for f in os.listdir(cdir) if f.endswith(".mat"))[0]
+        path = os.path.join(cdir, mat)
+        old = os.path.getmtime(path)
+        with open(path, "a") as f:
+            f.write("\n")
+        os.utime(path, (old - 3600, old - 3600))
+        rc, skipped, rows, log = run_cases(folder, kctest.KCREEP)
+        kctest.check(skipped == 0, f"CONTACT .mat file changed: run again ({skipped} skipped)")
+
+    # A new kcreep binary makes every result stale.
+    write(os.path.join(folder, "cases.list"), "ellipse.nml\n")
+    rc, skipped, rows, log = run_cases(folder, kctest.KCREEP)
+    kctest.check(skipped == 1, f"before the binary changes: skipped ({skipped})")
+    other = os.path.join(scratch, "kcreep-copy")
+    shutil.copy(kctest.KCREEP, other)
+    with open(other, "ab") as f:
+        f.write(b"\0")
+    rc, skipped, rows, log = run_cases(folder, other)
+    kctest.check(rc == 0 and skipped == 0, f"another kcreep binary: the case runs again ({skipped} skipped)")
+    kctest.finish()
+
+
+if __name__ == "__main__":
+    main()
