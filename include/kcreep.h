@@ -47,8 +47,10 @@ int kcreep_set_scheme(kcreep_handle handle, const char *name, double alpha, doub
 int kcreep_set_solver(kcreep_handle handle, const char *method, double tolerance);
 int kcreep_set_extrapolation(kcreep_handle handle, int levels, int ratio);   /* levels 0: off */
 /* Error control: relative target for C11, C22 (C23: 3 times it; 0: none);
- * refine_grid != 0 lets kcreep choose the grids (ellipse) or split cells (mask). */
-int kcreep_set_error_control(kcreep_handle handle, double target_error, int refine_grid);
+ * refine_grid != 0 lets kcreep choose the grids (ellipse) or split cells (mask);
+ * estimate 0 (with target 0) skips the estimate of a given grid, which costs
+ * one more solve (default 1): for loops whose grid was judged once. */
+int kcreep_set_error_control(kcreep_handle handle, double target_error, int refine_grid, int estimate);
 
 /* Geometry: an ellipse on an mx x my grid over [-a, a] x [-b, b], or a mask
  * inside[iy * mx + ix] != 0 (rows in increasing y) with cell sizes dx, dy and
@@ -85,6 +87,12 @@ int kcreep_get_tractions(kcreep_handle handle, int length, double *t, int *ix, i
 int kcreep_get_diagnostics(kcreep_handle handle, int *iterations, double *residual, double *rcond,
                            double *seconds);
 int kcreep_get_reuse_count(kcreep_handle handle, int *count);
+/* All numbers of the last solve in one call (length >= 33): [0..8] f row by
+ * row, [9..11] C11 C22 C23, [12..14] L1 L2 L3, [15..17] relative error
+ * estimates, [18..20] extrapolated C, [21..23] their errors, [24] iterations,
+ * [25] residual, [26] rcond, [27] seconds, [28] cells, [29] mx, [30] my,
+ * [31] verdict bits, [32] number of warnings. */
+int kcreep_get_results(kcreep_handle handle, int length, double *values);
 /* After a solve with kcreep_set_gap: total force, approach, maximum pressure,
  * cells in contact, iterations of the normal solve. */
 int kcreep_get_normal(kcreep_handle handle, double *fn, double *approach, double *pmax, int *cells,

@@ -68,7 +68,8 @@ _signatures = {
     "kcreep_get_cells": ([_h, ctypes.POINTER(_i), ctypes.POINTER(_i), ctypes.POINTER(_i)], _i),
     "kcreep_get_tractions": ([_h, _i, _p, _p, _p], _i),
     "kcreep_get_reuse_count": ([_h, ctypes.POINTER(_i)], _i),
-    "kcreep_set_error_control": ([_h, _d, _i], _i),
+    "kcreep_get_results": ([_h, _i, _p], _i),
+    "kcreep_set_error_control": ([_h, _d, _i, _i], _i),
     "kcreep_get_relative_error": ([_h, _p], _i),
     "kcreep_set_gap": ([_h, _i, _i, _p, _d, _d, _d, _d, _d, _d], _i),
     "kcreep_get_normal": ([_h, ctypes.POINTER(_d), ctypes.POINTER(_d), ctypes.POINTER(_d), ctypes.POINTER(_i),
@@ -104,9 +105,10 @@ class Solver:
 
     def __init__(self, *, nu=0.25, g=1.0, scheme="backward", alpha=0.5, spin_shift=0.0,
                  method="auto", tolerance=0.0, extrapolate_levels=0, refine_ratio=2,
-                 target_error=0.0, refine_grid=False):
+                 target_error=0.0, refine_grid=False, estimate_error=True):
         self._handle = _h(_lib.kcreep_new())
-        self._check(_lib.kcreep_set_error_control(self._handle, target_error, int(bool(refine_grid))))
+        self._check(_lib.kcreep_set_error_control(self._handle, target_error, int(bool(refine_grid)),
+                                                  int(bool(estimate_error))))
         self._check(_lib.kcreep_set_material(self._handle, g, nu))
         self._check(_lib.kcreep_set_scheme(self._handle, scheme.encode(), alpha, spin_shift))
         self._check(_lib.kcreep_set_solver(self._handle, method.encode(), tolerance))
@@ -179,30 +181,23 @@ class Solver:
         return count.value
 
     def _result(self, tractions):
+        # one call for all numbers (each ctypes call costs microseconds in a loop)
         r = Result()
-        f = np.empty(9)
-        self._check(_lib.kcreep_get_matrix(self._handle, f.ctypes.data))
-        r.f = f.reshape(3, 3)
-        r.c = np.empty(3)
-        self._check(_lib.kcreep_get_normalised(self._handle, r.c.ctypes.data))
-        r.fastsim = np.empty(3)
-        self._check(_lib.kcreep_get_fastsim(self._handle, r.fastsim.ctypes.data))
-        r.err = np.empty(3)
-        self._check(_lib.kcreep_get_relative_error(self._handle, r.err.ctypes.data))
-        r.ext, r.ext_error = np.empty(3), np.empty(3)
-        self._check(_lib.kcreep_get_error_estimate(self._handle, r.ext.ctypes.data, r.ext_error.ctypes.data))
-        flags = _i()
-        buffer = ctypes.create_string_buffer(8192)
-        self._check(_lib.kcreep_get_verdict(self._handle, ctypes.byref(flags), buffer, len(buffer)))
-        parts = buffer.value.decode(errors="replace").split("; ")
-        r.verdict, r.warnings, r.verdict_flags = parts[0], parts[1:], flags.value
-        n, mx, my = _i(), _i(), _i()
-        self._check(_lib.kcreep_get_cells(self._handle, ctypes.byref(n), ctypes.byref(mx), ctypes.byref(my)))
-        r.n, r.mx, r.my = n.value, mx.value, my.value
-        iterations, residual, rcond, seconds = _i(), _d(), _d(), _d()
-        self._check(_lib.kcreep_get_diagnostics(self._handle, ctypes.byref(iterations), ctypes.byref(residual),
-                                                ctypes.byref(rcond), ctypes.byref(seconds)))
-        r.iterations, r.residual, r.rcond, r.seconds = iterations.value, residual.value, rcond.value, seconds.value
+        v = np.empty(33)
+        self._check(_lib.kcreep_get_results(self._handle, 33, v.ctypes.data))
+        r.f = v[0:9].reshape(3, 3)
+        r.c, r.fastsim, r.err = v[9:12], v[12:15], v[15:18]
+        r.ext, r.ext_error = v[18:21], v[21:24]
+        r.iterations, r.residual, r.rcond, r.seconds = int(v[24]), v[25], v[26], v[27]
+        r.n, r.mx, r.my, r.verdict_flags = int(v[28]), int(v[29]), int(v[30]), int(v[31])
+        if r.verdict_flags == 0 and v[32] == 0:
+            r.verdict, r.warnings = "ok", []
+        else:
+            flags = _i()
+            buffer = ctypes.create_string_buffer(8192)
+            self._check(_lib.kcreep_get_verdict(self._handle, ctypes.byref(flags), buffer, len(buffer)))
+            parts = buffer.value.decode(errors="replace").split("; ")
+            r.verdict, r.warnings = parts[0], parts[1:]
         if tractions:
             t = np.empty(6 * r.n)
             r.ix, r.iy = np.empty(r.n, dtype=np.intc), np.empty(r.n, dtype=np.intc)

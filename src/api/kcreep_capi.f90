@@ -142,12 +142,14 @@ contains
   !> Error control: target_error (relative, for C11 and C22; C23 gets 3 times
   !> it; 0: none) and whether kcreep may choose the grids (ellipse: near-square
   !> cells) or split the cells (mask) to meet it (refine_grid != 0); with
-  !> refine_grid 0 the grid is solved as given and only judged.
-  integer(c_int) function c_set_error_control(handle, target_error, refine_grid) &
+  !> refine_grid 0 the grid is solved as given and only judged. estimate 0
+  !> with target 0 skips the judging (one more solve on a coarser or split
+  !> grid): for loops over similar patches whose grid was judged once.
+  integer(c_int) function c_set_error_control(handle, target_error, refine_grid, estimate) &
     bind(c, name='kcreep_set_error_control')
     type(c_ptr), value :: handle
     real(c_double), value :: target_error
-    integer(c_int), value :: refine_grid
+    integer(c_int), value :: refine_grid, estimate
     type(handle_t), pointer :: h
     c_set_error_control = begin(handle, h)
     if (c_set_error_control /= status_ok) return
@@ -156,6 +158,7 @@ contains
     else
       h%problem%target_error = target_error
       h%problem%refine_grid = refine_grid /= 0
+      h%problem%estimate_error = estimate /= 0
     end if
     c_set_error_control = finish(h)
   end function c_set_error_control
@@ -520,6 +523,42 @@ contains
       adhered = [(points(k)%force%adhesion, k=1, n)]
     end if
   end function c_fastsim
+
+  !> Everything numeric of the last solve in one call (for bindings, where
+  !> each call costs): values(1:9) f row by row, (10:12) C11 C22 C23,
+  !> (13:15) L1 L2 L3, (16:18) relative error estimates, (19:21) extrapolated
+  !> C, (22:24) their errors, (25) GMRES iterations, (26) residual or backward
+  !> error, (27) rcond, (28) seconds, (29) cells, (30) mx, (31) my, (32)
+  !> verdict bits, (33) number of warnings. length: at least 33.
+  integer(c_int) function c_get_results(handle, length, values) bind(c, name='kcreep_get_results')
+    type(c_ptr), value :: handle, values
+    integer(c_int), value :: length
+    type(handle_t), pointer :: h
+    real(c_double), pointer :: v(:)
+    real(wp) :: nan
+    c_get_results = solved(handle, h)
+    if (c_get_results /= status_ok) return
+    if (length < 33) then
+      call fail(h%last, exit_bad_input, 'kcreep_get_results: length must be at least 33')
+      c_get_results = finish(h)
+      return
+    end if
+    c_get_results = output_array(h, values, 33, 'kcreep_get_results: values', v)
+    if (c_get_results /= status_ok) return
+    nan = ieee_value(1.0_wp, ieee_quiet_nan)
+    associate (r => h%result)
+      v(1:9) = reshape(transpose(r%f), [9])
+      v(10:12) = r%cn
+      v(13:15) = r%fastsim
+      v(16:18) = r%err
+      v(19:21) = merge(r%ext, [nan, nan, nan], r%extrapolated)
+      v(22:24) = merge(r%ext_error, [nan, nan, nan], r%extrapolated)
+      v(25:31) = [real(r%iterations, wp), r%backward_error, r%rcond, r%t_total, real(r%n, wp), real(r%mx, wp), &
+                  real(r%my, wp)]
+      v(32) = r%verdict_flags
+      v(33) = size(r%warnings)
+    end associate
+  end function c_get_results
 
   !> Solves on this handle that reused the operator table of an earlier one.
   integer(c_int) function c_get_reuse_count(handle, count) bind(c, name='kcreep_get_reuse_count')

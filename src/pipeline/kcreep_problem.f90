@@ -47,6 +47,11 @@ module kcreep_problem
     !> kcreep may choose the grids (ellipse: near-square cells) or split the
     !> cells (mask) to meet target_error; false: the grid is solved as given.
     logical :: refine_grid = .false.
+    !> With target_error = 0: still estimate the error of the given grid (one
+    !> more solve on a coarser or split grid). Off only in loops that solve the
+    !> same kind of patch over and over and judged its grid once (the C API's
+    !> kcreep_set_error_control); the estimate is then NaN.
+    logical :: estimate_error = .true.
     !> The point (x, y) about which the spin phi turns and the moment Mz is
     !> taken (the rigid slip is xi - phi (y - ys), eta + phi (x - xs)); the
     !> coordinate origin by default.

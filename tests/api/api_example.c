@@ -169,6 +169,9 @@ int main(int argc, char **argv) {
     int repeats = argc > 2 ? atoi(argv[2]) : 50;
     const char *shape = argc > 3 ? argv[3] : "ellipse";
     if (argc > 4) must(h, kcreep_set_solver(h, argv[4], 0), "kcreep_set_solver");
+    /* the grid is judged once outside the loop; argv[5] = "estimate" keeps the per-call estimate */
+    must(h, kcreep_set_error_control(h, 0, 0, argc > 5 && strcmp(argv[5], "estimate") == 0),
+         "kcreep_set_error_control");
     int *inside = circle_mask(40);
     double *times = malloc(sizeof(double) * repeats);
     long total_iterations = 0;
