@@ -117,6 +117,11 @@ def section_given():
                            ("alpha", "backward")),
         "semi_mask": ("&patch shape='mask', mask_rows='##', dx=1, dy=1, semi_a=2 /\n", ("semi_a", "mask")),
         "x0_maskfile": ("&patch shape='mask', mask_file='g.mask', x0=5 /\n", ("x0", "g.mask")),
+        "tol_dense": ("&patch mx=10, my=10 /\n&solver method='dense', tolerance=1e-9 /\n", ("tolerance", "dense")),
+        "restart_dense": ("&patch mx=10, my=10 /\n&solver method='dense', restart=20 /\n", ("restart", "dense")),
+        "refine_iter": ("&patch mx=10, my=10 /\n&solver method='iterative', refine='always' /\n",
+                        ("refine", "iterative")),
+        "levels_noext": ("&patch mx=10, my=10 /\n&solver extrapolate_levels=2 /\n", ("extrapolate_levels", "extrapolate")),
     }
     write(os.path.join(folder, "g.mask"), "2 1 0.25 0.25 0 0\n##\n")
     for name, (text, words) in cases.items():

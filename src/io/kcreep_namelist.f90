@@ -172,13 +172,13 @@ contains
     spin_centre_x = unset
     spin_centre_y = unset
     extrapolate = .false.
-    extrapolate_levels = 3
-    refine_ratio = 2
-    refine = 'auto'
+    extrapolate_levels = unset_int   ! (unset: given values that would go unused are refused below)
+    refine_ratio = unset_int
+    refine = ''
     method = 'auto'
-    tolerance = cfg%solve%tolerance
-    max_iterations = cfg%solve%max_iterations
-    restart = cfg%solve%restart
+    tolerance = unset
+    max_iterations = unset_int
+    restart = unset_int
     split_systems = cfg%solve%split_systems
     table_file = ''
     traction_file = ''
@@ -304,7 +304,25 @@ contains
       call fail(status, exit_bad_input, where//'&solver spin_centre = '''//cfg%spin_centre// &
                 ''' (allowed: ''origin'', ''centroid'', ''point'' with spin_centre_x, spin_centre_y)')
     end select
+    ! solver settings of a path the case does not take
+    if (.not. extrapolate .and. (extrapolate_levels /= unset_int .or. refine_ratio /= unset_int)) &
+      call fail(status, exit_bad_input, where//'&solver extrapolate_levels and refine_ratio are only used with '// &
+                'extrapolate = .true. (leave them out, or set extrapolate = .true.)')
+    if (lower(trim(adjustl(method))) == 'dense' .and. &
+        (tolerance /= unset .or. max_iterations /= unset_int .or. restart /= unset_int)) &
+      call fail(status, exit_bad_input, where//'&solver tolerance, max_iterations and restart are the '// &
+                'iterative solver''s; method = ''dense'' does not use them (leave them out, or use method = '// &
+                '''iterative'' or ''auto'')')
+    if (lower(trim(adjustl(method))) == 'iterative' .and. len_trim(refine) > 0) &
+      call fail(status, exit_bad_input, where//'&solver refine = '''//trim(refine)//''' is the dense LU''s '// &
+                'refinement; method = ''iterative'' does not use it (leave it out, or use method = ''dense'')')
     if (status%failed()) return
+    if (extrapolate_levels == unset_int) extrapolate_levels = 3
+    if (refine_ratio == unset_int) refine_ratio = 2
+    if (len_trim(refine) == 0) refine = 'auto'
+    if (tolerance == unset) tolerance = cfg%solve%tolerance
+    if (max_iterations == unset_int) max_iterations = cfg%solve%max_iterations
+    if (restart == unset_int) restart = cfg%solve%restart
     if (mx == unset_int) mx = 0        ! 0 from here on: not given
     if (my == unset_int) my = 0
     if (semi_a == unset) semi_a = 1
