@@ -44,6 +44,10 @@ int kcreep_get_message(kcreep_handle handle, char *buffer, int buffer_length);
 /* Settings (defaults: g = 1, nu = 0.25, scheme "collocation" alpha 0.5, method "auto"). */
 int kcreep_set_material(kcreep_handle handle, double g, double nu);
 int kcreep_set_scheme(kcreep_handle handle, const char *name, double alpha, double spin_shift);
+/* Or the two bodies: Young's moduli and Poisson ratios, combined as CONTACT does. */
+int kcreep_set_bodies(kcreep_handle handle, double e1, double nu1, double e2, double nu2);
+/* The point the spin turns about and Mz is taken at (default the origin). */
+int kcreep_set_spin_centre(kcreep_handle handle, double x, double y);
 int kcreep_set_solver(kcreep_handle handle, const char *method, double tolerance);
 int kcreep_set_extrapolation(kcreep_handle handle, int levels, int ratio);   /* levels 0: off */
 /* Error control: relative target for C11, C22 (C23: 3 times it; 0: none);

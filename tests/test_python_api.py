@@ -116,6 +116,19 @@ try:
 except kcreep.KcreepError as e:
     kc.check("exactly one" in str(e), f"KcreepError: {e}")
 
+# the spin centre: about (xs, ys) the phi column is f(:, 3) - xs f(:, 2) + ys f(:, 1) (the
+# rigid slip xi - phi (y - ys), eta + phi (x - xs)); the same discrete operator, so to round-off
+about = kcreep.Solver(nu=0.25, spin_centre=(0.3, -0.2)).solve_mask(inside, 1.0 / 12, 1.0 / 12, x0=-1.5 + 1 / 24,
+                                                                     y0=-1 + 1 / 24)
+origin = kcreep.Solver(nu=0.25).solve_mask(inside, 1.0 / 12, 1.0 / 12, x0=-1.5 + 1 / 24, y0=-1 + 1 / 24)
+expected = origin.f[:2, 2] - 0.3 * origin.f[:2, 1] + (-0.2) * origin.f[:2, 0]
+kc.check(np.max(np.abs(about.f[:2, 2] - expected)) <= 1e-9 * np.max(np.abs(origin.f)),
+         f"spin centre (0.3, -0.2): f13, f23 {about.f[:2, 2]} vs {expected}")
+# two bodies given by E and nu: steel on steel is g = E / (2 (1 + nu)), nu
+steel = kcreep.Solver(bodies=(210000.0, 0.28, 210000.0, 0.28)).solve_ellipse(1, 1, 20, 20)
+plain = kcreep.Solver(g=210000.0 / 2.56, nu=0.28).solve_ellipse(1, 1, 20, 20)
+kc.check(np.max(np.abs(steel.f - plain.f)) <= 1e-12 * np.max(np.abs(plain.f)), "bodies (E, nu) = combined g, nu")
+
 # kcreep.table reads the command line's table
 rows = kcreep.table.read(os.path.join(folder, "circle.tab"))
 kc.check(len(rows) == 1 and rows[0]["case"] == "circle" and rows[0]["f11"] == row["f11"], "kcreep.table.read")

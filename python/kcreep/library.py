@@ -71,6 +71,8 @@ _signatures = {
     "kcreep_get_results": ([_h, _i, _p], _i),
     "kcreep_set_error_control": ([_h, _d, _i, _i], _i),
     "kcreep_get_relative_error": ([_h, _p], _i),
+    "kcreep_set_bodies": ([_h, _d, _d, _d, _d], _i),
+    "kcreep_set_spin_centre": ([_h, _d, _d], _i),
     "kcreep_set_gap": ([_h, _i, _i, _p, _d, _d, _d, _d, _d, _d], _i),
     "kcreep_get_normal": ([_h, ctypes.POINTER(_d), ctypes.POINTER(_d), ctypes.POINTER(_d), ctypes.POINTER(_i),
                            ctypes.POINTER(_i)], _i),
@@ -105,14 +107,17 @@ class Solver:
 
     def __init__(self, *, nu=0.25, g=1.0, scheme="backward", alpha=0.5, spin_shift=0.0,
                  method="auto", tolerance=0.0, extrapolate_levels=0, refine_ratio=2,
-                 target_error=0.0, refine_grid=False, estimate_error=True):
+                 target_error=0.0, refine_grid=False, estimate_error=True, spin_centre=(0.0, 0.0), bodies=None):
         self._handle = _h(_lib.kcreep_new())
+        self._check(_lib.kcreep_set_spin_centre(self._handle, float(spin_centre[0]), float(spin_centre[1])))
         self._check(_lib.kcreep_set_error_control(self._handle, target_error, int(bool(refine_grid)),
                                                   int(bool(estimate_error))))
         self._check(_lib.kcreep_set_material(self._handle, g, nu))
         self._check(_lib.kcreep_set_scheme(self._handle, scheme.encode(), alpha, spin_shift))
         self._check(_lib.kcreep_set_solver(self._handle, method.encode(), tolerance))
         self._check(_lib.kcreep_set_extrapolation(self._handle, extrapolate_levels, refine_ratio))
+        if bodies is not None:   # (e1, nu1, e2, nu2) instead of g, nu
+            self._check(_lib.kcreep_set_bodies(self._handle, *map(float, bodies)))
 
     def __del__(self):
         if getattr(self, "_handle", None) is not None and _lib is not None:

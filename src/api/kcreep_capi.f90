@@ -17,6 +17,7 @@ module kcreep_capi
                     ellipse_patch, mask_patch, n_load_cases, gap_from_array
   use kcreep_creep_curve, only: creep_request_t, creep_point_t, creep_map_t, creep_curve
   use kcreep_fastsim_forces, only: flexibility_weighted, flexibility_separate
+  use kcreep_normal_influence, only: compliance_from_e_nu, combined_g_nu_from_e_nu
   implicit none
   private
 
@@ -90,7 +91,44 @@ contains
     if (c_set_material /= status_ok) return
     h%problem%g = g
     h%problem%nu = nu
+    h%problem%normal%compliance = 0   ! the normal problem's 1/E* from g, nu again
   end function c_set_material
+
+  !> Two bodies of Young's moduli e1, e2 and Poisson ratios nu1, nu2: the
+  !> combined g, nu of the tangential problem and 1/E* of the normal problem
+  !> (CONTACT's convention); replaces kcreep_set_material.
+  integer(c_int) function c_set_bodies(handle, e1, nu1, e2, nu2) bind(c, name='kcreep_set_bodies')
+    type(c_ptr), value :: handle
+    real(c_double), value :: e1, nu1, e2, nu2
+    type(handle_t), pointer :: h
+    c_set_bodies = begin(handle, h)
+    if (c_set_bodies /= status_ok) return
+    if (.not. (e1 > 0 .and. e2 > 0 .and. e1 < huge(1.0_wp) .and. e2 < huge(1.0_wp))) then
+      call fail(h%last, exit_bad_input, 'kcreep_set_bodies: e1, e2 must be finite and > 0')
+    else if (.not. (nu1 >= 0 .and. nu1 <= 0.5_wp .and. nu2 >= 0 .and. nu2 <= 0.5_wp)) then
+      call fail(h%last, exit_bad_input, 'kcreep_set_bodies: nu1, nu2 must be in [0, 0.5]')
+    else
+      call combined_g_nu_from_e_nu(real(e1, wp), real(nu1, wp), real(e2, wp), real(nu2, wp), &
+                                   h%problem%g, h%problem%nu)
+      h%problem%normal%compliance = compliance_from_e_nu(real(e1, wp), real(nu1, wp), real(e2, wp), real(nu2, wp))
+    end if
+    c_set_bodies = finish(h)
+  end function c_set_bodies
+
+  !> The point (x, y) the spin turns about and Mz is taken at (default the origin).
+  integer(c_int) function c_set_spin_centre(handle, x, y) bind(c, name='kcreep_set_spin_centre')
+    type(c_ptr), value :: handle
+    real(c_double), value :: x, y
+    type(handle_t), pointer :: h
+    c_set_spin_centre = begin(handle, h)
+    if (c_set_spin_centre /= status_ok) return
+    if (.not. (abs(x) < huge(1.0_wp) .and. abs(y) < huge(1.0_wp))) then
+      call fail(h%last, exit_bad_input, 'kcreep_set_spin_centre: x, y must be finite')
+    else
+      h%problem%spin_centre = [x, y]
+    end if
+    c_set_spin_centre = finish(h)
+  end function c_set_spin_centre
 
   !> scheme: "collocation" (with alpha) or "backward" (with spin_shift, in cells).
   integer(c_int) function c_set_scheme(handle, name, alpha, spin_shift) bind(c, name='kcreep_set_scheme')
