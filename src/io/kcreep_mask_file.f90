@@ -9,7 +9,7 @@ module kcreep_mask_file
   use kcreep_file_checks, only: read_input_file
   implicit none
   private
-  public :: read_mask_file, parse_mask_rows, parse_header, read_line
+  public :: read_mask_file, parse_mask_rows
 
 contains
 
