@@ -529,11 +529,12 @@ contains
   !> columns follow it) starts with 'error:'.
   pure integer function count_error_rows(lines) result(n)
     type(text_t), intent(in) :: lines(:)
-    integer :: k
+    integer :: k, column
     n = 0
+    column = verdict_column()
     do k = 1, size(lines)
       if (.not. is_row(lines(k)%s)) cycle
-      if (index(word_of(lines(k)%s, verdict_column()), 'error:') == 1) n = n + 1
+      if (index(word_of(lines(k)%s, column), 'error:') == 1) n = n + 1
     end do
   end function count_error_rows
 

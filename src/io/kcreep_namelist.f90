@@ -372,7 +372,7 @@ contains
     cfg%solve%restart = restart
     cfg%solve%split_systems = split_systems
     cfg%table_file = resolve_path(trim(table_file), folder_of(path))
-    if (len(cfg%table_file) == 0) cfg%table_file = default_table_name(path)
+    if (len(cfg%table_file) == 0) cfg%table_file = default_output_name(path, '.tab')
     ! every file name written in the namelist is relative to the namelist's folder
     cfg%traction_file = resolve_path(trim(traction_file), folder_of(path))
     cfg%mask_file = resolve_path(cfg%mask_file, folder_of(path))
@@ -1032,13 +1032,6 @@ contains
       end if
     end associate
   end subroutine load_gap
-
-  !> '<input name without folder and extension>.tab' in the working folder.
-  pure function default_table_name(path) result(name)
-    character(len=*), intent(in) :: path
-    character(len=:), allocatable :: name
-    name = default_output_name(path, '.tab')
-  end function default_table_name
 
   !> '<input name without folder and extension><extension>' in the working folder.
   pure function default_output_name(path, extension) result(name)
