@@ -12,7 +12,7 @@ module kcreep_influence
   use, intrinsic :: iso_fortran_env, only: real64
   implicit none
   private
-  public :: influence_t, cell_displacement, cell_displacement_x_derivative
+  public :: influence_t, cell_displacement, cell_displacement_x_derivative, rectangle_integral
 
   real(real64), parameter :: pi = acos(-1.0_real64)
 
@@ -82,6 +82,22 @@ contains
     c%xy = c%xy / (pi * g)
     c%yy = c%yy / (pi * g)
   end function cell_displacement_x_derivative
+
+  !> Int Int dx' dy' / r over the rectangle |x'| <= a, |y'| <= b, seen from
+  !> (xr, yr) relative to its centre (r = distance to (x', y')).
+  elemental real(real64) function rectangle_integral(xr, yr, a, b) result(s)
+    real(real64), intent(in) :: xr, yr, a, b
+    real(real64) :: xs(2), ys(2)
+    integer :: i, j
+    xs = [xr + a, xr - a]
+    ys = [yr + b, yr - b]
+    s = 0
+    do j = 1, 2
+      do i = 1, 2
+        s = s + merge(1.0_real64, -1.0_real64, i == j) * (x_asinh_y_over_x(xs(i), ys(j)) + x_asinh_y_over_x(ys(j), xs(i)))
+      end do
+    end do
+  end function rectangle_integral
 
   !> x asinh(y/|x|), continued by 0 at x = 0.
   elemental real(real64) function x_asinh_y_over_x(x, y) result(v)

@@ -16,6 +16,7 @@
 !> This is the piecewise-constant family of Kalker's CONTACT (digit C = 2).
 module kcreep_normal_influence
   use, intrinsic :: iso_fortran_env, only: real64
+  use kcreep_influence, only: rectangle_integral   ! the same 1/r integral as the tangential kernel's
   implicit none
   private
   public :: normal_cell_coefficient, normal_offset_table, compliance_from_g_nu, compliance_from_e_nu
@@ -48,32 +49,6 @@ contains
     g = 2 / (1 / g1 + 1 / g2)
     nu = g * (nu1 / g1 + nu2 / g2) / 2
   end subroutine combined_g_nu_from_e_nu
-
-  !> Int Int dx' dy' / r over the rectangle |x'| <= a, |y'| <= b, seen from
-  !> (xr, yr) relative to its centre (r = distance to (x', y')).
-  elemental real(real64) function rectangle_integral(xr, yr, a, b) result(s)
-    real(real64), intent(in) :: xr, yr, a, b
-    real(real64) :: xs(2), ys(2)
-    integer :: i, j
-    xs = [xr + a, xr - a]
-    ys = [yr + b, yr - b]
-    s = 0
-    do j = 1, 2
-      do i = 1, 2
-        s = s + merge(1.0_real64, -1.0_real64, i == j) * (x_asinh_y_over_x(xs(i), ys(j)) + x_asinh_y_over_x(ys(j), xs(i)))
-      end do
-    end do
-  end function rectangle_integral
-
-  !> x asinh(y/|x|), continuous (0) at x = 0.
-  elemental real(real64) function x_asinh_y_over_x(x, y) result(v)
-    real(real64), intent(in) :: x, y
-    if (x == 0) then
-      v = 0
-    else
-      v = x * asinh(y / abs(x))
-    end if
-  end function x_asinh_y_over_x
 
   !> Normal displacement difference at (xr, yr) (relative to the cell centre)
   !> from a unit pressure on a cell of sizes dx x dy; compliance = 1/E*.
