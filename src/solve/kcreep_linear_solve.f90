@@ -22,6 +22,8 @@ module kcreep_linear_solve
   use kcreep_split, only: subsystem_t, plan_subsystems, assemble_subsystem, restrict_to, expand_from
   use kcreep_fft_operator, only: fft_operator_t, create_fft_operator, destroy_fft_operator, apply_fft_operator
   use kcreep_preconditioner, only: strip_preconditioner_t, build_strip_preconditioner, apply_strip_preconditioner
+  use kcreep_circulant_preconditioner, only: circulant_preconditioner_t, build_circulant_preconditioner, &
+                                            apply_circulant_preconditioner, destroy_circulant_preconditioner
   use kcreep_krylov, only: block_operator_t, gmres_result_t, gmres
   use kcreep_solver_options, only: solver_options_t
   implicit none
@@ -53,6 +55,18 @@ module kcreep_linear_solve
   contains
     procedure :: apply => apply_strip_block
   end type strip_block_t
+
+  !> The circulant preconditioner on the full grid: the subsystem's unknowns
+  !> are expanded to the whole traction (mirror cells included), the
+  !> preconditioner applied, and the result restricted back.
+  type, extends(block_operator_t) :: circulant_block_t
+    type(circulant_preconditioner_t) :: p
+    type(subsystem_t), allocatable :: subs(:)
+    integer, allocatable :: sub_of(:)
+    integer :: n = 0
+  contains
+    procedure :: apply => apply_circulant_block
+  end type circulant_block_t
 
   !> Rates for the 'auto' choice, from scripts/bench.sh on the 2-core
   !> development machine (shared, so rough): the split dense LU ran at about
@@ -407,7 +421,9 @@ contains
     type(status_t), intent(inout) :: status
     real(real64), intent(in), optional :: initial(:, :)
     type(fft_block_t) :: a
-    type(strip_block_t) :: m_inv
+    type(strip_block_t) :: strip
+    type(circulant_block_t) :: circulant
+    class(block_operator_t), allocatable :: m_inv
     type(gmres_result_t) :: result
     type(subsystem_t), allocatable :: subs(:)
     real(real64), allocatable :: x(:, :), b(:, :)
@@ -445,11 +461,21 @@ contains
     call system_clock(t1)
     diag%t_assemble = real(t1 - t0, real64) / rate
     t0 = t1
-    call build_strip_preconditioner(patch, table, m_inv%p, status, rows_used)
-    if (status%failed()) return
-    m_inv%subs = subs
-    m_inv%sub_of = sub_of
-    m_inv%n = n
+    select case (trim(opts%preconditioner))
+    case ('strip')
+      call build_strip_preconditioner(patch, table, strip%p, status, rows_used)
+      if (status%failed()) return
+      strip%subs = subs
+      strip%sub_of = sub_of
+      strip%n = n
+      allocate (m_inv, source=strip)
+    case default
+      call build_circulant_preconditioner(patch, nu, nc, circulant%p)
+      circulant%subs = subs
+      circulant%sub_of = sub_of
+      circulant%n = n
+      allocate (m_inv, source=circulant)
+    end select
     call system_clock(t1)
     diag%t_factor = real(t1 - t0, real64) / rate
     t0 = t1
@@ -464,6 +490,10 @@ contains
     call system_clock(t1)
     diag%t_solve = real(t1 - t0, real64) / rate
     call destroy_fft_operator(a%op)
+    select type (m_inv)
+    type is (circulant_block_t)
+      call destroy_circulant_preconditioner(m_inv%p)
+    end select
     diag%rcond = ieee_value(1.0_real64, ieee_quiet_nan)   ! no factorisation to estimate it from
     diag%backward_error = maxval(result%relative_residual)
     diag%backward_error_initial = diag%backward_error
@@ -543,5 +573,26 @@ contains
       end associate
     end do
   end subroutine apply_strip_block
+
+  subroutine apply_circulant_block(self, x, y, columns)
+    class(circulant_block_t), intent(inout) :: self
+    real(real64), intent(in) :: x(:, :)
+    real(real64), intent(out) :: y(:, :)
+    integer, intent(in) :: columns(:)
+    real(real64), allocatable :: full(:, :), zfull(:, :)
+    integer :: c, m
+    allocate (full(2 * self%n, size(x, 2)), zfull(2 * self%n, size(x, 2)))
+    full = 0
+    do c = 1, size(x, 2)
+      m = self%subs(self%sub_of(columns(c)))%m
+      call expand_from(self%subs(self%sub_of(columns(c))), self%n, x(1:m, c), full(:, c))
+    end do
+    call apply_circulant_preconditioner(self%p, full, zfull)
+    y = 0
+    do c = 1, size(x, 2)
+      m = self%subs(self%sub_of(columns(c)))%m
+      call restrict_to(self%subs(self%sub_of(columns(c))), self%n, zfull(:, c), y(1:m, c))
+    end do
+  end subroutine apply_circulant_block
 
 end module kcreep_linear_solve
