@@ -6,7 +6,8 @@
 !> In a/b, at each tabulated nu: the cubic through the four nearest rows, on
 !>   ln C against ln(a/b) (the rows Kalker chose, 0.1 to 10); its error is
 !>   estimated as the larger difference to the two quadratics through three of
-!>   those four rows (an interpolant of one order less).
+!>   those four rows (an interpolant of one order less; in the first and last
+!>   interval only the one that interpolates there, not extrapolates).
 !> In nu, between the three columns 0, 0.25, 0.5: the quadratic of 1/C
 !>   (C11, C22, C23: the compliance is nearly linear in nu, the elastic kernel
 !>   being linear in it), for C33 the rational (p0 + p1 nu)/(1 + q nu) through
@@ -121,7 +122,10 @@ contains
       cubic = sum(w * y)
       value(q) = exp(cubic)
       table_part(q) = sum(abs(w) * u(q, first:first + 3) / c(q, first:first + 3))
-      error(q) = max(abs(cubic - sum(w_left * y(1:3))), abs(cubic - sum(w_right * y(2:4))))
+      ! the quadratics that interpolate at s (in an end interval, the one that would extrapolate is left out)
+      error(q) = 0
+      if (s <= nodes(3)) error(q) = abs(cubic - sum(w_left * y(1:3)))
+      if (s >= nodes(2)) error(q) = max(error(q), abs(cubic - sum(w_right * y(2:4))))
     end do
   end subroutine interpolate_ratio
 
