@@ -106,7 +106,7 @@ contains
     result%verdict = 'uncertain'
     line = 'uncertain: the refined table''s relative uncertainties of C11, C22, C23 '//rtoa(result%err(1))// &
            ', '//rtoa(result%err(2))//', '//rtoa(result%err(3))//' against targets '//rtoa(targets(1))//', '// &
-           rtoa(targets(2))//', '//rtoa(targets(3))//' (target_error; C23 gets 3 times it): a solve '// &
+           rtoa(targets(2))//', '//rtoa(targets(3))//' (target_error, C23 gets 3 times it): a solve '// &
            '(method = ''auto'') can reach the target'
     result%warnings = [result%warnings, line]
   end subroutine add_uncertain
