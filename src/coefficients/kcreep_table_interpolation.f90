@@ -1,5 +1,5 @@
 !> Creep coefficients of an ellipse by interpolation in kcreep's refined
-!> table (kcreep_refined_table_data, docs/accuracy.md sections 5 and 6), with
+!> table (kcreep_refined_table_data, docs/accuracy.md sections 5 and 5.1), with
 !> a stated relative uncertainty: the table's own (interpolated) plus an
 !> estimate of the interpolation error.
 !>
@@ -14,7 +14,7 @@
 !>   the three columns (C33 is nearly linear in 1/C at small a/b and in C at
 !>   large a/b); its error is estimated as the difference to the linear
 !>   interpolant (of 1/C; of C for C33) between the two nearest columns.
-!> Measured (docs/accuracy.md section 6): leaving out each interior row and
+!> Measured (docs/accuracy.md section 5.1): leaving out each interior row and
 !> interpolating it from the others, and against direct solves at nu = 0.125,
 !> 0.375, these estimates bound the actual error in at least 19 of 20 cases.
 !>
