@@ -21,6 +21,7 @@ contains
     character(len=*), parameter :: fmt_c = '(2x, a, es12.5, a, f8.4, a, f8.3, a)'
     type(patch_t) :: patch
     character(len=3), parameter :: names(3) = ['C11', 'C22', 'C23']
+    character(len=64) :: label, note
     integer :: i
 
     patch = record%patch
@@ -64,10 +65,11 @@ contains
       end do
     end if
     if (all(record%err == record%err)) then
-      write (output_unit, '(2x, a, 3es9.1, a)') trim(merge('stated relative uncertainty of C11 C22 C23:', &
-        'estimated relative error of C11 C22 C23:   ', record%method == 'table')), record%err, &
-        trim(merge('   (target '//trim(rtoa_short(cfg%target_error))//', C23 3 times it)', &
-                   '                                                     ', cfg%target_error > 0))
+      label = 'estimated relative error of C11 C22 C23:'
+      if (record%method == 'table') label = 'stated relative uncertainty of C11 C22 C23:'
+      note = ''
+      if (cfg%target_error > 0) note = '   (target '//trim(rtoa_short(cfg%target_error))//', C23 3 times it)'
+      write (output_unit, '(2x, a, 3es9.1, a)') trim(label), record%err, trim(note)
     else
       write (output_unit, '(2x, a)') 'estimated relative error of C11 C22 C23: none (see the warnings)'
     end if

@@ -72,6 +72,7 @@ contains
     real(real64), intent(in) :: a_over_b, nu
     real(real64), intent(out) :: value(4), table_part(4), interpolation_part(4)
     real(real64) :: column(4, 3), column_table(4, 3), column_error(4, 3)
+    real(real64) :: by_nu(3, 4), by_nu_table(3, 4), by_nu_error(3, 4)
     integer :: k, q, at_nu
 
     do k = 1, 3
@@ -85,8 +86,11 @@ contains
       interpolation_part = column_error(:, at_nu)
       return
     end if
+    by_nu = transpose(column)        ! (contiguous per coefficient)
+    by_nu_table = transpose(column_table)
+    by_nu_error = transpose(column_error)
     do q = 1, 4
-      call interpolate_nu(q == 4, column(q, :), column_table(q, :), column_error(q, :), nu, value(q), &
+      call interpolate_nu(q == 4, by_nu(:, q), by_nu_table(:, q), by_nu_error(:, q), nu, value(q), &
                           table_part(q), interpolation_part(q))
     end do
   end subroutine interpolate_table

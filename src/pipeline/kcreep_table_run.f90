@@ -99,7 +99,9 @@ contains
     type(result_t), intent(inout) :: result
     real(real64), intent(in) :: target
     character(len=message_length) :: line
+    character(len=message_length), allocatable :: warnings(:)
     real(real64) :: targets(3)
+    integer :: n
     if (len(uncertain_flag(result%err, target)) == 0) return
     targets = coefficient_targets(target)
     result%verdict_flags = ior(result%verdict_flags, verdict_uncertain)
@@ -108,7 +110,12 @@ contains
            ', '//rtoa(result%err(2))//', '//rtoa(result%err(3))//' against targets '//rtoa(targets(1))//', '// &
            rtoa(targets(2))//', '//rtoa(targets(3))//' (target_error, C23 gets 3 times it): a solve '// &
            '(method = ''auto'') can reach the target'
-    result%warnings = [result%warnings, line]
+    ! (appended element by element: the array constructor trips gfortran's length check here)
+    n = size(result%warnings)
+    allocate (warnings(n + 1))
+    warnings(1:n) = result%warnings
+    warnings(n + 1) = line
+    call move_alloc(warnings, result%warnings)
   end subroutine add_uncertain
 
 end module kcreep_table_run
