@@ -56,6 +56,9 @@ cases = [
     ("tolerance", kc.namelist(good_patch, "", "tolerance=0"), {}, "tolerance = 0"),
     ("max_iterations", kc.namelist(good_patch, "", "max_iterations=0"), {}, "max_iterations = 0"),
     ("restart", kc.namelist(good_patch, "", "restart=0"), {}, "restart = 0"),
+    ("preconditioner", kc.namelist(good_patch, "", "preconditioner='ilu'"), {}, "preconditioner = 'ilu'"),
+    ("preconditioner_dense", kc.namelist(good_patch, "", "method='dense', preconditioner='strip'"), {},
+     "preconditioner = 'strip' is the iterative"),
     ("too_large", kc.namelist("semi_a=1, semi_b=1, mx=2000, my=2000", "", "method='dense'"), {}, "GiB"),
 ]
 for name, text, files, fragment in cases:

@@ -103,7 +103,7 @@ contains
     type(status_t), intent(inout) :: status
 
     ! namelist variables, with their defaults
-    character(len=32) :: shape, scheme, method, refine, spin_centre
+    character(len=32) :: shape, scheme, method, refine, spin_centre, preconditioner
     real(real64) :: spin_centre_x, spin_centre_y
     real(real64) :: semi_a, semi_b, dx, dy, x0, y0, g, nu, alpha, spin_shift, tolerance, target_error
     integer :: mx, my, extrapolate_levels, refine_ratio, max_iterations, restart
@@ -135,7 +135,7 @@ contains
     namelist /material/ g, nu
     namelist /solver/ target_error, scheme, alpha, spin_shift, load_cases, extrapolate, extrapolate_levels, &
                       refine_ratio, refine, method, tolerance, max_iterations, restart, split_systems, spin_centre, &
-                      spin_centre_x, spin_centre_y
+                      spin_centre_x, spin_centre_y, preconditioner
     namelist /output/ table_file, traction_file, pressure_file, contact_mask_file, creep_file, &
                       creep_map_file
     namelist /normal/ gap_file, contact_inp, contact_inp_case, rx, ry, lx, ly, cx, cy, approach, normal_force, &
@@ -177,6 +177,7 @@ contains
     refine_ratio = unset_int
     refine = ''
     method = 'auto'
+    preconditioner = ''
     tolerance = unset
     max_iterations = unset_int
     restart = unset_int
@@ -315,6 +316,10 @@ contains
       call fail(status, exit_bad_input, where//'&solver tolerance, max_iterations and restart are the '// &
                 'iterative solver''s; method = ''dense'' does not use them (leave them out, or use method = '// &
                 '''iterative'' or ''auto'')')
+    if (lower(trim(adjustl(method))) == 'dense' .and. len_trim(preconditioner) > 0) &
+      call fail(status, exit_bad_input, where//'&solver preconditioner = '''//trim(preconditioner)// &
+                ''' is the iterative solver''s; method = ''dense'' does not use it (leave it out, or use '// &
+                'method = ''iterative'' or ''auto'')')
     if (lower(trim(adjustl(method))) == 'iterative' .and. len_trim(refine) > 0) &
       call fail(status, exit_bad_input, where//'&solver refine = '''//trim(refine)//''' is the dense LU''s '// &
                 'refinement; method = ''iterative'' does not use it (leave it out, or use method = ''dense'')')
@@ -326,9 +331,11 @@ contains
       if (extrapolate) call fail(status, exit_bad_input, where//'&solver extrapolate = .true. with method = '// &
           '''table'' (nothing is solved to extrapolate; leave it out)')
       if (scheme_given .or. alpha /= unset .or. spin_shift /= unset .or. tolerance /= unset .or. &
-          max_iterations /= unset_int .or. restart /= unset_int .or. len_trim(refine) > 0) &
+          max_iterations /= unset_int .or. restart /= unset_int .or. len_trim(refine) > 0 .or. &
+          len_trim(preconditioner) > 0) &
         call fail(status, exit_bad_input, where//'&solver scheme, alpha, spin_shift, tolerance, max_iterations, '// &
-                  'restart and refine are the solvers''; method = ''table'' solves nothing (leave them out)')
+                  'restart, preconditioner and refine are the solvers''; method = ''table'' solves nothing '// &
+                  '(leave them out)')
       if (len_trim(traction_file) > 0) call fail(status, exit_bad_input, where//'&output traction_file = '''// &
           trim(traction_file)//''': method = ''table'' computes no tractions (leave traction_file out, or '// &
           'leave method out to solve for them)')
@@ -387,6 +394,7 @@ contains
     cfg%solve%tolerance = tolerance
     cfg%solve%max_iterations = max_iterations
     cfg%solve%restart = restart
+    if (len_trim(preconditioner) > 0) cfg%solve%preconditioner = lower(trim(adjustl(preconditioner)))
     cfg%solve%split_systems = split_systems
     cfg%table_file = resolve_path(trim(table_file), folder_of(path))
     if (len(cfg%table_file) == 0) cfg%table_file = default_output_name(path, '.tab')

@@ -13,10 +13,12 @@ module kcreep_fft_operator
   use, intrinsic :: iso_fortran_env, only: real64
   use kcreep_patch, only: patch_t
   use kcreep_assembly, only: operator_table_t
+  use kcreep_influence, only: influence_t, cell_displacement
   !$ use omp_lib, only: omp_get_max_threads
   implicit none
   private
-  public :: fft_operator_t, create_fft_operator, destroy_fft_operator, apply_fft_operator
+  public :: fft_operator_t, create_fft_operator, create_inverse_displacement, destroy_fft_operator, &
+            apply_fft_operator
 
   include 'fftw3.f03'
 
@@ -63,14 +65,46 @@ contains
     type(operator_table_t), intent(in) :: table
     integer, intent(in) :: max_vectors
     type(fft_operator_t), intent(out) :: op
+
+    call plan_fft_grid(patch, max_vectors, op)
+    call kernel_spectrum(table%xx, op%kxx)
+    call kernel_spectrum(table%xy, op%kxy)
+    call kernel_spectrum(table%yy, op%kyy)
+
+  contains
+
+    subroutine kernel_spectrum(coefficients, spectrum)
+      real(real64), intent(in) :: coefficients(-(table%mx - 1):, -(table%my - 1):)
+      complex(c_double_complex), allocatable, intent(out) :: spectrum(:, :)
+      integer :: di, dj
+      associate (w => op%slots(1))
+        w%grid = 0
+        do dj = -(table%my - 1), table%my - 1
+          do di = -(table%mx - 1), table%mx - 1
+            w%grid(modulo(di, op%nx) + 1, modulo(dj, op%ny) + 1) = coefficients(di, dj)
+          end do
+        end do
+        call fftw_execute_dft_r2c(op%forward, w%grid, w%spec)
+        spectrum = w%spec / (real(op%nx, real64) * op%ny)
+      end associate
+    end subroutine kernel_spectrum
+
+  end subroutine create_fft_operator
+
+  !> The padded periodic grid of the patch's bounding grid, its FFT plans and
+  !> work slots; the kernel spectra are left to the caller.
+  subroutine plan_fft_grid(patch, max_vectors, op)
+    type(patch_t), intent(in) :: patch
+    integer, intent(in) :: max_vectors
+    type(fft_operator_t), intent(out) :: op
     integer :: s, nh, threads
 
     op%n = patch%n
     op%ix = patch%ix
     op%iy = patch%iy
-    op%nx = fast_size(2 * table%mx - 1)
+    op%nx = fast_size(2 * patch%mx - 1)
     if (mod(op%nx, 2) /= 0) op%nx = fast_size(op%nx + 1)   ! even: a simple half spectrum
-    op%ny = fast_size(2 * table%my - 1)
+    op%ny = fast_size(2 * patch%my - 1)
     nh = op%nx / 2 + 1
     ! FFTW's own (pthread) threads on big grids: they sleep when idle, unlike
     ! OpenMP workers, which spin between the many short parallel regions of
@@ -95,29 +129,92 @@ contains
       op%forward = fftw_plan_dft_r2c_2d(op%ny, op%nx, w%grid, w%spec, FFTW_ESTIMATE)
       op%backward = fftw_plan_dft_c2r_2d(op%ny, op%nx, w%spec, w%grid, FFTW_ESTIMATE)
     end associate
-    call kernel_spectrum(table%xx, op%kxx)
-    call kernel_spectrum(table%xy, op%kxy)
-    call kernel_spectrum(table%yy, op%kyy)
+  end subroutine plan_fft_grid
+
+  !> The circulant approximation of the inverse of the displacement operator
+  !> (cell-centre displacement from uniform cell tractions) on the padded
+  !> periodic grid: the kernel wrapped to its nearest periodic image, Fourier
+  !> transformed (real and even, so a real symmetric 2 x 2 symbol per
+  !> frequency) and inverted frequency by frequency. Applied with
+  !> apply_fft_operator like the system operator itself.
+  subroutine create_inverse_displacement(patch, nu, max_vectors, op)
+    type(patch_t), intent(in) :: patch
+    real(real64), intent(in) :: nu
+    integer, intent(in) :: max_vectors
+    type(fft_operator_t), intent(out) :: op
+    real(real64), allocatable :: kxx(:, :), kxy(:, :), kyy(:, :)
+    type(influence_t), allocatable :: quadrant(:, :)
+    real(real64) :: det, scale
+    integer :: i, j, hx, hy
+
+    call plan_fft_grid(patch, max_vectors, op)
+    ! the kernel at offsets 0..nx/2, 0..ny/2; the other quadrants by symmetry
+    ! (xx, yy even in both offsets, xy odd in each)
+    hx = op%nx / 2
+    hy = op%ny / 2
+    allocate (quadrant(0:hx, 0:hy))
+    do j = 0, hy
+      do i = 0, hx
+        quadrant(i, j) = cell_displacement(i * patch%dx, j * patch%dy, patch%dx / 2, patch%dy / 2, nu, 1.0_real64)
+      end do
+    end do
+    allocate (kxx(hx + 1, op%ny), kxy(hx + 1, op%ny), kyy(hx + 1, op%ny))
+    call wrapped_spectrum(quadrant%xx, 1.0_real64, kxx)
+    call wrapped_spectrum(quadrant%xy, -1.0_real64, kxy)
+    call wrapped_spectrum(quadrant%yy, 1.0_real64, kyy)
+    scale = 1 / (real(op%nx, real64) * op%ny)
+    allocate (op%kxx, op%kxy, op%kyy, mold=op%slots(1)%spec)
+    do j = 1, op%ny
+      do i = 1, hx + 1
+        det = kxx(i, j) * kyy(i, j) - kxy(i, j)**2
+        if (kxx(i, j) > 0 .and. det > 0) then
+          op%kxx(i, j) = scale * kyy(i, j) / det
+          op%kxy(i, j) = -scale * kxy(i, j) / det
+          op%kyy(i, j) = scale * kxx(i, j) / det
+        else
+          ! not positive definite here (never seen; a guard): leave the frequency out
+          op%kxx(i, j) = 0
+          op%kxy(i, j) = 0
+          op%kyy(i, j) = 0
+        end if
+      end do
+    end do
 
   contains
 
-    subroutine kernel_spectrum(coefficients, spectrum)
-      real(real64), intent(in) :: coefficients(-(table%mx - 1):, -(table%my - 1):)
-      complex(c_double_complex), allocatable, intent(out) :: spectrum(:, :)
+    !> Real part of the spectrum of one kernel component wrapped to its
+    !> nearest periodic image; mirror_sign: the component's sign under a
+    !> reflection of one offset.
+    subroutine wrapped_spectrum(values, mirror_sign, symbol)
+      real(real64), intent(in) :: values(0:, 0:)
+      real(real64), intent(in) :: mirror_sign
+      real(real64), intent(out) :: symbol(:, :)
       integer :: di, dj
+      real(real64) :: sx, sy
       associate (w => op%slots(1))
-        w%grid = 0
-        do dj = -(table%my - 1), table%my - 1
-          do di = -(table%mx - 1), table%mx - 1
-            w%grid(modulo(di, op%nx) + 1, modulo(dj, op%ny) + 1) = coefficients(di, dj)
+        do j = 1, op%ny
+          dj = j - 1
+          sy = 1
+          if (dj > hy) then
+            dj = op%ny - dj
+            sy = mirror_sign
+          end if
+          do i = 1, op%nx
+            di = i - 1
+            sx = 1
+            if (di > hx) then
+              di = op%nx - di
+              sx = mirror_sign
+            end if
+            w%grid(i, j) = sx * sy * values(di, dj)
           end do
         end do
         call fftw_execute_dft_r2c(op%forward, w%grid, w%spec)
-        spectrum = w%spec / (real(op%nx, real64) * op%ny)
+        symbol = real(w%spec, real64)
       end associate
-    end subroutine kernel_spectrum
+    end subroutine wrapped_spectrum
 
-  end subroutine create_fft_operator
+  end subroutine create_inverse_displacement
 
   subroutine destroy_fft_operator(op)
     type(fft_operator_t), intent(inout) :: op

@@ -22,6 +22,8 @@ module kcreep_linear_solve
   use kcreep_split, only: subsystem_t, plan_subsystems, assemble_subsystem, restrict_to, expand_from
   use kcreep_fft_operator, only: fft_operator_t, create_fft_operator, destroy_fft_operator, apply_fft_operator
   use kcreep_preconditioner, only: strip_preconditioner_t, build_strip_preconditioner, apply_strip_preconditioner
+  use kcreep_circulant_preconditioner, only: circulant_preconditioner_t, build_circulant_preconditioner, &
+                                            apply_circulant_preconditioner, destroy_circulant_preconditioner
   use kcreep_krylov, only: block_operator_t, gmres_result_t, gmres
   use kcreep_solver_options, only: solver_options_t
   implicit none
@@ -54,14 +56,28 @@ module kcreep_linear_solve
     procedure :: apply => apply_strip_block
   end type strip_block_t
 
+  !> The circulant preconditioner on the full grid: the subsystem's unknowns
+  !> are expanded to the whole traction (mirror cells included), the
+  !> preconditioner applied, and the result restricted back.
+  type, extends(block_operator_t) :: circulant_block_t
+    type(circulant_preconditioner_t) :: p
+    type(subsystem_t), allocatable :: subs(:)
+    integer, allocatable :: sub_of(:)
+    integer :: n = 0
+  contains
+    procedure :: apply => apply_circulant_block
+  end type circulant_block_t
+
   !> Rates for the 'auto' choice, from scripts/bench.sh on the 2-core
   !> development machine (shared, so rough): the split dense LU ran at about
   !> 3e10 flop/s end to end, and one lockstep GMRES step for the three load
-  !> cases cost about 1e-8 s per (padded FFT grid cell x log2 of the grid size).
+  !> cases cost about 1e-8 s per (padded FFT grid cell x log2 of the grid
+  !> size) for the operator, as much again for the circulant preconditioner.
   real(real64), parameter :: dense_rate = 3e10_real64
-  real(real64), parameter :: iterative_step_cost = 1e-8_real64
-  !> GMRES iterations assumed by the estimate (measured 70 at 60 x 60, 180 at 400 x 400).
-  integer, parameter :: assumed_iterations = 100
+  real(real64), parameter :: iterative_step_cost = 2e-8_real64
+  !> GMRES iterations assumed by the estimate (circulant preconditioner:
+  !> measured 22 at 48 x 48, 33 at 192 x 192, 39 at 384 x 384).
+  integer, parameter :: assumed_iterations = 35
 
 contains
 
@@ -210,24 +226,30 @@ contains
     end if
   end subroutine check_iterative_memory
 
-  !> Krylov basis + a few work vectors, 4 padded grids per case, and the strip
-  !> preconditioner: the LU of each grid row's own block per component in
-  !> single precision, 2 x 4 L^2 bytes for a row of L patch cells (rows of the
-  !> same pattern share theirs; not counted, so this is an upper bound).
-  !> Measured (unit circle, GNU time peak RSS, the program itself included):
-  !> 200 x 200 estimate 0.155 GB, RSS 0.138 GB; 400 x 400 0.792 GB, 0.553 GB (was 1.25 GB, 2.3x).
+  !> Krylov basis + a few work vectors, 4 padded grids per case, and the
+  !> preconditioner: circulant, 4 more padded grids per case and its three
+  !> half spectra (complex); strip, the LU of each grid row's own block per
+  !> component in single precision, 2 x 4 L^2 bytes for a row of L patch
+  !> cells (rows of the same pattern share theirs; not counted, so this is an
+  !> upper bound).
+  !> Measured (unit circle, GNU time peak RSS, the program itself included),
+  !> strip: 200 x 200 estimate 0.155 GB, RSS 0.138 GB; 400 x 400 0.792 GB, 0.553 GB.
   pure real(real64) function iterative_bytes(opts, patch, n_cases) result(bytes)
     type(solver_options_t), intent(in) :: opts
     type(patch_t), intent(in) :: patch
     integer, intent(in) :: n_cases
-    real(real64) :: strips
+    real(real64) :: preconditioner, grid
     integer :: iy
-    strips = 0
-    do iy = 1, patch%my
-      strips = strips + real(count(patch%inside(:, iy)), real64)**2
-    end do
-    bytes = 8 * (2 * real(patch%n, real64) * ((opts%restart + 6) * n_cases) + &
-                 4 * n_cases * 4 * real(patch%mx, real64) * patch%my) + 2 * 4 * strips
+    grid = 4 * real(patch%mx, real64) * patch%my     ! padded FFT grid cells
+    if (trim(opts%preconditioner) == 'strip') then
+      preconditioner = 0
+      do iy = 1, patch%my
+        preconditioner = preconditioner + 2 * 4 * real(count(patch%inside(:, iy)), real64)**2
+      end do
+    else
+      preconditioner = 8 * (4 * n_cases * grid + 3 * grid)
+    end if
+    bytes = 8 * (2 * real(patch%n, real64) * ((opts%restart + 6) * n_cases) + 4 * n_cases * grid) + preconditioner
   end function iterative_bytes
 
   !> Peak bytes of solve_load_cases for this case, for the method it will take
@@ -407,7 +429,9 @@ contains
     type(status_t), intent(inout) :: status
     real(real64), intent(in), optional :: initial(:, :)
     type(fft_block_t) :: a
-    type(strip_block_t) :: m_inv
+    type(strip_block_t) :: strip
+    type(circulant_block_t) :: circulant
+    class(block_operator_t), allocatable :: m_inv
     type(gmres_result_t) :: result
     type(subsystem_t), allocatable :: subs(:)
     real(real64), allocatable :: x(:, :), b(:, :)
@@ -445,11 +469,21 @@ contains
     call system_clock(t1)
     diag%t_assemble = real(t1 - t0, real64) / rate
     t0 = t1
-    call build_strip_preconditioner(patch, table, m_inv%p, status, rows_used)
-    if (status%failed()) return
-    m_inv%subs = subs
-    m_inv%sub_of = sub_of
-    m_inv%n = n
+    select case (trim(opts%preconditioner))
+    case ('strip')
+      call build_strip_preconditioner(patch, table, strip%p, status, rows_used)
+      if (status%failed()) return
+      strip%subs = subs
+      strip%sub_of = sub_of
+      strip%n = n
+      allocate (m_inv, source=strip)
+    case default
+      call build_circulant_preconditioner(patch, nu, nc, circulant%p)
+      circulant%subs = subs
+      circulant%sub_of = sub_of
+      circulant%n = n
+      allocate (m_inv, source=circulant)
+    end select
     call system_clock(t1)
     diag%t_factor = real(t1 - t0, real64) / rate
     t0 = t1
@@ -464,6 +498,10 @@ contains
     call system_clock(t1)
     diag%t_solve = real(t1 - t0, real64) / rate
     call destroy_fft_operator(a%op)
+    select type (m_inv)
+    type is (circulant_block_t)
+      call destroy_circulant_preconditioner(m_inv%p)
+    end select
     diag%rcond = ieee_value(1.0_real64, ieee_quiet_nan)   ! no factorisation to estimate it from
     diag%backward_error = maxval(result%relative_residual)
     diag%backward_error_initial = diag%backward_error
@@ -543,5 +581,26 @@ contains
       end associate
     end do
   end subroutine apply_strip_block
+
+  subroutine apply_circulant_block(self, x, y, columns)
+    class(circulant_block_t), intent(inout) :: self
+    real(real64), intent(in) :: x(:, :)
+    real(real64), intent(out) :: y(:, :)
+    integer, intent(in) :: columns(:)
+    real(real64), allocatable :: full(:, :), zfull(:, :)
+    integer :: c, m
+    allocate (full(2 * self%n, size(x, 2)), zfull(2 * self%n, size(x, 2)))
+    full = 0
+    do c = 1, size(x, 2)
+      m = self%subs(self%sub_of(columns(c)))%m
+      call expand_from(self%subs(self%sub_of(columns(c))), self%n, x(1:m, c), full(:, c))
+    end do
+    call apply_circulant_preconditioner(self%p, full, zfull)
+    y = 0
+    do c = 1, size(x, 2)
+      m = self%subs(self%sub_of(columns(c)))%m
+      call restrict_to(self%subs(self%sub_of(columns(c))), self%n, zfull(:, c), y(1:m, c))
+    end do
+  end subroutine apply_circulant_block
 
 end module kcreep_linear_solve
