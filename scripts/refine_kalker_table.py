@@ -1,7 +1,7 @@
 #!/usr/bin/env python3
 """Kalker's table E3 recomputed by kcreep, with error bars.
 
-    refine_kalker_table.py [--levels 32,40,48,56,64,80,96] [--ratios 0.5,1,2]
+    refine_kalker_table.py [--levels 56,64,72,84,96,112,128,148] [--fit-from 56] [--ratios 0.5,1,2]
                            [--nu 0,0.25,0.5] [--max-seconds S] [--table-only]
 
 For every a/b and nu of data/kalker-table-E3.dat: the ellipse with c = 1 on
@@ -17,7 +17,9 @@ docs/data/kalker_refined.dat is then rebuilt from all levels present:
            f0 + K h + L h^2: the scatter of the levels (the staircase noise)
            and the model error, whichever is larger (absolute units)
 
-Cases with fewer than 4 levels are left out of the table.
+The fit uses the levels from --fit-from cells across up (the coarser ones
+carry more staircase noise). Cases with fewer than 4 such levels are left
+out of the table.
 """
 import argparse
 import math
@@ -109,10 +111,10 @@ def refined_value(levels, coeff):
     return f1, u
 
 
-def write_table(data, points):
+def write_table(data, points, fit_from):
     rows = []
     for r, nu, _ in points:
-        lv = data.get(key(r, nu), {})
+        lv = {N: v for N, v in data.get(key(r, nu), {}).items() if N >= fit_from}
         if len(lv) < 4:
             continue
         vals = []
@@ -135,7 +137,8 @@ def write_table(data, points):
 
 def main():
     ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
-    ap.add_argument("--levels", default="32,40,48,56,64,80,96")
+    ap.add_argument("--levels", default="56,64,72,84,96,112,128,148")
+    ap.add_argument("--fit-from", type=int, default=56, help="fit the levels from this many cells across up")
     ap.add_argument("--ratios", default="", help="comma-separated a/b subset (default: all of Kalker's)")
     ap.add_argument("--nu", default="0,0.25,0.5")
     ap.add_argument("--max-seconds", type=float, default=float("inf"), help="stop starting new levels after this")
@@ -162,7 +165,7 @@ def main():
                 append_level(r, nu, N, d)
                 data.setdefault(key(r, nu), {})[N] = d
                 print(f"a/b {r:.4g} nu {nu:g} N {N}: {d['mx']} x {d['my']}, {d['time']:.1f} s", file=sys.stderr)
-    rows = write_table(data, points)
+    rows = write_table(data, points, args.fit_from)
     print(f"{len(rows)} of {len(points)} points in {TABLE_FILE}")
 
 
