@@ -144,7 +144,7 @@ set ylabel '|C / C_{ref} - 1|'
 set logscale xy
 set format y '10^{%T}'
 set grid
-set key bottom right font ',9' box opaque
+set key top left font ',9' box opaque
 plot '$out/plot_collocation.dat' using (1./\$2):8 with linespoints lw 2 pt 5 lc 1 title 'collocation C11', \
      '$out/plot_collocation.dat' using (1./\$2):9 with linespoints lw 2 pt 7 lc 2 title 'collocation C22', \
      '$out/plot_collocation.dat' using (1./\$2):10 with linespoints lw 2 pt 9 lc 3 title 'collocation C23', \
