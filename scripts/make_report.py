@@ -305,13 +305,14 @@ def texts(values):
                  + ": the signature of an error A h + B h log(1/h), whose apparent order creeps up towards 1 "
                    "only as log M. An extrapolation in h alone does not remove it.")
     o = orders[(1.0, "paper", "backward")]
+    uq = [(ref1[c][1] / ref1[c][0]) / (ref_of(0.2)[c][1] / ref_of(0.2)[c][0]) for c in COEF]
     lines.append(f"- **Where the reference limits the comparison.** The refined values carry u = "
                  f"{v['refu11_r1']}, {v['refu22_r1']}, {v['refu23_r1']} (C11, C22, C23) on the circle and "
                  f"{v['refu11_r0.2']}, {v['refu22_r0.2']}, {v['refu23_r0.2']} at a/b = 0.2. The backward error at "
                  f"M = 80 on the circle is {100 * abs(o['11']['e_last']):.2f} % (C11, normalised), two to three times u, "
                  f"so its order is known only to p = {o['11']['p_lo']:.2f}-{o['11']['p_hi']:.2f}; at a/b = 0.2, where "
-                 "u is ten times smaller, the ranges are narrow. Errors below u (the dotted band of the figures) "
-                 "cannot be judged against this reference.")
+                 f"u is {min(uq):.0f} to {max(uq):.0f} times smaller, the ranges are narrower. Errors below u (the "
+                 "dotted band of the figures) cannot be judged against this reference.")
     circle = series[(1.0, "paper", "collocation")]
     lines.append("- **The staircase spoils the raw sequence** (the table above: the coefficients as kcreep reports "
                  "them, referred to the ellipse's area). The cells whose centres lie in the ellipse cover an area "
