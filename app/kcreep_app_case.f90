@@ -77,6 +77,12 @@ contains
     integer :: level
     integer(int64) :: need
     type(patch_t) :: bound
+    if (cfg%solve%method == 'table') then
+      ! interpolation in the refined table: no operator, no system
+      bytes = 0
+      method = 'table'
+      return
+    end if
     problem = problem_of(cfg, patch)
     problem%solve%memory_limit = memory_limit_bytes()
     if (cfg%shape == 'gap') then

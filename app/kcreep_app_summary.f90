@@ -21,15 +21,25 @@ contains
     character(len=*), parameter :: fmt_c = '(2x, a, es12.5, a, f8.4, a, f8.3, a)'
     type(patch_t) :: patch
     character(len=3), parameter :: names(3) = ['C11', 'C22', 'C23']
+    character(len=64) :: label, note
     integer :: i
 
     patch = record%patch
     write (output_unit, '(a)') 'kcreep '//kcreep_version//': '//input_path
-    write (output_unit, '(2x, a, i0, a, i0, a, i0, a, es10.3)') 'patch: '//patch%kind//', grid ', &
-      patch%mx, ' x ', patch%my, ', ', patch%n, ' cells, c = ', record%c
+    if (record%method == 'table') then
+      write (output_unit, '(2x, a, g0.6, a, es10.3, a, i0, a, i0, a)') 'patch: ellipse, a/b = ', &
+        patch%semi_a / patch%semi_b, ', c = ', record%c, ' (its ', patch%mx, ' x ', patch%my, &
+        ' grid only for FASTSIM: nothing is solved)'
+    else
+      write (output_unit, '(2x, a, i0, a, i0, a, i0, a, es10.3)') 'patch: '//patch%kind//', grid ', &
+        patch%mx, ' x ', patch%my, ', ', patch%n, ' cells, c = ', record%c
+    end if
     write (output_unit, '(2x, a, 2es14.6, a, 2es14.6, a)') 'centroid (xc, yc):', record%centroid, &
       ';  spin centre:', record%spin_centre, ' ('//cfg%spin_centre//')'
-    if (cfg%scheme%name == 'collocation') then
+    if (record%method == 'table') then
+      write (output_unit, '(2x, a, g0.4, a, es10.3)') 'scheme: none (method = ''table''), nu = ', cfg%nu, &
+        ', G = ', cfg%g
+    else if (cfg%scheme%name == 'collocation') then
       write (output_unit, '(2x, a, f6.3, a, g0.4, a, es10.3)') 'scheme: collocation, alpha = ', &
         cfg%scheme%alpha, ', nu = ', cfg%nu, ', G = ', cfg%g
     else
@@ -55,9 +65,11 @@ contains
       end do
     end if
     if (all(record%err == record%err)) then
-      write (output_unit, '(2x, a, 3es9.1, a)') 'estimated relative error of C11 C22 C23:', record%err, &
-        trim(merge('   (target '//trim(rtoa_short(cfg%target_error))//', C23 3 times it)', &
-                   '                                                     ', cfg%target_error > 0))
+      label = 'estimated relative error of C11 C22 C23:'
+      if (record%method == 'table') label = 'stated relative uncertainty of C11 C22 C23:'
+      note = ''
+      if (cfg%target_error > 0) note = '   (target '//trim(rtoa_short(cfg%target_error))//', C23 3 times it)'
+      write (output_unit, '(2x, a, 3es9.1, a)') trim(label), record%err, trim(note)
     else
       write (output_unit, '(2x, a)') 'estimated relative error of C11 C22 C23: none (see the warnings)'
     end if
@@ -72,7 +84,10 @@ contains
         end associate
       end do
     end if
-    if (record%method == 'dense') then
+    if (record%method == 'table') then
+      write (output_unit, '(2x, a)') 'method: table (interpolated in kcreep''s refined table of Kalker''s '// &
+        'coefficients, docs/accuracy.md; nothing solved, no tractions)'
+    else if (record%method == 'dense') then
       write (output_unit, '(2x, a)') 'method: dense LU (LAPACK)'
       write (output_unit, '(2x, a, es9.2, a, es9.2)') 'rcond ', record%rcond, ', backward error ', record%backward_error
       write (output_unit, '(2x, a, es9.2, a, es9.2, a)') 'solve: relative residual ', record%relative_residual, &

@@ -48,6 +48,9 @@ int kcreep_set_scheme(kcreep_handle handle, const char *name, double alpha, doub
 int kcreep_set_bodies(kcreep_handle handle, double e1, double nu1, double e2, double nu2);
 /* The point the spin turns about and Mz is taken at (default the origin). */
 int kcreep_set_spin_centre(kcreep_handle handle, double x, double y);
+/* method: "auto", "dense", "iterative", or "table" (ellipses with 0.1 <= a/b <= 10:
+ * interpolated in kcreep's refined table in microseconds, the stated relative
+ * uncertainty as the error estimate, no tractions; the grid is only FASTSIM's). */
 int kcreep_set_solver(kcreep_handle handle, const char *method, double tolerance);
 int kcreep_set_extrapolation(kcreep_handle handle, int levels, int ratio);   /* levels 0: off */
 /* Error control: relative target for C11, C22 (C23: 3 times it; 0: none);
@@ -83,7 +86,7 @@ int kcreep_get_fastsim(kcreep_handle handle, double l[3]);         /* L1, L2, L3
 int kcreep_get_relative_error(kcreep_handle handle, double error[3]); /* estimated, of C11 C22 C23; NaN: none */
 int kcreep_get_verdict(kcreep_handle handle, int *flags, char *buffer, int buffer_length);
 int kcreep_get_cells(kcreep_handle handle, int *n, int *mx, int *my);
-/* t: length >= 6 n; px of case j (0 xi, 1 eta, 2 phi) at t[j*2n + k], py at
+/* (none after method "table": an error) t: length >= 6 n; px of case j (0 xi, 1 eta, 2 phi) at t[j*2n + k], py at
  * t[j*2n + n + k]; ix, iy (1-based grid indices, n each) may be NULL. */
 int kcreep_get_tractions(kcreep_handle handle, int length, double *t, int *ix, int *iy);
 /* GMRES iterations (0: dense LU), relative residual or backward error,

@@ -10,11 +10,13 @@ against the refined table (scripts/refine_kalker_table.sh), whose own
 uncertainty u is printed beside it; "bounded" counts the points where
 kcreep's estimate err covered the measured error |c - ref| (a point whose
 measured error is within the reference's u of the estimate counts as
-bounded-within-u). Time: the process wall time.
+bounded-within-u). Time: the process wall time, and its CPU time (user +
+system), which a shared machine's load distorts less.
 """
 import argparse
 import math
 import os
+import resource
 import statistics
 import sys
 
@@ -46,16 +48,19 @@ def main():
     ratios = [float(x) for x in args.ratios.split(",")] if args.ratios else None
     keys = sorted(k for k in ref if any(abs(k[1] - x) < 1e-9 for x in nus)
                   and (ratios is None or any(abs(k[0] - x) < 1e-5 * x for x in ratios)))
-    lines = ["# a_over_b nu  err11 est11 u11  err22 est22 u22  err23 est23 u23 (relative, %)  mx my  seconds  verdict"]
+    lines = ["# a_over_b nu  err11 est11 u11  err22 est22 u22  err23 est23 u23 (relative, %)  mx my  seconds cpu_seconds  verdict"]
     errs = {c: [] for c in ("c11", "c22", "c23")}
     bounded = {c: 0 for c in errs}
     within_u = {c: 0 for c in errs}
-    times, verdicts = [], []
+    times, cpus, verdicts = [], [], []
     for r, nu in keys:
         a, b = math.sqrt(r), 1 / math.sqrt(r)
         nml = (f"&patch shape = 'ellipse', semi_a = {a!r}, semi_b = {b!r} /\n&material nu = {nu!r} /\n"
                f"&solver {args.solver} /\n&output table_file = 'case.tab' /\n")
+        before = resource.getrusage(resource.RUSAGE_CHILDREN)
         rows, wall, _ = K.run_kcreep(nml)
+        after = resource.getrusage(resource.RUSAGE_CHILDREN)
+        cpu = (after.ru_utime - before.ru_utime) + (after.ru_stime - before.ru_stime)
         row = rows[-1]
         parts = [f"{r:8.4g} {nu:4g}"]
         for c, e in (("c11", "err11"), ("c22", "err22"), ("c23", "err23")):
@@ -67,8 +72,9 @@ def main():
             within_u[c] += est + u / abs(v) >= err
             parts.append(f"{100 * err:7.3f} {100 * est:7.3f} {100 * u / abs(v):6.3f}")
         times.append(wall)
+        cpus.append(cpu)
         verdicts.append(row["verdict"])
-        parts.append(f"{row['mx']:>5} {row['my']:>5} {wall:7.2f}  {row['verdict']}")
+        parts.append(f"{row['mx']:>5} {row['my']:>5} {wall:7.2f} {cpu:7.2f}  {row['verdict']}")
         lines.append("  ".join(parts))
         print(lines[-1], flush=True)
     n = len(keys)
@@ -76,7 +82,8 @@ def main():
     for c in errs:
         lines.append(f"# {c}: error median {100 * statistics.median(errs[c]):.3f} %, worst {100 * max(errs[c]):.3f} %; "
                      f"estimate bounded the error in {bounded[c]} of {n} ({within_u[c]} allowing the reference's u)")
-    lines.append(f"# time: median {statistics.median(times):.2f} s, worst {max(times):.2f} s; verdict ok in "
+    lines.append(f"# time: median {statistics.median(times):.2f} s, worst {max(times):.2f} s (process wall); CPU "
+                 f"median {statistics.median(cpus):.2f} s, worst {max(cpus):.2f} s; verdict ok in "
                  f"{sum(v == 'ok' for v in verdicts)} of {n}")
     for line in lines[-5:]:
         print(line)

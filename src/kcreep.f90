@@ -33,6 +33,7 @@ module kcreep
   use kcreep_equivalent_ellipse, only: equivalent_ellipse_t, equivalent_ellipses
   use kcreep_extrapolation, only: run_extrapolated
   use kcreep_error_run, only: run_controlled
+  use kcreep_table_run, only: run_table
   implicit none
   private
   public :: kcreep_solve, kcreep_version, kcreep_version_number
@@ -55,8 +56,10 @@ contains
   !> Check the problem, then solve it under error control (kcreep_error_run:
   !> on the levels kcreep chooses, or on the grid given with an error estimate),
   !> or on the levels of the older Richardson extrapolation when problem%extrapolate
-  !> is set. With problem%normal%active the normal contact problem is solved first
-  !> and its contact area is the patch (the pressure comes back in result%pressure).
+  !> is set, or (problem%solve%method = 'table', ellipses) from the refined
+  !> table. With problem%normal%active the normal contact problem is solved
+  !> first and its contact area is the patch (the pressure comes back in
+  !> result%pressure).
   !> cache: kept by the caller between solves on the same grid (the C API's
   !> handle does), so that the operator table is built once.
   subroutine kcreep_solve(problem, result, status, cache)
@@ -109,10 +112,13 @@ contains
   contains
 
     !> Extrapolation when asked for, else the run under error control (which
-    !> solves a given grid as given when the target is 0 or refine_grid off).
+    !> solves a given grid as given when the target is 0 or refine_grid off);
+    !> method = 'table': interpolation in the refined table, nothing solved.
     subroutine solve_as_given(p)
       type(problem_t), intent(in) :: p
-      if (p%extrapolate) then
+      if (p%solve%method == 'table') then
+        call run_table(p, result, status)
+      else if (p%extrapolate) then
         call run_extrapolated(p, result, status)
       else
         call run_controlled(p, result, status, cache)

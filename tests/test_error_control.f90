@@ -19,8 +19,11 @@ program test_error_control
   call t%check(mx == 48 .and. my == 240, 'a/b = 0.2: 48 x 240')
   call ellipse_level_grid(1.0_real64, 1.0_real64, 48, mx, my)
   call t%check(mx == 48 .and. my == 48, 'circle: 48 x 48')
-  call t%check(all(level_cells(48) == [16, 24, 32, 48]), 'levels of 48: 16 24 32 48')
-  call t%check(all(level_cells(96) == [32, 48, 64, 96]), 'levels of 96: 32 48 64 96')
+  call t%check(next_level(48) == 56 .and. next_level(64) == 72 .and. next_level(96) == 112, &
+               'next levels of 48, 64, 96: 56, 72, 112')
+  call t%check(next_level(8) == 12, 'next level grows by at least 4 cells')
+  call t%check(abs(level_cell_budget(1e-4_real64) / level_cell_budget(1e-3_real64) - 10**0.25_real64) < 1e-12, &
+               'budget grows as target**(-1/4)')
 
   ! an exact straight line: the fit recovers it and the standard error is round-off
   h = [3.0_real64, 2.0_real64, 1.5_real64, 1.0_real64] / 48

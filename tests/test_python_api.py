@@ -129,6 +129,28 @@ steel = kcreep.Solver(bodies=(210000.0, 0.28, 210000.0, 0.28)).solve_ellipse(1, 
 plain = kcreep.Solver(g=210000.0 / 2.56, nu=0.28).solve_ellipse(1, 1, 20, 20)
 kc.check(np.max(np.abs(steel.f - plain.f)) <= 1e-12 * np.max(np.abs(plain.f)), "bodies (E, nu) = combined g, nu")
 
+# method = 'table' (ellipses from the refined table): the table's values at its points, the stated
+# uncertainty as err, no tractions, FASTSIM on the patch's grid, refusals
+tab = kcreep.solve_ellipse(2.0, 1.0, nu=0.25, mx=20, my=20, method="table")
+kc.check(np.all(np.abs(tab.c / [5.10422, 4.91226, 2.62704] - 1) <= 1e-14) and tab.n == 0 and tab.verdict == "ok",
+         f"method='table' at a/b = 2, nu = 0.25: the table's C {tab.c}, no cells solved, verdict {tab.verdict}")
+kc.check(np.allclose(tab.err, [0.00302668 / 5.10422, 0.00529824 / 4.91226, 0.00624743 / 2.62704], rtol=1e-5),
+         f"method='table': err = u/C of the table {tab.err}")
+ts = kcreep.Solver(method="table", target_error=1e-3)
+tu = ts.solve_ellipse(2.0, 1.0, 20, 20)
+kc.check(tu.verdict == "uncertain" and len(tu.warnings) == 1 and "refined table" in tu.warnings[0],
+         f"method='table' with target 1e-3: {tu.verdict}, {tu.warnings}")
+forces, _ = ts.fastsim(0.3, [[1e-9, 0, 0]], pressure=np.ones((20, 20)))
+kc.close(-forces[0, 0] / 1e-9, tu.f[0, 0], 1e-9, "method='table': FASTSIM slope = f11 of the table")
+for call, words in ((lambda: ts.solve_ellipse(2.0, 1.0, 20, 20, tractions=True), ["no tractions", "table"]),
+                    (lambda: kcreep.solve_mask([[1, 1], [1, 1]], 1.0, 1.0, method="table"), ["only for ellipses"]),
+                    (lambda: kcreep.solve_ellipse(20.0, 1.0, method="table"), ["a/b = 20", "0.1 <= a/b <= 10"])):
+    try:
+        call()
+        kc.check(False, f"refused: {words}")
+    except kcreep.KcreepError as e:
+        kc.check(all(w in str(e) for w in words), f"method='table' refused: {e}")
+
 # kcreep.table reads the command line's table
 rows = kcreep.table.read(os.path.join(folder, "circle.tab"))
 kc.check(len(rows) == 1 and rows[0]["case"] == "circle" and rows[0]["f11"] == row["f11"], "kcreep.table.read")

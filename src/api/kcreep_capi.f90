@@ -389,6 +389,12 @@ contains
     integer :: n
     c_get_tractions = solved(handle, h)
     if (c_get_tractions /= status_ok) return
+    if (.not. allocated(h%result%traction)) then
+      call fail(h%last, exit_bad_input, 'kcreep_get_tractions: the last solve computed no tractions '// &
+                '(method "table" interpolates the coefficients; set another method to solve for them)')
+      c_get_tractions = finish(h)
+      return
+    end if
     n = h%result%n
     if (length < 2 * n * n_load_cases) then
       call fail(h%last, exit_bad_input, 'kcreep_get_tractions: length must be at least 6 n = '// &

@@ -26,8 +26,8 @@ module kcreep_error_control
   use, intrinsic :: ieee_arithmetic, only: ieee_value, ieee_quiet_nan
   implicit none
   private
-  public :: default_target_error, c23_target_factor, min_estimate_cells, first_cells, max_refinements
-  public :: coefficient_targets, ellipse_level_grid, level_cells, student_t95
+  public :: default_target_error, c23_target_factor, min_estimate_cells, fit_width
+  public :: coefficient_targets, ellipse_level_grid, next_level, level_cell_budget, student_t95
   public :: first_order_fit, level_estimate, smooth_level_estimate, basis_fit, single_grid_estimate
   public :: split_grid_estimate, within_target, uncertain_flag
 
@@ -40,10 +40,16 @@ module kcreep_error_control
   !> the level is outside the first-order range (errors of 10-50 %, the sign of the
   !> error still changes); no estimate is made from it.
   integer, parameter :: min_estimate_cells = 12
-  !> The first finest level (cells across the shorter axis): levels 16, 24, 32, 48.
-  integer, parameter :: first_cells = 48
-  !> At most this many doublings of the finest level (48 -> 96 -> 192).
-  integer, parameter :: max_refinements = 2
+  !> Levels in one fit: the finest this many (Student's factor 2.45 for 8).
+  integer, parameter :: fit_width = 8
+  !> Patch cells of the finest level kcreep may choose at target_error = 1e-3;
+  !> scaled by (1e-3 / target)**(1/4) for other targets (level_cell_budget):
+  !> 71,000 at 1e-4. A run-time budget: a level of 40,000 cells takes about
+  !> 2 s on the iterative path on the 2-core development machine, and a run
+  !> whose finest level has N cells costs about 4 such levels (the levels
+  !> below it add up to about 3 N). Measured CPU (one thread) at target 1e-4
+  !> without the budget: the unit circle 27 s to reach 392 cells across.
+  real(real64), parameter :: cells_at_default_target = 40000
 
 contains
 
@@ -69,13 +75,18 @@ contains
     end if
   end subroutine ellipse_level_grid
 
-  !> Cells across the shorter axis of the levels for finest level `finest`
-  !> (a multiple of 6): N/3, N/2, 2N/3, N, coarsest first.
-  pure function level_cells(finest) result(cells)
+  !> The next finer level after `finest` cells across: about 15 % finer, a
+  !> multiple of 4 (48, 56, 64, 72, 84, 96, 112, 128, 148, 172, ...).
+  pure integer function next_level(finest) result(cells)
     integer, intent(in) :: finest
-    integer :: cells(4)
-    cells = [finest / 3, finest / 2, (2 * finest) / 3, finest]
-  end function level_cells
+    cells = max(finest + 4, 4 * nint(1.15_real64 * finest / 4))
+  end function next_level
+
+  !> The most patch cells a level kcreep chooses may have for this target.
+  pure real(real64) function level_cell_budget(target) result(cells)
+    real(real64), intent(in) :: target
+    cells = cells_at_default_target * (default_target_error / target)**0.25_real64
+  end function level_cell_budget
 
   !> Two-sided 95 % factor of Student's t distribution for dof degrees of freedom.
   pure real(real64) function student_t95(dof) result(t)

@@ -17,6 +17,7 @@ module kcreep_namelist
   use kcreep_namelist_scan, only: scan_namelist_text
   use kcreep_limits, only: check_grid_size, length_in_range, offset_in_range, modulus_in_range
   use kcreep_solver_options, only: solver_options_t, validate_solver_options
+  use kcreep_table_interpolation, only: table_ratio_range
   use kcreep_dense, only: refine_modes
   use kcreep_problem, only: problem_t
   use kcreep_error_control, only: default_target_error
@@ -129,7 +130,7 @@ contains
     real(real64), parameter :: unset = -huge(1.0_real64)
     integer, parameter :: unset_int = -huge(1)
     character(len=:), allocatable :: where
-    logical :: material_given
+    logical :: material_given, scheme_given
     namelist /patch/ shape, semi_a, semi_b, mx, my, mask_file, mask_rows, dx, dy, x0, y0, contact_file, contact_case
     namelist /material/ g, nu
     namelist /solver/ target_error, scheme, alpha, spin_shift, load_cases, extrapolate, extrapolate_levels, &
@@ -263,6 +264,7 @@ contains
     if (status%failed()) return
 
     cfg%shape = lower(trim(adjustl(shape)))
+    scheme_given = len_trim(scheme) > 0
     ! shape = 'contact' follows CONTACT's conventions unless &solver says otherwise
     if (len_trim(scheme) == 0) scheme = 'backward'
     ! values written that the case would not use: refused, not ignored
@@ -321,6 +323,23 @@ contains
     if (lower(trim(adjustl(method))) == 'iterative' .and. len_trim(refine) > 0) &
       call fail(status, exit_bad_input, where//'&solver refine = '''//trim(refine)//''' is the dense LU''s '// &
                 'refinement; method = ''iterative'' does not use it (leave it out, or use method = ''dense'')')
+    ! method = 'table': interpolation in the refined table of ellipses, nothing solved
+    if (lower(trim(adjustl(method))) == 'table') then
+      if (cfg%shape /= 'ellipse') call fail(status, exit_bad_input, where//'&solver method = ''table'' only '// &
+          'for &patch shape = ''ellipse'' (shape = '''//cfg%shape//'''): the refined table holds ellipses; '// &
+          'leave method out to solve this patch')
+      if (extrapolate) call fail(status, exit_bad_input, where//'&solver extrapolate = .true. with method = '// &
+          '''table'' (nothing is solved to extrapolate; leave it out)')
+      if (scheme_given .or. alpha /= unset .or. spin_shift /= unset .or. tolerance /= unset .or. &
+          max_iterations /= unset_int .or. restart /= unset_int .or. len_trim(refine) > 0 .or. &
+          len_trim(preconditioner) > 0) &
+        call fail(status, exit_bad_input, where//'&solver scheme, alpha, spin_shift, tolerance, max_iterations, '// &
+                  'restart, preconditioner and refine are the solvers''; method = ''table'' solves nothing '// &
+                  '(leave them out)')
+      if (len_trim(traction_file) > 0) call fail(status, exit_bad_input, where//'&output traction_file = '''// &
+          trim(traction_file)//''': method = ''table'' computes no tractions (leave traction_file out, or '// &
+          'leave method out to solve for them)')
+    end if
     if (status%failed()) return
     if (extrapolate_levels == unset_int) extrapolate_levels = 3
     if (refine_ratio == unset_int) refine_ratio = 2
@@ -733,7 +752,20 @@ contains
       call fail(status, exit_bad_input, where//'&solver refine = '''//cfg%refine// &
                 ''' (allowed: ''auto'', ''always'', ''never'', ''lapack'')')
     call parse_load_cases(load_cases, cfg%requested, where, status)
-    call validate_solver_options(cfg%solve, where, status)
+    select case (cfg%solve%method)
+    case ('table')
+      if (cfg%shape == 'ellipse' .and. .not. status%failed()) then
+        if (.not. (cfg%semi_a / cfg%semi_b >= table_ratio_range(1) .and. &
+                   cfg%semi_a / cfg%semi_b <= table_ratio_range(2))) call fail(status, exit_bad_input, where// &
+            '&patch semi_a/semi_b = '//rtoa(cfg%semi_a / cfg%semi_b)//' (allowed with &solver method = '// &
+            '''table'': 0.1 <= a/b <= 10, the refined table''s range; leave method out to solve this ellipse)')
+      end if
+    case ('dense', 'iterative', 'auto')
+      call validate_solver_options(cfg%solve, where, status)
+    case default
+      call fail(status, exit_bad_input, where//'&solver method = '''//cfg%solve%method// &
+                ''' (allowed: ''auto'', ''dense'', ''iterative'', ''table'' for ellipses)')
+    end select
   end subroutine validate
 
   !> load_cases: words from xi, eta, phi separated by blanks or commas.

@@ -69,7 +69,18 @@ contains
       end if
     end if
     if (.not. allocated(problem%solve%method)) then
-      call fail(status, exit_bad_input, 'method: not set (allowed: dense, iterative, auto)')
+      call fail(status, exit_bad_input, 'method: not set (allowed: dense, iterative, auto, table)')
+      return
+    end if
+    if (problem%solve%method == 'table') then
+      ! interpolation in the refined table of ellipses: nothing is solved
+      if (problem%patch%kind /= 'ellipse') then
+        call fail(status, exit_bad_input, 'method = ''table'' only for ellipses (patch kind '''// &
+                  problem%patch%kind//'''): the refined table holds ellipses; use dense, iterative or auto')
+      else if (problem%extrapolate) then
+        call fail(status, exit_bad_input, 'method = ''table'' takes no extrapolation (nothing is solved): '// &
+                  'leave extrapolation off')
+      end if
       return
     end if
     call validate_solver_options(problem%solve, '', status)

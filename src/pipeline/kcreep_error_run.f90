@@ -4,9 +4,10 @@
 !>
 !> target > 0 on an ellipse without a given grid: kcreep chooses near-square
 !>   grids, levels 16, 20, 24, 28, 32, 36, 40, 48 cells across the shorter
-!>   axis, and doubles them (reusing the levels it has) while an estimate is
-!>   above its target, at most max_refinements times and while the finest level
-!>   stays within max_level_cells.
+!>   axis, then one level about 15 % finer at a time (56, 64, 72, 84, 96, ...)
+!>   while an estimate is above its target, each fit through the finest 8
+!>   levels, as long as the next level stays within the cell budget of the
+!>   target (level_cell_budget).
 !> target > 0 on a mask: every cell is split into k x k subcells, k = 1, 2, 3, 4
 !>   (the staircase is the patch the user gave; it is not smoothed).
 !> a given grid (ellipse with mx, my; CONTACT's grid) or target = 0: the grid
@@ -29,13 +30,11 @@ module kcreep_error_run
   private
   public :: run_controlled, max_level_cells, base_levels, mask_factors
 
-  !> The finest level kcreep chooses has at most this many patch cells: a
-  !> run-time budget (an a/b = 10 ellipse at 48 cells across is 18,000 cells,
-  !> about 2 s on the iterative path, at 96 across 72,000 cells, 15 s; the
-  !> circle at 96 across is 7,200 cells, at 192 across 29,000)
-  integer, parameter :: max_level_cells = 20000
   !> Base levels on an ellipse (cells across the shorter axis).
   integer, parameter :: base_levels(8) = [16, 20, 24, 28, 32, 36, 40, 48]
+  !> Patch cells of the finest split of a mask or of a single grid's
+  !> auxiliary grid (the ellipse levels use level_cell_budget).
+  integer, parameter :: max_level_cells = 20000
   !> Split factors of a mask.
   integer, parameter :: mask_factors(4) = [1, 2, 3, 4]
   !> Power of c in f_ij = G c^p C_ij.
@@ -126,49 +125,53 @@ contains
     end associate
   end subroutine run_single
 
-  !> Ellipse levels chosen by kcreep, refined until the estimates meet the target.
+  !> Ellipse levels chosen by kcreep: the base levels, then one finer level
+  !> at a time (next_level), each fit through the finest fit_width levels,
+  !> until the estimates meet the target or the next level would exceed the
+  !> cell budget of the target.
   subroutine run_ellipse_levels(problem, result, status)
     type(problem_t), intent(in) :: problem
     type(result_t), intent(out) :: result
     type(status_t), intent(inout) :: status
     type(problem_t) :: level_problem
-    integer, allocatable :: done(:), want(:), idx(:)
+    integer, allocatable :: levels(:)
     real(real64), allocatable :: fnorm(:, :, :)    !< (3, 3, level) area-normalised f
     character(len=message_length), allocatable :: warnings(:)
     character(len=message_length) :: line
-    integer :: refinement, k, mx, my
-    real(real64) :: t(4)
+    integer :: k, mx, my, finest, first
+    real(real64) :: t(4), budget
 
-    allocate (done(0), fnorm(3, 3, 0), warnings(0))
+    allocate (fnorm(3, 3, 0), warnings(0))
     t = 0
     level_problem = problem
+    budget = level_cell_budget(problem%target_error)
+    levels = base_levels
     associate (a => problem%patch%semi_a, b => problem%patch%semi_b)
-      do refinement = 0, max_refinements
-        want = base_levels * 2**refinement
-        if (refinement > 0) then
-          ! the finest new level must stay within the budget (pi/4 of the grid is inside)
-          call ellipse_level_grid(a, b, want(size(want)), mx, my)
-          if (0.79_real64 * mx * my > max_level_cells) then
-            line = 'error control: refining to '//itoa(mx)//' x '//itoa(my)//' cells would exceed '// &
-                   itoa(max_level_cells)//' patch cells; stopped at '//itoa(want(size(want)) / 2)//' cells across'
+      k = 1
+      do
+        call ellipse_level_grid(a, b, levels(k), mx, my)
+        call ellipse_patch(a, b, mx, my, level_problem%patch, status)
+        if (status%failed()) return
+        call place_like(level_problem%patch, problem%patch)
+        call run_level(level_problem, levels(k), result, fnorm, warnings, t, status)
+        if (status%failed()) return
+        if (k == size(levels)) then
+          first = max(1, k - fit_width + 1)
+          call fit_levels(1.0_real64 / levels(first:k), fnorm(:, :, first:k), result)
+          if (within_target(result%err, coefficient_targets(problem%target_error))) exit
+          finest = next_level(levels(k))
+          call ellipse_level_grid(a, b, finest, mx, my)
+          ! pi/4 of the grid is inside the ellipse
+          if (0.79_real64 * mx * my > budget) then
+            line = 'error control: the next level, '//itoa(mx)//' x '//itoa(my)//', would exceed the budget of '// &
+                   itoa(nint(budget))//' patch cells at target_error '//rtoa(problem%target_error)// &
+                   '; stopped at '//itoa(levels(k))//' cells across'
             warnings = [warnings, line]
-            want = base_levels * 2**(refinement - 1)
             exit
           end if
+          levels = [levels, finest]
         end if
-        do k = 1, size(want)
-          if (any(done == want(k))) cycle
-          call ellipse_level_grid(a, b, want(k), mx, my)
-          call ellipse_patch(a, b, mx, my, level_problem%patch, status)
-          if (status%failed()) return
-          call place_like(level_problem%patch, problem%patch)
-          call run_level(level_problem, want(k), result, fnorm, warnings, t, status)
-          if (status%failed()) return
-          done = [done, want(k)]
-        end do
-        idx = [(findloc(done, want(k), 1), k=1, size(want))]
-        call fit_levels(1.0_real64 / want, fnorm(:, :, idx), result)
-        if (within_target(result%err, coefficient_targets(problem%target_error))) exit
+        k = k + 1
       end do
     end associate
     call finish_result(result, t)

@@ -143,18 +143,29 @@ contains
     integer, intent(in) :: max_vectors
     type(fft_operator_t), intent(out) :: op
     real(real64), allocatable :: kxx(:, :), kxy(:, :), kyy(:, :)
+    type(influence_t), allocatable :: quadrant(:, :)
     real(real64) :: det, scale
-    integer :: i, j, di, dj
+    integer :: i, j, hx, hy
 
     call plan_fft_grid(patch, max_vectors, op)
-    allocate (kxx(op%nx / 2 + 1, op%ny), kxy(op%nx / 2 + 1, op%ny), kyy(op%nx / 2 + 1, op%ny))
-    call wrapped_spectrum(1, kxx)
-    call wrapped_spectrum(2, kxy)
-    call wrapped_spectrum(3, kyy)
+    ! the kernel at offsets 0..nx/2, 0..ny/2; the other quadrants by symmetry
+    ! (xx, yy even in both offsets, xy odd in each)
+    hx = op%nx / 2
+    hy = op%ny / 2
+    allocate (quadrant(0:hx, 0:hy))
+    do j = 0, hy
+      do i = 0, hx
+        quadrant(i, j) = cell_displacement(i * patch%dx, j * patch%dy, patch%dx / 2, patch%dy / 2, nu, 1.0_real64)
+      end do
+    end do
+    allocate (kxx(hx + 1, op%ny), kxy(hx + 1, op%ny), kyy(hx + 1, op%ny))
+    call wrapped_spectrum(quadrant%xx, 1.0_real64, kxx)
+    call wrapped_spectrum(quadrant%xy, -1.0_real64, kxy)
+    call wrapped_spectrum(quadrant%yy, 1.0_real64, kyy)
     scale = 1 / (real(op%nx, real64) * op%ny)
     allocate (op%kxx, op%kxy, op%kyy, mold=op%slots(1)%spec)
     do j = 1, op%ny
-      do i = 1, op%nx / 2 + 1
+      do i = 1, hx + 1
         det = kxx(i, j) * kyy(i, j) - kxy(i, j)**2
         if (kxx(i, j) > 0 .and. det > 0) then
           op%kxx(i, j) = scale * kyy(i, j) / det
@@ -171,26 +182,31 @@ contains
 
   contains
 
-    subroutine wrapped_spectrum(component, symbol)
-      integer, intent(in) :: component
+    !> Real part of the spectrum of one kernel component wrapped to its
+    !> nearest periodic image; mirror_sign: the component's sign under a
+    !> reflection of one offset.
+    subroutine wrapped_spectrum(values, mirror_sign, symbol)
+      real(real64), intent(in) :: values(0:, 0:)
+      real(real64), intent(in) :: mirror_sign
       real(real64), intent(out) :: symbol(:, :)
-      type(influence_t) :: u
+      integer :: di, dj
+      real(real64) :: sx, sy
       associate (w => op%slots(1))
         do j = 1, op%ny
           dj = j - 1
-          if (dj > op%ny / 2) dj = dj - op%ny
+          sy = 1
+          if (dj > hy) then
+            dj = op%ny - dj
+            sy = mirror_sign
+          end if
           do i = 1, op%nx
             di = i - 1
-            if (di > op%nx / 2) di = di - op%nx
-            u = cell_displacement(di * patch%dx, dj * patch%dy, patch%dx / 2, patch%dy / 2, nu, 1.0_real64)
-            select case (component)
-            case (1)
-              w%grid(i, j) = u%xx
-            case (2)
-              w%grid(i, j) = u%xy
-            case default
-              w%grid(i, j) = u%yy
-            end select
+            sx = 1
+            if (di > hx) then
+              di = op%nx - di
+              sx = mirror_sign
+            end if
+            w%grid(i, j) = sx * sy * values(di, dj)
           end do
         end do
         call fftw_execute_dft_r2c(op%forward, w%grid, w%spec)

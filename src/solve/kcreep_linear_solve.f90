@@ -71,11 +71,13 @@ module kcreep_linear_solve
   !> Rates for the 'auto' choice, from scripts/bench.sh on the 2-core
   !> development machine (shared, so rough): the split dense LU ran at about
   !> 3e10 flop/s end to end, and one lockstep GMRES step for the three load
-  !> cases cost about 1e-8 s per (padded FFT grid cell x log2 of the grid size).
+  !> cases cost about 1e-8 s per (padded FFT grid cell x log2 of the grid
+  !> size) for the operator, as much again for the circulant preconditioner.
   real(real64), parameter :: dense_rate = 3e10_real64
-  real(real64), parameter :: iterative_step_cost = 1e-8_real64
-  !> GMRES iterations assumed by the estimate (measured 70 at 60 x 60, 180 at 400 x 400).
-  integer, parameter :: assumed_iterations = 100
+  real(real64), parameter :: iterative_step_cost = 2e-8_real64
+  !> GMRES iterations assumed by the estimate (circulant preconditioner:
+  !> measured 22 at 48 x 48, 33 at 192 x 192, 39 at 384 x 384).
+  integer, parameter :: assumed_iterations = 35
 
 contains
 
@@ -224,24 +226,30 @@ contains
     end if
   end subroutine check_iterative_memory
 
-  !> Krylov basis + a few work vectors, 4 padded grids per case, and the strip
-  !> preconditioner: the LU of each grid row's own block per component in
-  !> single precision, 2 x 4 L^2 bytes for a row of L patch cells (rows of the
-  !> same pattern share theirs; not counted, so this is an upper bound).
-  !> Measured (unit circle, GNU time peak RSS, the program itself included):
-  !> 200 x 200 estimate 0.155 GB, RSS 0.138 GB; 400 x 400 0.792 GB, 0.553 GB (was 1.25 GB, 2.3x).
+  !> Krylov basis + a few work vectors, 4 padded grids per case, and the
+  !> preconditioner: circulant, 4 more padded grids per case and its three
+  !> half spectra (complex); strip, the LU of each grid row's own block per
+  !> component in single precision, 2 x 4 L^2 bytes for a row of L patch
+  !> cells (rows of the same pattern share theirs; not counted, so this is an
+  !> upper bound).
+  !> Measured (unit circle, GNU time peak RSS, the program itself included),
+  !> strip: 200 x 200 estimate 0.155 GB, RSS 0.138 GB; 400 x 400 0.792 GB, 0.553 GB.
   pure real(real64) function iterative_bytes(opts, patch, n_cases) result(bytes)
     type(solver_options_t), intent(in) :: opts
     type(patch_t), intent(in) :: patch
     integer, intent(in) :: n_cases
-    real(real64) :: strips
+    real(real64) :: preconditioner, grid
     integer :: iy
-    strips = 0
-    do iy = 1, patch%my
-      strips = strips + real(count(patch%inside(:, iy)), real64)**2
-    end do
-    bytes = 8 * (2 * real(patch%n, real64) * ((opts%restart + 6) * n_cases) + &
-                 4 * n_cases * 4 * real(patch%mx, real64) * patch%my) + 2 * 4 * strips
+    grid = 4 * real(patch%mx, real64) * patch%my     ! padded FFT grid cells
+    if (trim(opts%preconditioner) == 'strip') then
+      preconditioner = 0
+      do iy = 1, patch%my
+        preconditioner = preconditioner + 2 * 4 * real(count(patch%inside(:, iy)), real64)**2
+      end do
+    else
+      preconditioner = 8 * (4 * n_cases * grid + 3 * grid)
+    end if
+    bytes = 8 * (2 * real(patch%n, real64) * ((opts%restart + 6) * n_cases) + 4 * n_cases * grid) + preconditioner
   end function iterative_bytes
 
   !> Peak bytes of solve_load_cases for this case, for the method it will take

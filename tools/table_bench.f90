@@ -1,0 +1,104 @@
+!> kcreep_table_bench: time per call of method = 'table' (docs/performance.md),
+!> best and median of 21 repetitions of CALLS calls (100000 by default) at
+!> a/b and nu spread over the table (log-uniform a/b in [0.1, 10], nu in [0, 0.5]):
+!>   interpolation   kcreep_table_interpolation table_coefficients alone;
+!>   kcreep_solve    the library call with method = 'table' on an ellipse patch
+!>                   of M x M cells (default 20; the patch is FASTSIM's grid,
+!>                   its flexibilities and equivalent ellipses are computed).
+!> Then the stated relative uncertainties of C11 C22 C23 over the first 2000
+!> of those points (median and largest). Run it under flock /tmp/kcreep-bench.lock.
+!>   kcreep_table_bench [CALLS [M]]
+program table_bench
+  use, intrinsic :: iso_fortran_env, only: real64, int64, output_unit
+  use kcreep, only: problem_t, result_t, default_problem, ellipse_patch, kcreep_solve, status_t
+  use kcreep_table_interpolation, only: table_coefficients
+  implicit none
+  integer, parameter :: repeats = 21
+  integer :: calls, m, k, r, q
+  character(len=32) :: arg
+  real(real64), allocatable :: ratio(:), nu(:), rel(:, :)
+  real(real64) :: c(4), u(4), times(repeats), checksum
+  integer(int64) :: t0, t1, rate
+  type(problem_t) :: problem
+  type(result_t) :: result
+  type(status_t) :: status
+
+  calls = 100000
+  m = 20
+  if (command_argument_count() >= 1) then
+    call get_command_argument(1, arg); read (arg, *) calls
+  end if
+  if (command_argument_count() >= 2) then
+    call get_command_argument(2, arg); read (arg, *) m
+  end if
+  allocate (ratio(calls), nu(calls), rel(4, min(calls, 2000)))
+  ! a fixed quasi-random spread (golden-ratio sequences) over the table
+  do k = 1, calls
+    ratio(k) = 10.0_real64**(2 * modulo(k * 0.6180339887498949_real64, 1.0_real64) - 1)
+    nu(k) = 0.5_real64 * modulo(k * 0.7548776662466927_real64, 1.0_real64)
+  end do
+  call system_clock(count_rate=rate)
+  checksum = 0
+  do r = 1, repeats
+    call system_clock(t0)
+    do k = 1, calls
+      call table_coefficients(ratio(k), nu(k), c, u, status)
+      checksum = checksum + c(1)
+    end do
+    call system_clock(t1)
+    times(r) = real(t1 - t0, real64) / rate / calls
+  end do
+  call report('interpolation (table_coefficients)', times)
+  do k = 1, size(rel, 2)
+    call table_coefficients(ratio(k), nu(k), c, rel(:, k), status)
+  end do
+
+  problem = default_problem()
+  problem%solve%method = 'table'
+  do r = 1, repeats
+    call system_clock(t0)
+    do k = 1, max(1, calls / 100)
+      call ellipse_patch(sqrt(ratio(k)), 1 / sqrt(ratio(k)), m, m, problem%patch, status)
+      problem%nu = nu(k)
+      call kcreep_solve(problem, result, status)
+      checksum = checksum + result%cn(1)
+    end do
+    call system_clock(t1)
+    times(r) = real(t1 - t0, real64) / rate / max(1, calls / 100)
+  end do
+  write (arg, '(i0, a, i0)') m, ' x ', m
+  call report('kcreep_solve, method table, patch '//trim(arg)//' (patch built in the loop)', times)
+  write (output_unit, '(a, es10.3)') 'checksum ', checksum
+  do q = 1, 3
+    write (output_unit, '(a, i0, a, 2f8.4)') 'stated relative uncertainty of C', merge(11, merge(22, 23, q == 2), &
+      q == 1), ' over the points, median and largest [%]:', 100 * median(rel(q, :)), 100 * maxval(rel(q, :))
+  end do
+
+contains
+
+  subroutine report(what, t)
+    character(len=*), intent(in) :: what
+    real(real64), intent(in) :: t(:)
+    write (output_unit, '(a, f10.3, a, f10.3, a)') what//': best ', 1e6_real64 * minval(t), ' us, median ', &
+      1e6_real64 * median(t), ' us per call'
+  end subroutine report
+
+  function median(x) result(v)
+    real(real64), intent(in) :: x(:)
+    real(real64) :: v, y(size(x)), s
+    integer :: i, j
+    y = x
+    do i = 2, size(y)          ! insertion sort (small arrays; the uncertainties once)
+      s = y(i)
+      j = i - 1
+      do while (j >= 1)
+        if (y(j) <= s) exit
+        y(j + 1) = y(j)
+        j = j - 1
+      end do
+      y(j + 1) = s
+    end do
+    v = y((size(y) + 1) / 2)
+  end function median
+
+end program table_bench
