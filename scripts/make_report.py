@@ -346,28 +346,35 @@ def texts(values):
         best_fixed = min(near, key=lambda r: max(r["err"]))
         below_u = all(e <= ref1[c][1] / ref1[c][0] for e, c in zip(d["err"], COEF))
         lines.append(f"- **kcreep's default run** (only semi_a, semi_b and nu given; error control with target "
-                     f"1e-3, levels of 16 to {d['m']} cells across) took {d['t']:.2f} s and lands "
+                     f"1e-3; finest level {d['m']} cells across) took {d['t']:.2f} s and lands "
                      + ", ".join(apct(e, 3) for e in d["err"]) + " from the refined values"
                      + (", inside the reference's own uncertainty (" + ", ".join(apct(ref1[c][1] / ref1[c][0]) for c in COEF)
                         + "): this comparison cannot tell it from the continuum" if below_u else "")
-                     + f". Its estimate is " + ", ".join(apct(e) for e in d["est"]) + f", verdict `{d['verdict']}`"
+                     + f". Its estimate is " + ", ".join(apct(e, 3) for e in d["est"]) + f", verdict `{d['verdict']}`"
                      + (" (an estimate above the target)" if d["verdict"] == "uncertain" else "")
                      + f". The most accurate fixed grid of the study, {describe_row(best_fixed)}, is "
-                     + ", ".join(apct(e) for e in best_fixed["err"]) + f" off in {best_fixed['t']:.2f} s.")
-        lines.append("- Read the default run's tiny error with care: the refined table is a fit through levels of "
-                     "32 to 96 cells across of the same scheme, and the default run's last levels are among them, "
-                     "so the two agreeing says that the fits agree, not that both are right. The independent check "
-                     "of the default run's estimate is docs/accuracy.md section 3 (levels up to 48 against levels "
-                     "56-128); the fixed grids above are independent of the reference.")
+                     + ", ".join(apct(e) for e in best_fixed["err"]) + f" off in {best_fixed['t']:.2f} s: "
+                     + f"{min(x / y for x, y in zip(best_fixed['err'], d['err'])):.0f} to "
+                     + f"{max(x / y for x, y in zip(best_fixed['err'], d['err'])):.0f} times the default run's error.")
+        lines.append("- Read the default run's small error with care: the refined table is a fit through levels of "
+                     "32 to 96 cells across of the same scheme and normalisation, and the default run's levels "
+                     + ("are among them" if d["m"] <= 96 else f"(up to {d['m']} across) overlap them in part")
+                     + ", so the two agreeing says partly that the fits agree. Independent checks of the default "
+                     "run's estimate: docs/accuracy.md section 3 (coarse levels against fine ones) and "
+                     "`scripts/independent_check.py` (grids of 216-384 cells across); the fixed grids above do not "
+                     "share any level with the reference.")
     a = ctl.get("accurate")
     if a and d:
         same = a["c"] == d["c"]
         lines.append(f"- The accurate mode (target_error = 1e-4) took {a['t']:.2f} s"
-                     + (" and ended on the same grid with the same values" if same else "")
-                     + f" (verdict `{a['verdict']}`): "
-                     + ("within the 20,000-cell budget of error control it cannot refine further, so it can only say "
+                     + (" and ended on the same grid with the same values" if same else
+                        f", refining to {a['m']} cells across") + f" (verdict `{a['verdict']}`): "
+                     + ("within the cell budget of error control it cannot refine further, so it can only say "
                         "that it did not reach its target." if same else
-                        "errors " + ", ".join(apct(e, 3) for e in a["err"]) + "."))
+                        "errors " + ", ".join(apct(e, 3) for e in a["err"]) + ", estimate "
+                        + ", ".join(apct(e, 3) for e in a["est"])
+                        + (": at this level the reference's u, not kcreep, limits what can be shown"
+                           if all(e <= ref1[c][1] / ref1[c][0] for e, c in zip(a["err"], COEF)) else "") + "."))
     ext = [r for r in rows if r["scheme"].endswith("+extrapolate")]
     if ext:
         best = min(ext, key=lambda r: max(r["err"]))
@@ -476,7 +483,7 @@ def recommendation(v, rows, ctl):
                    f"in `&solver`. On the circle it took {d['t']:.2f} s, is "
                    + ", ".join(apct(e, 3) for e in d["err"]) + " from the refined values (C11, C22, C23) and "
                    "reports its own error estimate (" + ", ".join(apct(e) for e in d["est"])
-                   + f") and verdict (`{d['verdict']}`: `ok` only when every estimate is within its target). "
+                   + f") and verdict (`{d['verdict']}`; `ok` means every estimate within its target). "
                      "Over Kalker's 57 ellipses see docs/accuracy.md section 4.")
     singles = [r for r in rows if r["scheme"] in ("collocation", "backward")]
     for target in (0.005, 0.01):
