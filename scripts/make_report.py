@@ -431,8 +431,9 @@ def texts(values):
     within = lambda d: all(abs(d[r][0]) <= 0.01 and abs(d[r][1]) <= 0.01 for r in d)
     claims = [
         "1. *alpha = 0 is best for f11, f22*: **does not hold**; alpha = 0 gives f11 = f22 = 0 (section 1). "
-        f"f11 and f22 meet the refined values on the circle at 80 x 80 at alpha = "
-        f"{v['alpha_star11_r1_paper']} and {v['alpha_star22_r1_paper']}.",
+        "f11 and f22 meet the refined values on the circle at 80 x 80 at alpha = "
+        + (f"{v['alpha_star11_r1_paper']} (both)." if v['alpha_star11_r1_paper'] == v['alpha_star22_r1_paper']
+           else f"{v['alpha_star11_r1_paper']} and {v['alpha_star22_r1_paper']}."),
         f"2. *alpha = 0.5 is best for f23*: **not confirmed**; f23 meets the refined value at alpha = "
         f"{v['alpha_star23_r1_paper']} (circle, 80 x 80), and at 0.5 it is off by "
         f"{pct(float(v['alpha05_23_r1_paper']) - 1)}, the largest of the three.",
