@@ -353,9 +353,11 @@ def texts(values):
                      + f". Its estimate is " + ", ".join(apct(e, 3) for e in d["est"]) + f", verdict `{d['verdict']}`"
                      + (" (an estimate above the target)" if d["verdict"] == "uncertain" else "")
                      + f". The most accurate fixed grid of the study, {describe_row(best_fixed)}, is "
-                     + ", ".join(apct(e) for e in best_fixed["err"]) + f" off in {best_fixed['t']:.2f} s: "
-                     + f"{min(x / y for x, y in zip(best_fixed['err'], d['err'])):.0f} to "
-                     + f"{max(x / y for x, y in zip(best_fixed['err'], d['err'])):.0f} times the default run's error.")
+                     + ", ".join(apct(e) for e in best_fixed["err"]) + f" off in {best_fixed['t']:.2f} s, "
+                     + f"{min(e / (ref1[c][1] / ref1[c][0]) for e, c in zip(best_fixed['err'], COEF)):.1f} to "
+                     + f"{max(e / (ref1[c][1] / ref1[c][0]) for e, c in zip(best_fixed['err'], COEF)):.1f} times the "
+                       "reference's u: what the default run buys is an error that this reference can no longer "
+                       "resolve, and an estimate of it.")
         lines.append("- Read the default run's small error with care: the refined table is a fit through levels of "
                      "32 to 96 cells across of the same scheme and normalisation, and the default run's levels "
                      + ("are among them" if d["m"] <= 96 else f"(up to {d['m']} across) overlap them in part")
