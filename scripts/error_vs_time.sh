@@ -113,6 +113,7 @@ set ylabel '|C / C_{ref} - 1|'
 set logscale xy
 set format y '10^{%T}'
 set yrange [1e-5:1]
+set xrange [0.003:30]
 set grid
 set key top right font ',9' box opaque
 plot '$out/plot_collocation.dat' using 4:8 with linespoints lw 2 pt 5 lc 1 title 'collocation (alpha = $alpha) C11', \
