@@ -20,7 +20,7 @@ module kcreep_error_run
   use kcreep_status, only: status_t
   use kcreep_strings, only: itoa, rtoa
   use kcreep_patch, only: patch_t, ellipse_patch, place_like
-  use kcreep_problem, only: problem_t, result_t
+  use kcreep_problem, only: problem_t, result_t, add_warning
   use kcreep_run, only: run_case, solve_cache_t
   use kcreep_extrapolation, only: refined_patch
   use kcreep_verdict, only: message_length, verdict_ok, verdict_uncertain
@@ -88,7 +88,7 @@ contains
         if (across < min_estimate_cells) then
           line = 'no error estimate: the grid with twice the cell size would have '//itoa(across)// &
                  ' cells across, fewer than '//itoa(min_estimate_cells)//' (the grid is too coarse to judge itself)'
-          result%warnings = [result%warnings, line]
+          call add_warning(result, line)
           return
         end if
         call ellipse_patch(patch%semi_a, patch%semi_b, max(1, nint(patch%mx / 2.0_real64)), &
@@ -98,7 +98,7 @@ contains
         if (4 * patch%n > max_level_cells) then
           line = 'no error estimate: the grid with every cell split in 2 x 2 would have '//itoa(4 * patch%n)// &
                  ' cells, more than '//itoa(max_level_cells)
-          result%warnings = [result%warnings, line]
+          call add_warning(result, line)
           return
         end if
         call refined_patch(patch, 2, aux%patch, status)
@@ -305,7 +305,7 @@ contains
     line = 'uncertain: estimated relative errors of C11, C22, C23 '//rtoa(result%err(1))//', '// &
            rtoa(result%err(2))//', '//rtoa(result%err(3))//' against targets '//rtoa(targets(1))//', '// &
            rtoa(targets(2))//', '//rtoa(targets(3))//' (target_error; C23 gets 3 times it)'
-    result%warnings = [result%warnings, line]
+    call add_warning(result, line)
   end subroutine add_uncertain
 
 end module kcreep_error_run

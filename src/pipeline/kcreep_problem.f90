@@ -17,7 +17,7 @@ module kcreep_problem
   use kcreep_equivalent_ellipse, only: equivalent_ellipse_t
   implicit none
   private
-  public :: problem_t, result_t, default_problem, normal_problem_t
+  public :: problem_t, result_t, default_problem, normal_problem_t, add_warning
 
   !> The normal contact problem that finds the patch: when active, the patch
   !> is the set of cells with positive pressure on the gap's grid (cropped
@@ -116,5 +116,21 @@ contains
     problem%solve%method = 'auto'
     problem%refine = 'auto'
   end function default_problem
+
+  !> Append one warning to a result (its list may not exist yet).
+  pure subroutine add_warning(result, line)
+    type(result_t), intent(inout) :: result
+    character(len=*), intent(in) :: line
+    character(len=message_length), allocatable :: grown(:)
+    integer :: n
+    n = 0
+    if (allocated(result%warnings)) n = size(result%warnings)
+    ! copied element by element: gfortran's -fcheck=all misreads the length
+    ! of an array constructor built from this allocatable component
+    allocate (grown(n + 1))
+    if (n > 0) grown(1:n) = result%warnings
+    grown(n + 1) = line
+    call move_alloc(grown, result%warnings)
+  end subroutine add_warning
 
 end module kcreep_problem

@@ -143,7 +143,8 @@ contains
     integer, intent(in) :: max_vectors
     type(fft_operator_t), intent(out) :: op
     real(real64), allocatable :: kxx(:, :), kxy(:, :), kyy(:, :)
-    type(influence_t), allocatable :: quadrant(:, :)
+    real(real64), allocatable :: uxx(:, :), uxy(:, :), uyy(:, :)
+    type(influence_t) :: u
     real(real64) :: det, scale
     integer :: i, j, hx, hy
 
@@ -152,16 +153,19 @@ contains
     ! (xx, yy even in both offsets, xy odd in each)
     hx = op%nx / 2
     hy = op%ny / 2
-    allocate (quadrant(0:hx, 0:hy))
+    allocate (uxx(0:hx, 0:hy), uxy(0:hx, 0:hy), uyy(0:hx, 0:hy))
     do j = 0, hy
       do i = 0, hx
-        quadrant(i, j) = cell_displacement(i * patch%dx, j * patch%dy, patch%dx / 2, patch%dy / 2, nu, 1.0_real64)
+        u = cell_displacement(i * patch%dx, j * patch%dy, patch%dx / 2, patch%dy / 2, nu, 1.0_real64)
+        uxx(i, j) = u%xx
+        uxy(i, j) = u%xy
+        uyy(i, j) = u%yy
       end do
     end do
     allocate (kxx(hx + 1, op%ny), kxy(hx + 1, op%ny), kyy(hx + 1, op%ny))
-    call wrapped_spectrum(quadrant%xx, 1.0_real64, kxx)
-    call wrapped_spectrum(quadrant%xy, -1.0_real64, kxy)
-    call wrapped_spectrum(quadrant%yy, 1.0_real64, kyy)
+    call wrapped_spectrum(uxx, 1.0_real64, kxx)
+    call wrapped_spectrum(uxy, -1.0_real64, kxy)
+    call wrapped_spectrum(uyy, 1.0_real64, kyy)
     scale = 1 / (real(op%nx, real64) * op%ny)
     allocate (op%kxx, op%kxy, op%kyy, mold=op%slots(1)%spec)
     do j = 1, op%ny
