@@ -1,6 +1,8 @@
 #!/usr/bin/env bash
-# The paper's figure 2: f11*/KLT, f22*/KLT, f23*/KLT of the collocation
-# scheme against the collocation point alpha, for three ellipse ratios.
+# The paper's figure 2: f11, f22, f23 of the collocation scheme against the
+# collocation point alpha, for three ellipse ratios, as ratios to the refined
+# Kalker table (docs/data/kalker_refined.dat; the ratios and nu must be its
+# nodes, see scripts/refined_reference.py).
 #
 #   scripts/sweep_alpha.sh [options]
 #     --ratios "0.2 1 5"   ellipse ratios a/b (c = sqrt(a b) = 1)
@@ -14,13 +16,15 @@
 #     --slurm "OPTS"       run through the SLURM back-end with these options
 #     --help               this text
 #     --docs               also copy the plots and the table into docs/
+#     --replot             no runs: redraw the plots from DIR/sweep_alpha.tab
+#                          (e.g. after the reference changed)
 # Writes DIR/sweep_alpha.tab (all rows) and DIR/sweep_alpha_*.png.
 set -uo pipefail
 source "$(cd "$(dirname "${BASH_SOURCE[0]}")" && pwd)/study_lib.sh"
 
 ratios="0.2 1 5"
 alphas="-0.9 -0.5 0 0.2 0.4 0.5 0.6 0.7 0.8 0.9"
-grid=80 nu=0.25 square=1 out=$PWD/studies/sweep_alpha jobs=() slurm=() docs=0
+grid=80 nu=0.25 square=1 out=$PWD/studies/sweep_alpha jobs=() slurm=() docs=0 replot=0
 while (($#)); do
   case $1 in
     --ratios) ratios=$2; shift 2 ;;
@@ -32,39 +36,53 @@ while (($#)); do
     --jobs) jobs=(--jobs "$2"); shift 2 ;;
     --slurm) read -r -a slurm <<<"--slurm $2"; shift 2 ;;
     --docs) docs=1; shift ;;
+    --replot) replot=1; shift ;;
     -h | --help) study_usage; exit 0 ;;
     *) study_die "unknown option '$1' (see --help)" ;;
   esac
 done
+# the reference of each ratio: "ratio c11 u11 c22 u22 c23 u23;" ...
+refs=""
+for r in $ratios; do
+  ref=$(python3 "$study_here/refined_reference.py" "$r" "$nu") || study_die "no reference for a/b = $r, nu = $nu"
+  refs+="$r $ref;"
+done
 mkdir -p "$out" || study_die "cannot create '$out'"
 out=$(cd "$out" && pwd)
 
-list=$out/cases.list
-: >"$list"
-for r in $ratios; do
-  grids="paper:$grid:$grid"
-  if ((square)) && [[ $(awk -v r="$r" 'BEGIN { print (r != 1) }') == 1 ]]; then
-    read -r smx smy < <(square_grid "$grid" "$r")
-    grids+=" square:$smx:$smy"
-  fi
-  for g in $grids; do
-    IFS=: read -r kind mx my <<<"$g"
-    for al in $alphas; do
-      name=r${r}_${kind}_a${al}
-      ellipse_nml "$out/cases/$name/$name.nml" "$r" "$mx" "$my" "$nu" collocation "$al"
-      echo "cases/$name/$name.nml" >>"$list"
+status=0
+if ((replot)); then
+  [[ -s $out/sweep_alpha.tab ]] || study_die "--replot: no table $out/sweep_alpha.tab to plot"
+else
+  list=$out/cases.list
+  : >"$list"
+  for r in $ratios; do
+    grids="paper:$grid:$grid"
+    if ((square)) && [[ $(awk -v r="$r" 'BEGIN { print (r != 1) }') == 1 ]]; then
+      read -r smx smy < <(square_grid "$grid" "$r")
+      grids+=" square:$smx:$smy"
+    fi
+    for g in $grids; do
+      IFS=: read -r kind mx my <<<"$g"
+      for al in $alphas; do
+        name=r${r}_${kind}_a${al}
+        ellipse_nml "$out/cases/$name/$name.nml" "$r" "$mx" "$my" "$nu" collocation "$al"
+        echo "cases/$name/$name.nml" >>"$list"
+      done
     done
   done
-done
-echo "sweep_alpha: $(wc -l <"$list") points in $out"
-"$study_here/run_cases.sh" "${slurm[@]}" "${jobs[@]}" "$list" "$out/sweep_alpha.tab"
-status=$?
+  echo "sweep_alpha: $(wc -l <"$list") points in $out"
+  "$study_here/run_cases.sh" "${slurm[@]}" "${jobs[@]}" "$list" "$out/sweep_alpha.tab"
+  status=$?
+fi
 [[ -s $out/sweep_alpha.tab ]] || study_die "no table was produced"
 
-# Plot data: per ratio and grid kind, alpha and the three ratios to Kalker.
+# Plot data: per ratio and grid kind, alpha and the three ratios to the refined values.
 columns "$out/sweep_alpha.tab" case mx my alpha c11 c22 c23 klt11 klt22 klt23 verdict |
-  awk -v out="$out" '{ split($1, p, "_"); f = out "/plot_" p[1] "_" p[2] ".dat"
-       print $4, $5 / $8, $6 / $9, $7 / $10, $2, $3, $11 > f }'
+  awk -v out="$out" -v refs="$refs" 'BEGIN { n = split(refs, rr, ";"); for (i = 1; i <= n; i++) if (split(rr[i], w, " ") == 7)
+         { ref11[w[1]] = w[2]; ref22[w[1]] = w[4]; ref23[w[1]] = w[6] } }
+       { split($1, p, "_"); r = substr(p[1], 2); f = out "/plot_" p[1] "_" p[2] ".dat"
+         print $4, $5 / ref11[r], $6 / ref22[r], $7 / ref23[r], $2, $3, $11 > f }'
 if have_gnuplot; then
   for coef in 11 22 23; do
     col=$((coef == 11 ? 2 : coef == 22 ? 3 : 4))
@@ -78,9 +96,9 @@ if have_gnuplot; then
     gnuplot <<EOF
 set terminal pngcairo size 800,560 font ',11'
 set output '$out/sweep_alpha_f$coef.png'
-set title "Collocation: f$coef / Kalker against alpha (nu = $nu, ${grid}x${grid} paper grid; square: near-square cells)"
+set title "Collocation: f$coef / refined value against alpha (nu = $nu, ${grid}x${grid} paper grid; square: near-square cells)"
 set xlabel 'alpha (collocation point x_i + alpha dx/2; + = leading edge)'
-set ylabel 'f$coef / f$coef(Kalker)'
+set ylabel 'f$coef / f$coef(refined Kalker table)'
 set grid
 set key bottom right
 set yrange [-1.5:1.5]
@@ -91,9 +109,9 @@ EOF
     gnuplot <<EOF
 set terminal pngcairo size 800,560 font ',11'
 set output '$out/sweep_alpha_f${coef}_zoom.png'
-set title "Collocation, alpha > 0: f$coef / Kalker (nu = $nu)"
+set title "Collocation, alpha > 0: f$coef / refined value (nu = $nu)"
 set xlabel 'alpha'
-set ylabel 'f$coef / f$coef(Kalker)'
+set ylabel 'f$coef / f$coef(refined Kalker table)'
 set grid
 set key bottom left
 set xrange [0.05:0.95]

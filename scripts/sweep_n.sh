@@ -1,8 +1,10 @@
 #!/usr/bin/env bash
 # The paper's figures 3 and 4: the coefficients against the mesh size, for
 # the collocation scheme (alpha = 0.5) and the backward scheme, three ellipse
-# ratios, the paper's mx = my grids and near-square-cell grids; then
-# Richardson extrapolation on every mesh triple (h, h/2, h/4) in the list.
+# ratios, the paper's mx = my grids and near-square-cell grids, against the
+# refined Kalker table (docs/data/kalker_refined.dat; the ratios and nu must
+# be its nodes, see scripts/refined_reference.py); then the order of
+# convergence measured against that reference (scripts/convergence_order.py).
 #
 #   scripts/sweep_n.sh [options]
 #     --ratios "0.2 1 5"     ellipse ratios a/b (c = sqrt(a b) = 1)
@@ -18,7 +20,7 @@
 #     --docs                 also copy plots and tables into docs/
 # Going further: --meshes "10 15 20 30 40 60 80 120 160" (160 x 160 needs
 # about 10 GB and minutes per point with the dense solver).
-# Writes DIR/sweep_n.tab, DIR/richardson.dat and DIR/sweep_n_*.png.
+# Writes DIR/sweep_n.tab, DIR/order.dat and DIR/sweep_n_*.png.
 set -uo pipefail
 source "$(cd "$(dirname "${BASH_SOURCE[0]}")" && pwd)/study_lib.sh"
 
@@ -39,6 +41,12 @@ while (($#)); do
     -h | --help) study_usage; exit 0 ;;
     *) study_die "unknown option '$1' (see --help)" ;;
   esac
+done
+# the reference of each ratio: "ratio c11 u11 c22 u22 c23 u23;" ...
+refs=""
+for r in $ratios; do
+  ref=$(python3 "$study_here/refined_reference.py" "$r" "$nu") || study_die "no reference for a/b = $r, nu = $nu"
+  refs+="$r $ref;"
 done
 mkdir -p "$out" || study_die "cannot create '$out'"
 out=$(cd "$out" && pwd)
@@ -68,19 +76,26 @@ echo "sweep_n: $(wc -l <"$list") points in $out"
 status=$?
 [[ -s $out/sweep_n.tab ]] || study_die "no table was produced"
 
-python3 "$study_here/richardson.py" --series-key 'r{ratio}_{grid}_{scheme}' "$out/sweep_n.tab" \
-  >"$out/richardson.dat" || study_die "richardson.py failed"
-cat "$out/richardson.dat"
+python3 "$study_here/convergence_order.py" --nu "$nu" "$out/sweep_n.tab" >"$out/order.dat" ||
+  study_die "convergence_order.py failed"
+cat "$out/order.dat"
 
-# Plot data: one file per series, rows sorted by mesh M.
+# Plot data: one file per series, rows sorted by mesh M: M, C/C_ref for C11, C22, C23 (as computed), ...
 rm -f "$out"/plot_*.dat
 columns "$out/sweep_n.tab" case mx my n c11 c22 c23 klt11 klt22 klt23 t_total verdict |
-  awk -v out="$out" '{ split($1, p, "_"); m = substr(p[4], 2); f = out "/plot_" p[1] "_" p[2] "_" p[3] ".dat"
-       print m, $5 / $8, $6 / $9, $7 / $10, $2, $3, $4, $11, $12 > f }'
+  awk -v out="$out" -v refs="$refs" 'BEGIN { n = split(refs, rr, ";"); for (i = 1; i <= n; i++) if (split(rr[i], w, " ") == 7)
+         { ref11[w[1]] = w[2]; ref22[w[1]] = w[4]; ref23[w[1]] = w[6] } }
+       { split($1, p, "_"); r = substr(p[1], 2); m = substr(p[4], 2); f = out "/plot_" p[1] "_" p[2] "_" p[3] ".dat"
+         print m, $5 / ref11[r], $6 / ref22[r], $7 / ref23[r], $2, $3, $4, $11, $12 > f }'
+# the largest relative uncertainty of the reference over the ratios, per coefficient
+read -r u11 u22 u23 < <(awk -v refs="$refs" 'BEGIN { n = split(refs, rr, ";"); for (i = 1; i <= n; i++) if (split(rr[i], w, " ") == 7)
+         { if (w[3] / w[2] > a) a = w[3] / w[2]; if (w[5] / w[4] > b) b = w[5] / w[4]; if (w[7] / w[6] > c) c = w[7] / w[6] }
+         printf "%.6g %.6g %.6g\n", a, b, c }')
 for f in "$out"/plot_*.dat; do sort -n -o "$f" "$f"; done
 if have_gnuplot; then
   for coef in 11 22 23; do
     col=$((coef == 11 ? 2 : coef == 22 ? 3 : 4))
+    case $coef in 11) u=$u11 ;; 22) u=$u22 ;; *) u=$u23 ;; esac
     for scheme in collocation backward; do
       plots=() i=0
       for f in "$out"/plot_*_"$scheme".dat; do
@@ -93,13 +108,13 @@ if have_gnuplot; then
       gnuplot <<EOF
 set terminal pngcairo size 800,560 font ',11'
 set output '$out/sweep_n_${scheme}_f$coef.png'
-set title "$label: f$coef / Kalker against N = M x M grid cells (nu = $nu)"
+set title "$label: f$coef / refined value against N = M x M grid cells (nu = $nu)"
 set xlabel 'N (cells of the bounding grid)'
-set ylabel 'f$coef / f$coef(Kalker)'
+set ylabel 'f$coef / f$coef(refined Kalker table)'
 set logscale x
 set grid
 set key top right
-plot 1 with lines lc 'black' dt 2 notitle, 0.99 with lines lc 'gray' dt 3 notitle, 1.01 with lines lc 'gray' dt 3 notitle, $(IFS=,; echo "${plots[*]}")
+plot 1 with lines lc 'black' dt 2 notitle, 1 - $u with lines lc 'black' dt 3 title '1 +- u (the reference, largest of the ratios)', 1 + $u with lines lc 'black' dt 3 notitle, 0.99 with lines lc 'gray' dt 3 notitle, 1.01 with lines lc 'gray' dt 3 notitle, $(IFS=,; echo "${plots[*]}")
 EOF
     done
   done
@@ -108,7 +123,6 @@ EOF
     mkdir -p "$study_repo/docs/figures" "$study_repo/docs/data"
     cp "$out"/sweep_n_*.png "$study_repo/docs/figures/"
     cp "$out/sweep_n.tab" "$study_repo/docs/data/sweep_n.dat"
-    cp "$out/richardson.dat" "$study_repo/docs/data/richardson_sweep_n.dat"
   fi
 fi
 exit $status
