@@ -7,8 +7,8 @@
 !> the contact area found. Splitting the cells of one contact area would only
 !> refine its staircase, not its boundary.
 !>
-!> Levels (target_error > 0 and refine_grid): square cells with N = 16, 20,
-!> 24, 28, 32, 36, 40, 48 cells across the contact area's hydraulic diameter
+!> Levels (target_error > 0 and refine_grid): square cells with N = 24, 28,
+!> 32, 36, 40, 44, 48, 56 cells across the contact area's hydraulic diameter
 !> 4 area / perimeter (contact_diameter; from a normal solve on the given
 !> grid: the diameter of a circle, of each lobe of two round ones), over the
 !> bounding box of that contact area widened by a margin; doubled (reusing
@@ -51,12 +51,12 @@ module kcreep_gap_levels
   public :: run_gap_patch, gap_single_estimate, gap_base_levels, max_gap_level_cells, gap_level_margin
 
   !> Levels: cells across the contact area's hydraulic diameter (contact_diameter).
-  integer, parameter :: gap_base_levels(8) = [16, 20, 24, 28, 32, 36, 40, 48]
+  integer, parameter :: gap_base_levels(8) = [24, 28, 32, 36, 40, 44, 48, 56]
   !> The finest level's contact area has at most about this many cells (a
-  !> run-time budget, every level solving a normal and a tangential problem:
-  !> a circle at 96 across is 7,200 cells, at 192 across 29,000; the two lobes
-  !> of input/wheel_rail.nml at 48 across 4,400, at 96 across 17,700).
-  integer, parameter :: max_gap_level_cells = 10000
+  !> run-time budget, as for ellipses: a circle at 112 across is 9,900 cells,
+  !> at 224 across 39,000; the two lobes of input/wheel_rail.nml at 56 across
+  !> 6,000, at 112 across 24,000).
+  integer, parameter :: max_gap_level_cells = 20000
   !> The level grids cover the contact area's bounding box on the given grid
   !> widened by this fraction of its size on every side (and by two cells of
   !> the given grid): the contact area moves by less than a cell between levels.
