@@ -26,6 +26,8 @@ import math
 import os
 import subprocess
 import sys
+
+sys.dont_write_bytecode = True   # importing the sibling script leaves no cache behind
 import tempfile
 
 import numpy as np
@@ -234,7 +236,7 @@ def nonelliptic_cases(runner, samples, quick):
 
 
 def main():
-    p = argparse.ArgumentParser(description=__doc__.split("\n")[0])
+    p = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     p.add_argument("--kcreep", default=os.path.join(ROOT, "build", "kcreep"))
     p.add_argument("--samples", default=os.path.join(ROOT, "..", "shared", "contact-samples"))
     p.add_argument("--out", default=None)
