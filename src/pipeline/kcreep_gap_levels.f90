@@ -17,7 +17,7 @@
 !> max_gap_level_cells. Every level's coefficients are normalised by its own
 !> contact area (C_ij = f_ij / (G c^p), c = sqrt(area / pi)): the staircase of
 !> the contact boundary changes the area irregularly from level to level, and
-!> f_ij follows it (measured on Hertzian gaps: this removes 90-95 % of the
+!> f_ij follows it (measured on a Hertzian gap: this removes 95 % of the
 !> scatter about the first-order line, docs/accuracy.md). Each C_ij and the
 !> area are fitted by f0 + K h (order fixed at 1) and estimated as in
 !> kcreep_error_control level_estimate; the result has c = sqrt(A0 / pi) of
@@ -168,7 +168,7 @@ contains
     real(real64), allocatable :: cnorm(:, :, :), area(:)
     character(len=message_length), allocatable :: warnings(:)
     character(len=message_length) :: line
-    real(real64) :: box(4), diameter, t(4), a0, rel_area, bbox(4)
+    real(real64) :: box(4), diameter, t(4), bbox(4)
     integer :: refinement, k
 
     ! the contact area on the given grid: its size and where it is
@@ -203,7 +203,7 @@ contains
         done = [done, want(k)]
       end do
       idx = [(findloc(done, want(k), 1), k=1, size(want))]
-      call fit_gap_levels(1.0_real64 / want, cnorm(:, :, idx), area(idx), result, a0, rel_area)
+      call fit_gap_levels(1.0_real64 / want, cnorm(:, :, idx), area(idx), result)
       if (within_target(result%err, coefficient_targets(problem%target_error))) exit
     end do
     result%t_assemble = t(1)
@@ -244,11 +244,10 @@ contains
 
   !> The fits: C_ij and the area extrapolated; f_ij = G c^p C_ij with c from
   !> the fitted area; err the estimates of C11, C22, C23.
-  subroutine fit_gap_levels(h, cnorm, area, result, a0, rel_area)
+  subroutine fit_gap_levels(h, cnorm, area, result)
     real(real64), intent(in) :: h(:), cnorm(:, :, :), area(:)
     type(result_t), intent(inout) :: result
-    real(real64), intent(out) :: a0, rel_area
-    real(real64) :: limit(3, 3), rel(3, 3)
+    real(real64) :: limit(3, 3), rel(3, 3), a0, rel_area
     integer :: i, j
     do j = 1, 3
       do i = 1, 3
