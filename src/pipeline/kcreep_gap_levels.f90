@@ -44,12 +44,13 @@ module kcreep_gap_levels
   use kcreep_run, only: run_case, solve_cache_t
   use kcreep_verdict, only: message_length
   use kcreep_fastsim, only: fastsim_flexibilities
-  use kcreep_error_control, only: level_estimate, within_target, coefficient_targets, &
-                                  min_estimate_cells, max_refinements
+  use kcreep_error_control, only: level_estimate, within_target, coefficient_targets, min_estimate_cells
   implicit none
   private
   public :: run_gap_patch, gap_single_estimate, gap_base_levels, max_gap_level_cells, gap_level_margin
 
+  !> At most this many doublings of the levels (56 -> 112 -> 224 across).
+  integer, parameter :: max_refinements = 2
   !> Levels: cells across the contact area's hydraulic diameter (contact_diameter).
   integer, parameter :: gap_base_levels(8) = [24, 28, 32, 36, 40, 44, 48, 56]
   !> The finest level's contact area has at most about this many cells (a
