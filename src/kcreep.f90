@@ -22,7 +22,6 @@ module kcreep
                             verdict_words, &
                             message_length
   use kcreep_problem, only: problem_t, result_t, default_problem, normal_problem_t
-  use kcreep_normal_stage, only: normal_patch, store_normal
   use kcreep_normal_solve, only: normal_result_t, normal_options_t
   use kcreep_gap, only: gap_t, polynomial_gap_t, gap_from_array, gap_from_polynomial, auto_grid
   use kcreep_check, only: check_problem
@@ -68,25 +67,12 @@ contains
     type(status_t), intent(inout) :: status
     type(solve_cache_t), intent(inout), optional :: cache
 
-    type(problem_t) :: found, centred
-    type(normal_result_t) :: nres
+    type(problem_t) :: centred
 
     if (problem%normal%active) then
-      ! the patch is the contact area of the normal problem
-      found = problem
-      call normal_patch(problem, found%patch, nres, status)
-      if (status%failed()) return
-      call check_problem(found, status)
-      if (status%failed()) return
-      call run_case(found, result, status, cache)
-      if (status%failed()) return
-      call store_normal(nres, found%patch, result)
-      ! no error control on the contact area of the normal problem (yet): no
-      ! estimate, and the run says so
-      result%err = ieee_value(1.0d0, ieee_quiet_nan)
-      result%warnings = [result%warnings, [character(len=message_length) :: &
-        'no error estimate: the patch is the contact area of the normal problem, which error control does '// &
-        'not refine yet; refine the gap''s grid (cells_across) and compare to judge the coefficients']]
+      ! the patch is the contact area of the normal problem, solved under error
+      ! control on grids of finer geometry (kcreep_gap_levels)
+      call run_controlled(problem, result, status, cache)
       return
     end if
     call check_problem(problem, status)

@@ -11,6 +11,9 @@
 !>  6. CONTACT's kidney and twin samples: contact area cell for cell, FN and
 !>     PMAX to the printed four digits.
 !>  7. Gap file and CONTACT .inp readers: good input and each refusal.
+!>  8. Resampling a gap on another grid (error control's finer geometry):
+!>     quadratics exactly, also half a cell beyond the outermost centres;
+!>     cells outside the potential contact stay outside.
 program test_normal
   use, intrinsic :: iso_fortran_env, only: real64
   use kcreep_status, only: status_t
@@ -19,7 +22,7 @@ program test_normal
   use kcreep_normal_solve, only: normal_options_t, normal_result_t, solve_normal, normal_operator_t, &
                                  create_normal_operator, apply_normal_operator, destroy_normal_operator
   use kcreep_hertz, only: hertz_t, hertz_from_force, hertz_from_approach
-  use kcreep_gap, only: gap_t, polynomial_gap_t, gap_from_polynomial, auto_grid
+  use kcreep_gap, only: gap_t, polynomial_gap_t, gap_from_polynomial, auto_grid, gap_resampled, outside_gap
   use kcreep_gap_file, only: parse_gap_text
   use kcreep_contact_input, only: contact_input_t, read_contact_input
   use kcreep_contact_reader, only: contact_case_t, read_contact_case
@@ -35,6 +38,7 @@ program test_normal
   call test_hertz_formulas()
   call test_hertz_grid()
   call test_approach_equals_force()
+  call test_gap_resampled()
   if (len_trim(samples) > 0) then
     call test_contact_sample('kidney_nu25')
     call test_contact_sample('twin_nu25')
@@ -418,5 +422,24 @@ contains
     call auto_grid(poly, -0.01_real64, 2.0_real64, 40, 0.1_real64, mx, my, dx, dy, x0, y0, st)
     call t%check(st%failed() .and. index(st%message, 'do not interpenetrate') > 0, 'auto grid: no interpenetration refused')
   end subroutine test_auto_grid
+
+  subroutine test_gap_resampled()
+    type(polynomial_gap_t) :: poly
+    type(gap_t) :: coarse, fine, exact
+    type(status_t) :: st
+    poly = polynomial_gap_t(rx=0.7_real64, ry=2.5_real64, lx=0.3_real64, ly=-0.1_real64, h0=0.02_real64)
+    call gap_from_polynomial(poly, 21, 13, 0.1_real64, 0.15_real64, -1.0_real64, -0.9_real64, coarse, st)
+    ! a finer grid reaching half a coarse cell beyond the outermost centres
+    call gap_from_polynomial(poly, 67, 59, 0.0325_real64, 0.0325_real64, -1.05_real64, -0.975_real64, exact, st)
+    fine = gap_resampled(coarse, exact%mx, exact%my, exact%dx, exact%dy, exact%x0, exact%y0)
+    ! round-off of the cubic weights on values of order 1: measured 1e-15
+    call t%check(maxval(abs(fine%h - exact%h)) < 1e-12_real64, 'resampled gap: a quadratic exactly, to the edges')
+    fine = gap_resampled(coarse, coarse%mx, coarse%my, coarse%dx, coarse%dy, coarse%x0, coarse%y0)
+    call t%check(maxval(abs(fine%h - coarse%h)) < 1e-14_real64, 'resampled gap: the same grid gives the same values')
+    coarse%h(1:5, :) = 2 * outside_gap
+    fine = gap_resampled(coarse, exact%mx, exact%my, exact%dx, exact%dy, exact%x0, exact%y0)
+    call t%check(all(fine%h(1:10, :) >= outside_gap) .and. all(fine%h(20:, :) < outside_gap), &
+                 'resampled gap: cells outside the potential contact stay outside, the others inside')
+  end subroutine test_gap_resampled
 
 end program test_normal

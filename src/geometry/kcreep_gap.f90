@@ -11,7 +11,10 @@ module kcreep_gap
   implicit none
   private
   public :: gap_t, polynomial_gap_t, gap_from_array, gap_from_polynomial, auto_grid, polynomial_value
-  public :: max_gap_cells
+  public :: max_gap_cells, gap_resampled, outside_gap
+
+  !> Gap values at or above this mark cells outside the potential contact.
+  real(real64), parameter :: outside_gap = 1e29_real64
 
   !> Larger grids are refused (memory of the normal solve ~ 15 doubles per cell).
   integer, parameter :: max_gap_cells = 4000 * 4000
@@ -193,5 +196,119 @@ contains
     x0 = (xlo + xhi) / 2 - (mx - 1) * dx / 2
     y0 = (ylo + yhi) / 2 - (my - 1) * dy / 2
   end subroutine auto_grid
+
+  !> The gap resampled at the cell centres of another grid (mx x my cells of
+  !> dx x dy, (x0, y0) the centre of cell (1, 1)): bicubic Catmull-Rom
+  !> interpolation of the given values (exact for quadratics, so a Hertzian
+  !> gap comes out exact), beyond the outermost cell centres continued by
+  !> quadratic extrapolation of the edge values (at most half a cell of the
+  !> given grid, which the new grid should stay within). Where the stencil
+  !> holds a cell outside the potential contact (>= outside_gap) the value of
+  !> the nearest given cell is taken.
+  pure function gap_resampled(gap, mx, my, dx, dy, x0, y0) result(fine)
+    type(gap_t), intent(in) :: gap
+    integer, intent(in) :: mx, my
+    real(real64), intent(in) :: dx, dy, x0, y0
+    type(gap_t) :: fine
+    real(real64) :: sx, sy, wx(4), wy(4), v(4, 4)
+    integer :: ix, iy, i0, j0, k, l
+    logical :: outside
+
+    fine%mx = mx
+    fine%my = my
+    fine%dx = dx
+    fine%dy = dy
+    fine%x0 = x0
+    fine%y0 = y0
+    allocate (fine%h(mx, my))
+    do iy = 1, my
+      sy = (fine%cell_y(iy) - gap%y0) / gap%dy + 1
+      call stencil(sy, gap%my, j0, wy)
+      do ix = 1, mx
+        sx = (fine%cell_x(ix) - gap%x0) / gap%dx + 1
+        call stencil(sx, gap%mx, i0, wx)
+        outside = gap%mx < 3 .or. gap%my < 3
+        if (.not. outside) then
+          do l = 1, 4
+            do k = 1, 4
+              v(k, l) = value_at(i0 + k - 2, j0 + l - 2)
+              outside = outside .or. v(k, l) >= outside_gap
+            end do
+          end do
+        end if
+        if (outside) then
+          fine%h(ix, iy) = gap%h(min(max(nint(sx), 1), gap%mx), min(max(nint(sy), 1), gap%my))
+        else
+          fine%h(ix, iy) = dot_product(wy, matmul(transpose(v), wx))
+        end if
+      end do
+    end do
+
+  contains
+
+    !> Index of the cell left of s (0 <= i0 <= n: the continued cells 0 and
+    !> n + 1 take part beyond the outermost centres) and the four weights of
+    !> cells i0 - 1 .. i0 + 2 (Keys' kernel, a = -1/2).
+    pure subroutine stencil(s, n, i0, w)
+      real(real64), intent(in) :: s
+      integer, intent(in) :: n
+      integer, intent(out) :: i0
+      real(real64), intent(out) :: w(4)
+      real(real64) :: t
+      i0 = min(max(floor(s), 0), n)
+      t = min(max(s - i0, 0.0_real64), 1.0_real64)
+      w(1) = ((-t + 2) * t - 1) * t / 2
+      w(2) = ((3 * t - 5) * t * t + 2) / 2
+      w(3) = ((-3 * t + 4) * t + 1) * t / 2
+      w(4) = (t - 1) * t * t / 2
+    end subroutine stencil
+
+    !> The given value, continued quadratically beyond the first and last cells.
+    pure real(real64) function value_at(i, j) result(h)
+      integer, intent(in) :: i, j
+      real(real64) :: row(3)
+      integer :: jj, k
+      if (j < 1 .or. j > gap%my) then
+        ! continue in y from three inner rows (each continued in x first)
+        do k = 1, 3
+          jj = merge(k, gap%my + 1 - k, j < 1)
+          row(k) = in_x(i, jj)
+        end do
+        h = quadratic_beyond(row, merge(1 - j, j - gap%my, j < 1))
+      else
+        h = in_x(i, j)
+      end if
+    end function value_at
+
+    !> Row j's value at column i, continued quadratically beyond its ends.
+    pure real(real64) function in_x(i, j) result(h)
+      integer, intent(in) :: i, j
+      real(real64) :: col(3)
+      integer :: k
+      if (i < 1) then
+        col = [(gap%h(k, j), k=1, 3)]
+        h = quadratic_beyond(col, 1 - i)
+      else if (i > gap%mx) then
+        col = [(gap%h(gap%mx + 1 - k, j), k=1, 3)]
+        h = quadratic_beyond(col, i - gap%mx)
+      else
+        h = gap%h(i, j)
+      end if
+    end function in_x
+
+  end function gap_resampled
+
+  !> The quadratic through v(1), v(2), v(3) at 0, 1, 2 cells inwards, at d cells
+  !> outwards (d >= 1); any value >= outside_gap stays outside.
+  pure real(real64) function quadratic_beyond(v, d) result(h)
+    real(real64), intent(in) :: v(3)
+    integer, intent(in) :: d
+    if (any(v >= outside_gap)) then
+      h = v(1)
+    else
+      ! Lagrange through x = 0, 1, 2 evaluated at x = -d
+      h = v(1) * (d + 1) * (d + 2) / 2 - v(2) * d * (d + 2) + v(3) * d * (d + 1) / 2
+    end if
+  end function quadratic_beyond
 
 end module kcreep_gap

@@ -356,14 +356,18 @@ contains
     cfg%y0_given = y0 /= unset
     if (x0 == unset) x0 = 0
     if (y0 == unset) y0 = 0
-    ! error control: CONTACT's grid is compared as given (no target unless asked);
-    ! an ellipse without a grid and a mask are refined by kcreep to meet the target
+    ! error control: CONTACT's grid is compared as given (no target unless asked),
+    ! so is the normal problem read from CONTACT's input; an ellipse without a
+    ! grid and a mask are refined by kcreep to meet the target, a gap (gap_file,
+    ! or rx, ry without a grid) by sampling its geometry on finer grids
     if (target_error == unset) target_error = merge(0.0_real64, default_target_error, &
-                                                     cfg%shape == 'contact' .or. cfg%shape == 'gap')
+                                                     cfg%shape == 'contact' .or. &
+                                                     (cfg%shape == 'gap' .and. len_trim(contact_inp) > 0))
     cfg%target_error = target_error
     ! a pressure file for FASTSIM is given on the mask's own grid: keep that grid
     cfg%refine_grid = (cfg%shape == 'ellipse' .and. mx == 0 .and. my == 0) .or. &
-                      (cfg%shape == 'mask' .and. len_trim(pressure_input_file) == 0)
+                      (cfg%shape == 'mask' .and. len_trim(pressure_input_file) == 0) .or. &
+                      (cfg%shape == 'gap' .and. len_trim(contact_inp) == 0 .and. mx == 0 .and. my == 0)
     if (spin_shift == unset) spin_shift = merge(contact_spin_shift, 0.0_real64, cfg%shape == 'contact')
     material_given = g /= unset .or. nu /= unset
     if (g == unset) g = 1
@@ -1052,6 +1056,8 @@ contains
         if (status%failed()) return
         call gap_from_polynomial(cfg%poly, mx, my, dx, dy, x0, y0, np%gap, status)
         if (status%failed()) return
+        np%poly_given = .true.
+        np%poly = cfg%poly
       end if
       call check_grid_size(np%gap%mx, np%gap%my, where//'&normal: the gap grid: ', status)
       if (status%failed()) return

@@ -26,6 +26,7 @@ module kcreep_error_run
   use kcreep_verdict, only: message_length, verdict_ok, verdict_uncertain
   use kcreep_fastsim, only: fastsim_flexibilities
   use kcreep_error_control
+  use kcreep_gap_levels, only: run_gap_patch
   implicit none
   private
   public :: run_controlled, max_level_cells, base_levels, mask_factors
@@ -52,7 +53,9 @@ contains
     type(status_t), intent(inout) :: status
     type(solve_cache_t), intent(inout), optional :: cache
 
-    if (problem%target_error > 0 .and. problem%refine_grid) then
+    if (problem%normal%active) then
+      call run_gap_patch(problem, result, status, cache)   ! the geometry is refined: kcreep_gap_levels
+    else if (problem%target_error > 0 .and. problem%refine_grid) then
       if (problem%patch%kind == 'ellipse') then
         call run_ellipse_levels(problem, result, status)
       else

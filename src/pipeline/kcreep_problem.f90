@@ -12,7 +12,7 @@ module kcreep_problem
   use kcreep_assembly, only: scheme_t, n_load_cases
   use kcreep_solver_options, only: solver_options_t
   use kcreep_verdict, only: verdict_ok, message_length
-  use kcreep_gap, only: gap_t
+  use kcreep_gap, only: gap_t, polynomial_gap_t
   use kcreep_normal_solve, only: normal_options_t
   use kcreep_equivalent_ellipse, only: equivalent_ellipse_t
   implicit none
@@ -25,6 +25,10 @@ module kcreep_problem
   type :: normal_problem_t
     logical :: active = .false.
     type(gap_t) :: gap                          !< undeformed distance on its grid
+    !> The gap as a function (rx, ry, ...) when it was given so: error control
+    !> evaluates it on finer grids; otherwise it resamples gap.
+    logical :: poly_given = .false.
+    type(polynomial_gap_t) :: poly
     real(real64) :: compliance = 0              !< 1/E*; 0: (1 - nu)/g of the problem's material
     logical :: force_given = .false.            !< normal_force prescribed, else approach
     real(real64) :: approach = 0, normal_force = 0
