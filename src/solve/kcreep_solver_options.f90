@@ -14,8 +14,9 @@ module kcreep_solver_options
     integer :: max_iterations = 1000             !< iterative: total GMRES iterations per load case
     integer :: restart = 50                      !< iterative: GMRES restart length
     !> iterative: 'circulant' (running sum along the rows and the FFT inverse
-    !> of the displacement operator) or 'strip' (exact inverse of each row's block)
-    character(len=16) :: preconditioner = 'circulant'
+    !> of the displacement operator), 'strip' (exact inverse of each row's
+    !> block) or 'auto' (circulant, strip for collocation at alpha <= 0)
+    character(len=16) :: preconditioner = 'auto'
     !> Solve y-symmetric patches as an even and an odd half-size problem and,
     !> at nu = 0, px and py separately (off only to check the splits).
     logical :: split_systems = .true.
@@ -37,10 +38,10 @@ contains
                 ''' (allowed: ''dense'', ''iterative'', ''auto'')')
     end select
     select case (trim(opts%preconditioner))
-    case ('circulant', 'strip')
+    case ('auto', 'circulant', 'strip')
     case default
       call fail(status, exit_bad_input, where//'&solver preconditioner = '''//trim(opts%preconditioner)// &
-                ''' (allowed: ''circulant'', ''strip'')')
+                ''' (allowed: ''auto'', ''circulant'', ''strip'')')
     end select
     if (.not. (opts%tolerance >= 1e-15_real64 .and. opts%tolerance < 1)) call fail(status, exit_bad_input, &
         where//'&solver tolerance = '//rtoa(opts%tolerance)//' (allowed: 1e-15 <= tolerance < 1)')
