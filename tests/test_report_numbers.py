@@ -82,7 +82,8 @@ for c in ("c11", "c22", "c23"):
     if c in refs:
         # printed to 6 significant digits (value) and 3 (u)
         kc.close(refs[c][0], circle[c], 1e-5, f"error_vs_time.dat reference {c} = refined table a/b = 1, nu = 0.25")
-        kc.close(refs[c][1], circle["u" + c[1:]], 2e-3, f"error_vs_time.dat reference u{c[1:]} = refined table")
+        kc.close(refs[c][1], circle["u" + c[1:]], 5e-3, f"error_vs_time.dat reference u{c[1:]} = refined table")
+        # (u is printed with 3 significant digits: at most half a unit of the third, 5e-3 relative)
 worst = 0.0
 for w in rows:
     for i, c in enumerate(("c11", "c22", "c23")):
