@@ -3,7 +3,7 @@
 Runs kcreep_fastsim_bench (the creep curve alone: 100 creepage points, unit circle with Hertz
 pressure, best and median of 21 repetitions) on 100 x 100 and 200 x 200 grids, and kcreep end to
 end on a 100 x 100 circle with a 100-point &fastsim sweep (the exact coefficients solved once),
-then replaces the section '## FASTSIM creep curves' of docs/performance.md (appends it when
+then replaces the section between the fastsim-bench markers of docs/performance.md (appends it when
 missing). scripts/bench.sh calls it at its end; alone:
   flock /tmp/kcreep-bench.lock python3 scripts/bench_fastsim.py build .
   scripts/bench_fastsim.py --help    this text
@@ -45,7 +45,13 @@ lines += ['', f'End to end (`kcreep` on a 100 x 100 circle, backward scheme, `&f
           f'(target: under 0.1 s).', '']
 path = os.path.join(root, 'docs', 'performance.md')
 text = open(path).read() if os.path.exists(path) else ''
-head = text.split('## FASTSIM creep curves')[0].rstrip('\n')
+# only the section between its markers is replaced; the rest of the file is left alone
+section = '<!-- fastsim-bench:begin -->\n' + '\n'.join(lines).rstrip('\n') + '\n<!-- fastsim-bench:end -->'
+pattern = re.compile(r'<!-- fastsim-bench:begin -->.*?<!-- fastsim-bench:end -->', re.S)
+if pattern.search(text):
+    text = pattern.sub(lambda m: section, text)
+else:
+    text = text.rstrip('\n') + '\n\n' + section + '\n'
 with open(path, 'w') as f:
-    f.write(head + '\n\n' + '\n'.join(lines))
+    f.write(text)
 print('\n'.join(lines))
