@@ -33,16 +33,40 @@ module kcreep_linear_solve
   !> GMRES works on the unknowns of the subsystems (system_split), one
   !> subsystem per column, padded with zeros to the longest: a y-symmetric
   !> patch thus needs half-length Krylov vectors and half the preconditioner
-  !> work. The operator expands to the full traction, applies the FFT
-  !> operator and restricts back.
-  type, extends(block_operator_t) :: fft_block_t
-    type(fft_operator_t) :: op
+  !> work. An operator on the full grid sees the expanded full traction
+  !> (mirror cells included) and its result is restricted back.
+  type, abstract, extends(block_operator_t) :: expanded_block_t
     type(subsystem_t), allocatable :: subs(:)
     integer, allocatable :: sub_of(:)     !< subsystem of each column
     integer :: n = 0
   contains
-    procedure :: apply => apply_fft_block
+    procedure :: apply => apply_expanded
+    procedure(full_apply), deferred :: apply_full
+  end type expanded_block_t
+
+  abstract interface
+    !> z(:, k) = M full(:, k) on whole tractions (px(1:n), py(1:n)).
+    subroutine full_apply(self, full, z)
+      import :: expanded_block_t, real64
+      class(expanded_block_t), intent(inout) :: self
+      real(real64), intent(in) :: full(:, :)
+      real(real64), intent(out) :: z(:, :)
+    end subroutine full_apply
+  end interface
+
+  !> The system operator, applied with FFTs.
+  type, extends(expanded_block_t) :: fft_block_t
+    type(fft_operator_t) :: op
+  contains
+    procedure :: apply_full => apply_fft_full
   end type fft_block_t
+
+  !> The circulant preconditioner on the full grid.
+  type, extends(expanded_block_t) :: circulant_block_t
+    type(circulant_preconditioner_t) :: p
+  contains
+    procedure :: apply_full => apply_circulant_full
+  end type circulant_block_t
 
   !> The strip preconditioner on the representative cells (their mirror
   !> rows have the same blocks, so the reduced preconditioner is the full
@@ -55,18 +79,6 @@ module kcreep_linear_solve
   contains
     procedure :: apply => apply_strip_block
   end type strip_block_t
-
-  !> The circulant preconditioner on the full grid: the subsystem's unknowns
-  !> are expanded to the whole traction (mirror cells included), the
-  !> preconditioner applied, and the result restricted back.
-  type, extends(block_operator_t) :: circulant_block_t
-    type(circulant_preconditioner_t) :: p
-    type(subsystem_t), allocatable :: subs(:)
-    integer, allocatable :: sub_of(:)
-    integer :: n = 0
-  contains
-    procedure :: apply => apply_circulant_block
-  end type circulant_block_t
 
   !> Rates for the 'auto' choice, from scripts/bench.sh on the 2-core
   !> development machine (shared, so rough): the split dense LU ran at about
@@ -555,26 +567,40 @@ contains
 
   end subroutine solve_iterative
 
-  subroutine apply_fft_block(self, x, y, columns)
-    class(fft_block_t), intent(inout) :: self
+  subroutine apply_expanded(self, x, y, columns)
+    class(expanded_block_t), intent(inout) :: self
     real(real64), intent(in) :: x(:, :)
     real(real64), intent(out) :: y(:, :)
     integer, intent(in) :: columns(:)
-    real(real64), allocatable :: full(:, :), afull(:, :)
+    real(real64), allocatable :: full(:, :), zfull(:, :)
     integer :: c, m
-    allocate (full(2 * self%n, size(x, 2)), afull(2 * self%n, size(x, 2)))
+    allocate (full(2 * self%n, size(x, 2)), zfull(2 * self%n, size(x, 2)))
     full = 0
     do c = 1, size(x, 2)
       m = self%subs(self%sub_of(columns(c)))%m
       call expand_from(self%subs(self%sub_of(columns(c))), self%n, x(1:m, c), full(:, c))
     end do
-    call apply_fft_operator(self%op, full, afull)
+    call self%apply_full(full, zfull)
     y = 0
     do c = 1, size(x, 2)
       m = self%subs(self%sub_of(columns(c)))%m
-      call restrict_to(self%subs(self%sub_of(columns(c))), self%n, afull(:, c), y(1:m, c))
+      call restrict_to(self%subs(self%sub_of(columns(c))), self%n, zfull(:, c), y(1:m, c))
     end do
-  end subroutine apply_fft_block
+  end subroutine apply_expanded
+
+  subroutine apply_fft_full(self, full, z)
+    class(fft_block_t), intent(inout) :: self
+    real(real64), intent(in) :: full(:, :)
+    real(real64), intent(out) :: z(:, :)
+    call apply_fft_operator(self%op, full, z)
+  end subroutine apply_fft_full
+
+  subroutine apply_circulant_full(self, full, z)
+    class(circulant_block_t), intent(inout) :: self
+    real(real64), intent(in) :: full(:, :)
+    real(real64), intent(out) :: z(:, :)
+    call apply_circulant_preconditioner(self%p, full, z)
+  end subroutine apply_circulant_full
 
   subroutine apply_strip_block(self, x, y, columns)
     class(strip_block_t), intent(inout) :: self
@@ -600,26 +626,5 @@ contains
       end associate
     end do
   end subroutine apply_strip_block
-
-  subroutine apply_circulant_block(self, x, y, columns)
-    class(circulant_block_t), intent(inout) :: self
-    real(real64), intent(in) :: x(:, :)
-    real(real64), intent(out) :: y(:, :)
-    integer, intent(in) :: columns(:)
-    real(real64), allocatable :: full(:, :), zfull(:, :)
-    integer :: c, m
-    allocate (full(2 * self%n, size(x, 2)), zfull(2 * self%n, size(x, 2)))
-    full = 0
-    do c = 1, size(x, 2)
-      m = self%subs(self%sub_of(columns(c)))%m
-      call expand_from(self%subs(self%sub_of(columns(c))), self%n, x(1:m, c), full(:, c))
-    end do
-    call apply_circulant_preconditioner(self%p, full, zfull)
-    y = 0
-    do c = 1, size(x, 2)
-      m = self%subs(self%sub_of(columns(c)))%m
-      call restrict_to(self%subs(self%sub_of(columns(c))), self%n, zfull(:, c), y(1:m, c))
-    end do
-  end subroutine apply_circulant_block
 
 end module kcreep_linear_solve
