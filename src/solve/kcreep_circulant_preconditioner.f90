@@ -30,6 +30,7 @@ module kcreep_circulant_preconditioner
     !> For each patch cell, the next cell ahead of it (x + dx) in its run, 0 at the leading edge.
     integer, allocatable :: ahead(:)
     type(fft_operator_t) :: inverse_displacement
+    real(real64), allocatable :: u(:, :)   !< work: displacements, kept between steps
   end type circulant_preconditioner_t
 
 contains
@@ -57,24 +58,28 @@ contains
     type(circulant_preconditioner_t), intent(inout) :: prec
     real(real64), intent(in) :: r(:, :)    !< (2n, nv)
     real(real64), intent(out) :: z(:, :)   !< (2n, nv)
-    real(real64), allocatable :: u(:, :)
     integer :: v, c, k, n
 
     n = prec%n
-    allocate (u, mold=r)
-    ! (u(k+1) - u(k)) / dx = r(k)  =>  u(k) = u(k+1) - dx r(k), from the leading edge back
-    do v = 1, size(r, 2)
-      do c = 0, 1
-        do k = n, 1, -1
-          if (prec%ahead(k) > 0) then
-            u(c * n + k, v) = u(c * n + prec%ahead(k), v) - prec%dx * r(c * n + k, v)
-          else
-            u(c * n + k, v) = -prec%dx * r(c * n + k, v)
-          end if
+    if (allocated(prec%u)) then
+      if (size(prec%u, 2) < size(r, 2)) deallocate (prec%u)
+    end if
+    if (.not. allocated(prec%u)) allocate (prec%u(2 * n, size(r, 2)))
+    associate (u => prec%u(:, 1:size(r, 2)))
+      ! (u(k+1) - u(k)) / dx = r(k)  =>  u(k) = u(k+1) - dx r(k), from the leading edge back
+      do v = 1, size(r, 2)
+        do c = 0, 1
+          do k = n, 1, -1
+            if (prec%ahead(k) > 0) then
+              u(c * n + k, v) = u(c * n + prec%ahead(k), v) - prec%dx * r(c * n + k, v)
+            else
+              u(c * n + k, v) = -prec%dx * r(c * n + k, v)
+            end if
+          end do
         end do
       end do
-    end do
-    call apply_fft_operator(prec%inverse_displacement, u, z)
+      call apply_fft_operator(prec%inverse_displacement, u, z)
+    end associate
   end subroutine apply_circulant_preconditioner
 
   subroutine destroy_circulant_preconditioner(prec)

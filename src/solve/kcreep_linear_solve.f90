@@ -39,6 +39,9 @@ module kcreep_linear_solve
     type(subsystem_t), allocatable :: subs(:)
     integer, allocatable :: sub_of(:)     !< subsystem of each column
     integer :: n = 0
+    !> Work arrays of whole tractions, kept between steps (allocating them
+    !> anew at every step cost as much kernel time as the FFTs took)
+    real(real64), allocatable :: full(:, :), zfull(:, :)
   contains
     procedure :: apply => apply_expanded
     procedure(full_apply), deferred :: apply_full
@@ -572,20 +575,27 @@ contains
     real(real64), intent(in) :: x(:, :)
     real(real64), intent(out) :: y(:, :)
     integer, intent(in) :: columns(:)
-    real(real64), allocatable :: full(:, :), zfull(:, :)
-    integer :: c, m
-    allocate (full(2 * self%n, size(x, 2)), zfull(2 * self%n, size(x, 2)))
-    full = 0
-    do c = 1, size(x, 2)
-      m = self%subs(self%sub_of(columns(c)))%m
-      call expand_from(self%subs(self%sub_of(columns(c))), self%n, x(1:m, c), full(:, c))
-    end do
-    call self%apply_full(full, zfull)
-    y = 0
-    do c = 1, size(x, 2)
-      m = self%subs(self%sub_of(columns(c)))%m
-      call restrict_to(self%subs(self%sub_of(columns(c))), self%n, zfull(:, c), y(1:m, c))
-    end do
+    integer :: c, m, nv
+    nv = size(x, 2)
+    if (.not. allocated(self%full)) then
+      allocate (self%full(2 * self%n, nv), self%zfull(2 * self%n, nv))
+    else if (size(self%full, 2) < nv) then
+      deallocate (self%full, self%zfull)
+      allocate (self%full(2 * self%n, nv), self%zfull(2 * self%n, nv))
+    end if
+    associate (full => self%full(:, 1:nv), zfull => self%zfull(:, 1:nv))
+      full = 0
+      do c = 1, nv
+        m = self%subs(self%sub_of(columns(c)))%m
+        call expand_from(self%subs(self%sub_of(columns(c))), self%n, x(1:m, c), full(:, c))
+      end do
+      call self%apply_full(full, zfull)
+      y = 0
+      do c = 1, nv
+        m = self%subs(self%sub_of(columns(c)))%m
+        call restrict_to(self%subs(self%sub_of(columns(c))), self%n, zfull(:, c), y(1:m, c))
+      end do
+    end associate
   end subroutine apply_expanded
 
   subroutine apply_fft_full(self, full, z)
