@@ -20,7 +20,7 @@ module kcreep_error_run
   use kcreep_status, only: status_t
   use kcreep_strings, only: itoa, rtoa
   use kcreep_patch, only: patch_t, ellipse_patch, place_like
-  use kcreep_problem, only: problem_t, result_t, add_warning
+  use kcreep_problem, only: problem_t, result_t, add_warning, append_prefixed
   use kcreep_run, only: run_case, solve_cache_t
   use kcreep_extrapolation, only: refined_patch
   use kcreep_verdict, only: message_length, verdict_ok, verdict_uncertain
@@ -220,9 +220,7 @@ contains
     character(len=message_length), allocatable, intent(inout) :: warnings(:)
     real(real64), intent(inout) :: t(4)
     type(status_t), intent(inout) :: status
-    character(len=message_length) :: line
     real(real64), allocatable :: f(:, :, :)
-    integer :: i
 
     call run_case(level_problem, result, status)
     if (status%failed()) return
@@ -231,11 +229,8 @@ contains
     f(:, :, 1:size(fnorm, 3)) = fnorm
     f(:, :, size(f, 3)) = result%f * area_ratio(level_problem%patch)**(c_power / 2.0_real64)
     call move_alloc(f, fnorm)
-    do i = 1, size(result%warnings)
-      line = 'level '//itoa(label)//' ('//itoa(level_problem%patch%mx)//' x '//itoa(level_problem%patch%my)// &
-             '): '//trim(result%warnings(i))
-      warnings = [warnings, line]
-    end do
+    call append_prefixed(warnings, 'level '//itoa(label)//' ('//itoa(level_problem%patch%mx)//' x '// &
+                         itoa(level_problem%patch%my)//'): ', result%warnings)
   end subroutine run_level
 
   !> The fit of every f entry: the result gets the limits, err those of C11, C22, C23.

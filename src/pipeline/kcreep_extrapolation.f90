@@ -22,7 +22,7 @@ module kcreep_extrapolation
   use kcreep_patch, only: patch_t, ellipse_patch, mask_patch, place_like
   use kcreep_linear_solve, only: solve_memory_plan
   use kcreep_verdict, only: message_length
-  use kcreep_problem, only: problem_t, result_t
+  use kcreep_problem, only: problem_t, result_t, append_prefixed
   use kcreep_run, only: run_case
   implicit none
   private
@@ -181,11 +181,8 @@ contains
           values(level, :) = values(level, :) * [area_ratio, area_ratio, area_ratio**1.5_real64]
         end if
         t = t + [level_result%t_assemble, level_result%t_factor, level_result%t_solve, level_result%t_total]
-        do i = 1, size(level_result%warnings)
-          line = 'level '//itoa(level)//' ('//itoa(level_patch%mx)//' x '//itoa(level_patch%my)//'): '// &
-                 trim(level_result%warnings(i))
-          warnings = [warnings, line]
-        end do
+        call append_prefixed(warnings, 'level '//itoa(level)//' ('//itoa(level_patch%mx)//' x '// &
+                             itoa(level_patch%my)//'): ', level_result%warnings)
       end associate
     end do
     result = level_result

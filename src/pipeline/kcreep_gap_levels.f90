@@ -37,7 +37,7 @@ module kcreep_gap_levels
   use kcreep_strings, only: itoa, rtoa
   use kcreep_patch, only: patch_t
   use kcreep_gap, only: gap_t, gap_resampled, gap_from_polynomial
-  use kcreep_problem, only: problem_t, result_t
+  use kcreep_problem, only: problem_t, result_t, append_prefixed
   use kcreep_normal_stage, only: normal_patch, store_normal
   use kcreep_normal_solve, only: normal_result_t
   use kcreep_check, only: check_problem
@@ -224,9 +224,7 @@ contains
     character(len=message_length), allocatable, intent(inout) :: warnings(:)
     real(real64), intent(inout) :: t(4)
     type(status_t), intent(inout) :: status
-    character(len=message_length) :: line
     real(real64), allocatable :: c(:, :, :)
-    integer :: i
 
     call solve_gap(problem, gap, result, status)
     if (status%failed()) return
@@ -236,11 +234,8 @@ contains
     c(:, :, size(c, 3)) = result%f / (result%g * result%c**c_power)
     call move_alloc(c, cnorm)
     area = [area, pi * result%c**2]
-    do i = 1, size(result%warnings)
-      line = 'level '//itoa(label)//' (gap grid '//itoa(gap%mx)//' x '//itoa(gap%my)//'): '// &
-             trim(result%warnings(i))
-      warnings = [warnings, line]
-    end do
+    call append_prefixed(warnings, 'level '//itoa(label)//' (gap grid '//itoa(gap%mx)//' x '//itoa(gap%my)//'): ', &
+                         result%warnings)
   end subroutine run_gap_level
 
   !> The fits: C_ij and the area extrapolated; f_ij = G c^p C_ij with c from

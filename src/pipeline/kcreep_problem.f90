@@ -17,7 +17,7 @@ module kcreep_problem
   use kcreep_equivalent_ellipse, only: equivalent_ellipse_t
   implicit none
   private
-  public :: problem_t, result_t, default_problem, normal_problem_t, add_warning
+  public :: problem_t, result_t, default_problem, normal_problem_t, add_warning, append_prefixed
 
   !> The normal contact problem that finds the patch: when active, the patch
   !> is the set of cells with positive pressure on the gap's grid (cropped
@@ -125,16 +125,36 @@ contains
   pure subroutine add_warning(result, line)
     type(result_t), intent(inout) :: result
     character(len=*), intent(in) :: line
+    call append_line(result%warnings, line)
+  end subroutine add_warning
+
+  !> Append a level's warnings to a list, each behind prefix (e.g.
+  !> 'level 48 (96 x 96): '); level_warnings may not exist.
+  pure subroutine append_prefixed(warnings, prefix, level_warnings)
+    character(len=message_length), allocatable, intent(inout) :: warnings(:)
+    character(len=*), intent(in) :: prefix
+    character(len=message_length), allocatable, intent(in) :: level_warnings(:)
+    integer :: i
+    if (.not. allocated(level_warnings)) return
+    do i = 1, size(level_warnings)
+      call append_line(warnings, prefix//trim(level_warnings(i)))
+    end do
+  end subroutine append_prefixed
+
+  !> Append one line to a list of messages (which may not exist yet).
+  pure subroutine append_line(lines, line)
+    character(len=message_length), allocatable, intent(inout) :: lines(:)
+    character(len=*), intent(in) :: line
     character(len=message_length), allocatable :: grown(:)
     integer :: n
     n = 0
-    if (allocated(result%warnings)) n = size(result%warnings)
+    if (allocated(lines)) n = size(lines)
     ! copied element by element: gfortran's -fcheck=all misreads the length
-    ! of an array constructor built from this allocatable component
+    ! of an array constructor built from an allocatable component
     allocate (grown(n + 1))
-    if (n > 0) grown(1:n) = result%warnings
+    if (n > 0) grown(1:n) = lines
     grown(n + 1) = line
-    call move_alloc(grown, result%warnings)
-  end subroutine add_warning
+    call move_alloc(grown, lines)
+  end subroutine append_line
 
 end module kcreep_problem
