@@ -20,10 +20,10 @@ module kcreep_error_run
   use kcreep_status, only: status_t
   use kcreep_strings, only: itoa, rtoa
   use kcreep_patch, only: patch_t, ellipse_patch, place_like
-  use kcreep_problem, only: problem_t, result_t, add_warning, append_prefixed
+  use kcreep_problem, only: problem_t, result_t, add_warning, append_prefixed, add_uncertain
   use kcreep_run, only: run_case, solve_cache_t
   use kcreep_extrapolation, only: refined_patch
-  use kcreep_verdict, only: message_length, verdict_ok, verdict_uncertain
+  use kcreep_verdict, only: message_length
   use kcreep_fastsim, only: fastsim_flexibilities
   use kcreep_error_control
   use kcreep_gap_levels, only: run_gap_patch
@@ -65,7 +65,7 @@ contains
       call run_single(problem, result, status, cache)
     end if
     if (status%failed()) return
-    call add_uncertain(result, problem%target_error)
+    call add_uncertain(result, problem%target_error, 'estimated relative errors')
   end subroutine run_controlled
 
   !> The given grid and its error estimate from one auxiliary grid.
@@ -168,7 +168,7 @@ contains
           if (0.79_real64 * mx * my > budget) then
             line = 'error control: the next level, '//itoa(mx)//' x '//itoa(my)//', would exceed the budget of '// &
                    itoa(nint(budget))//' patch cells at target_error '//rtoa(problem%target_error)// &
-                   '; stopped at '//itoa(levels(k))//' cells across'
+                   ', stopped at '//itoa(levels(k))//' cells across'
             warnings = [warnings, line]
             exit
           end if
@@ -285,25 +285,5 @@ contains
       area_ratio = 1
     end if
   end function area_ratio
-
-  !> 'uncertain' in the verdict, with its warning, when an estimate misses its target.
-  subroutine add_uncertain(result, target)
-    type(result_t), intent(inout) :: result
-    real(real64), intent(in) :: target
-    character(len=message_length) :: line
-    real(real64) :: targets(3)
-    if (len(uncertain_flag(result%err, target)) == 0) return
-    targets = coefficient_targets(target)
-    result%verdict_flags = ior(result%verdict_flags, verdict_uncertain)
-    if (result%verdict == 'ok') then
-      result%verdict = 'uncertain'
-    else
-      result%verdict = result%verdict//',uncertain'
-    end if
-    line = 'uncertain: estimated relative errors of C11, C22, C23 '//rtoa(result%err(1))//', '// &
-           rtoa(result%err(2))//', '//rtoa(result%err(3))//' against targets '//rtoa(targets(1))//', '// &
-           rtoa(targets(2))//', '//rtoa(targets(3))//' (target_error; C23 gets 3 times it)'
-    call add_warning(result, line)
-  end subroutine add_uncertain
 
 end module kcreep_error_run

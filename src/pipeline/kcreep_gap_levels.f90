@@ -188,7 +188,7 @@ contains
         ! contact cells of the finest new level: area / h^2
         if (first%area() * (want(size(want)) / diameter)**2 > max_gap_level_cells) then
           line = 'error control: refining to '//itoa(want(size(want)))//' cells across the contact area would '// &
-                 'exceed about '//itoa(max_gap_level_cells)//' contact cells; stopped at '// &
+                 'exceed about '//itoa(max_gap_level_cells)//' contact cells, stopped at '// &
                  itoa(want(size(want)) / 2)//' cells across'
           warnings = [warnings, line]
           want = gap_base_levels * 2**(refinement - 1)

@@ -11,13 +11,15 @@ module kcreep_problem
   use kcreep_patch, only: patch_t
   use kcreep_assembly, only: scheme_t, n_load_cases
   use kcreep_solver_options, only: solver_options_t
-  use kcreep_verdict, only: verdict_ok, message_length
+  use kcreep_verdict, only: verdict_ok, verdict_uncertain, message_length
+  use kcreep_strings, only: rtoa
+  use kcreep_error_control, only: uncertain_flag, coefficient_targets
   use kcreep_gap, only: gap_t, polynomial_gap_t
   use kcreep_normal_solve, only: normal_options_t
   use kcreep_equivalent_ellipse, only: equivalent_ellipse_t
   implicit none
   private
-  public :: problem_t, result_t, default_problem, normal_problem_t, add_warning, append_prefixed
+  public :: problem_t, result_t, default_problem, normal_problem_t, add_warning, append_prefixed, add_uncertain
 
   !> The normal contact problem that finds the patch: when active, the patch
   !> is the set of cells with positive pressure on the gap's grid (cropped
@@ -127,6 +129,31 @@ contains
     character(len=*), intent(in) :: line
     call append_line(result%warnings, line)
   end subroutine add_warning
+
+  !> 'uncertain' in the verdict, with its warning, when an estimate misses its
+  !> target. what: the estimates' name in the warning; advice: what could reach
+  !> the target (optional, appended).
+  pure subroutine add_uncertain(result, target, what, advice)
+    type(result_t), intent(inout) :: result
+    real(real64), intent(in) :: target
+    character(len=*), intent(in) :: what
+    character(len=*), intent(in), optional :: advice
+    character(len=message_length) :: line
+    real(real64) :: targets(3)
+    if (len(uncertain_flag(result%err, target)) == 0) return
+    targets = coefficient_targets(target)
+    result%verdict_flags = ior(result%verdict_flags, verdict_uncertain)
+    if (result%verdict == 'ok') then
+      result%verdict = 'uncertain'
+    else
+      result%verdict = result%verdict//',uncertain'
+    end if
+    line = 'uncertain: '//what//' of C11, C22, C23 '//rtoa(result%err(1))//', '//rtoa(result%err(2))//', '// &
+           rtoa(result%err(3))//' against targets '//rtoa(targets(1))//', '//rtoa(targets(2))//', '// &
+           rtoa(targets(3))//' (target_error, C23 gets 3 times it)'
+    if (present(advice)) line = trim(line)//': '//advice
+    call add_warning(result, line)
+  end subroutine add_uncertain
 
   !> Append a level's warnings to a list, each behind prefix (e.g.
   !> 'level 48 (96 x 96): '); level_warnings may not exist.

@@ -9,15 +9,13 @@ module kcreep_table_run
   use, intrinsic :: iso_fortran_env, only: real64, int64
   use, intrinsic :: ieee_arithmetic, only: ieee_value, ieee_quiet_nan
   use kcreep_status, only: status_t
-  use kcreep_strings, only: rtoa
   use kcreep_creep_matrix, only: normalised
   use kcreep_kalker_table, only: kalker_coefficients
   use kcreep_fastsim, only: fastsim_flexibilities
   use kcreep_equivalent_ellipse, only: equivalent_ellipses
-  use kcreep_verdict, only: verdict_ok, verdict_uncertain, message_length
-  use kcreep_error_control, only: uncertain_flag, coefficient_targets
+  use kcreep_verdict, only: verdict_ok
   use kcreep_table_interpolation, only: table_coefficients
-  use kcreep_problem, only: problem_t, result_t
+  use kcreep_problem, only: problem_t, result_t, add_uncertain
   implicit none
   private
   public :: run_table, table_matrix
@@ -65,7 +63,8 @@ contains
     end associate
     result%verdict_flags = verdict_ok
     result%verdict = 'ok'
-    call add_uncertain(result, problem%target_error)
+    call add_uncertain(result, problem%target_error, 'the refined table''s relative uncertainties', &
+                       'a solve (method = ''auto'') can reach the target')
     call system_clock(t1)
     result%t_total = real(t1 - t0, real64) / rate
   end subroutine run_table
@@ -93,29 +92,5 @@ contains
     ! f23 = f0_23 + xc f22: the absolute uncertainties add
     err(3) = (abs(f0(2, 3)) * rel(3) + abs(centre(1) * f0(2, 2)) * rel(2)) / abs(f(2, 3))
   end subroutine table_matrix
-
-  !> 'uncertain' in the verdict, with its warning, when a stated uncertainty misses its target.
-  pure subroutine add_uncertain(result, target)
-    type(result_t), intent(inout) :: result
-    real(real64), intent(in) :: target
-    character(len=message_length) :: line
-    character(len=message_length), allocatable :: warnings(:)
-    real(real64) :: targets(3)
-    integer :: n
-    if (len(uncertain_flag(result%err, target)) == 0) return
-    targets = coefficient_targets(target)
-    result%verdict_flags = ior(result%verdict_flags, verdict_uncertain)
-    result%verdict = 'uncertain'
-    line = 'uncertain: the refined table''s relative uncertainties of C11, C22, C23 '//rtoa(result%err(1))// &
-           ', '//rtoa(result%err(2))//', '//rtoa(result%err(3))//' against targets '//rtoa(targets(1))//', '// &
-           rtoa(targets(2))//', '//rtoa(targets(3))//' (target_error, C23 gets 3 times it): a solve '// &
-           '(method = ''auto'') can reach the target'
-    ! (appended element by element: the array constructor trips gfortran's length check here)
-    n = size(result%warnings)
-    allocate (warnings(n + 1))
-    warnings(1:n) = result%warnings
-    warnings(n + 1) = line
-    call move_alloc(warnings, result%warnings)
-  end subroutine add_uncertain
 
 end module kcreep_table_run
