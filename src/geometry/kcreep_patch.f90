@@ -26,7 +26,7 @@ module kcreep_patch
     integer :: n = 0                          !< number of patch cells
     integer, allocatable :: ix(:), iy(:)      !< grid indices of patch cell k
   contains
-    procedure :: cell_x, cell_y, area, equivalent_radius, centroid
+    procedure :: cell_x, cell_y, area, equivalent_radius, centroid, grid_box
     procedure :: mirror_symmetric_in_x, mirror_symmetric_in_y
   end type patch_t
 
@@ -133,6 +133,14 @@ contains
     class(patch_t), intent(in) :: self
     area = self%n * self%dx * self%dy
   end function area
+
+  !> The grid's outer cell edges: xmin, xmax, ymin, ymax.
+  pure function grid_box(self) result(box)
+    class(patch_t), intent(in) :: self
+    real(real64) :: box(4)
+    box = [self%x0 - self%dx / 2, self%x0 + (self%mx - 0.5_real64) * self%dx, &
+           self%y0 - self%dy / 2, self%y0 + (self%my - 0.5_real64) * self%dy]
+  end function grid_box
 
   !> c of the normalisation: sqrt(a b) for an ellipse, sqrt(area/pi) otherwise.
   pure real(real64) function equivalent_radius(self)

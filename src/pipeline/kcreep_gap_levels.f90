@@ -169,16 +169,14 @@ contains
     real(real64), allocatable :: cnorm(:, :, :), area(:)
     character(len=message_length), allocatable :: warnings(:)
     character(len=message_length) :: line
-    real(real64) :: box(4), diameter, t(4), bbox(4)
+    real(real64) :: box(4), diameter, t(4)
     integer :: refinement, k
 
     ! the contact area on the given grid: its size and where it is
     call normal_patch(problem, first, nres, status)
     if (status%failed()) return
     diameter = contact_diameter(first)
-    bbox = [first%x0 - first%dx / 2, first%x0 + (first%mx - 0.5_real64) * first%dx, &
-            first%y0 - first%dy / 2, first%y0 + (first%my - 0.5_real64) * first%dy]
-    box = level_box(problem%normal%gap, bbox)
+    box = level_box(problem%normal%gap, first%grid_box())
 
     allocate (done(0), cnorm(3, 3, 0), area(0), warnings(0))
     t = 0

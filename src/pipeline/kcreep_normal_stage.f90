@@ -81,8 +81,7 @@ contains
     do k = 1, patch%n
       result%pressure(k) = nres%pressure(patch%ix(k), patch%iy(k))
     end do
-    result%bbox = [patch%x0 - patch%dx / 2, patch%x0 + (patch%mx - 0.5_real64) * patch%dx, &
-                   patch%y0 - patch%dy / 2, patch%y0 + (patch%my - 0.5_real64) * patch%dy]
+    result%bbox = patch%grid_box()
     if (nres%touches_edge) then
       allocate (more(1))
       more(1) = 'the contact area reaches the edge of the gap''s grid: the potential contact area is too small, '// &
