@@ -85,6 +85,8 @@ int kcreep_get_error_estimate(kcreep_handle handle, double limit[3], double erro
 int kcreep_get_fastsim(kcreep_handle handle, double l[3]);         /* L1, L2, L3 */
 int kcreep_get_relative_error(kcreep_handle handle, double error[3]); /* estimated, of C11 C22 C23; NaN: none */
 int kcreep_get_verdict(kcreep_handle handle, int *flags, char *buffer, int buffer_length);
+/* Warning number index (0 to count - 1, count from kcreep_get_results [32]), whole. */
+int kcreep_get_warning(kcreep_handle handle, int index, char *buffer, int buffer_length);
 int kcreep_get_cells(kcreep_handle handle, int *n, int *mx, int *my);
 /* (none after method "table": an error) t: length >= 6 n; px of case j (0 xi, 1 eta, 2 phi) at t[j*2n + k], py at
  * t[j*2n + n + k]; ix, iy (1-based grid indices, n each) may be NULL. */

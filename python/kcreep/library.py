@@ -65,6 +65,7 @@ _signatures = {
     "kcreep_get_error_estimate": ([_h, _p, _p], _i),
     "kcreep_get_fastsim": ([_h, _p], _i),
     "kcreep_get_verdict": ([_h, ctypes.POINTER(_i), ctypes.c_char_p, _i], _i),
+    "kcreep_get_warning": ([_h, _i, ctypes.c_char_p, _i], _i),
     "kcreep_get_cells": ([_h, ctypes.POINTER(_i), ctypes.POINTER(_i), ctypes.POINTER(_i)], _i),
     "kcreep_get_tractions": ([_h, _i, _p, _p, _p], _i),
     "kcreep_get_reuse_count": ([_h, ctypes.POINTER(_i)], _i),
@@ -204,8 +205,13 @@ class Solver:
             flags = _i()
             buffer = ctypes.create_string_buffer(8192)
             self._check(_lib.kcreep_get_verdict(self._handle, ctypes.byref(flags), buffer, len(buffer)))
-            parts = buffer.value.decode(errors="replace").split("; ")
-            r.verdict, r.warnings = parts[0], parts[1:]
+            # the verdict words (comma-separated, no "; ") lead the joined string;
+            # the warnings are fetched one by one, whatever they contain
+            r.verdict = buffer.value.decode(errors="replace").split("; ")[0]
+            r.warnings = []
+            for k in range(int(v[32])):
+                self._check(_lib.kcreep_get_warning(self._handle, k, buffer, len(buffer)))
+                r.warnings.append(buffer.value.decode(errors="replace"))
         if tractions:
             t = np.empty(6 * r.n)
             r.ix, r.iy = np.empty(r.n, dtype=np.intc), np.empty(r.n, dtype=np.intc)

@@ -363,6 +363,29 @@ contains
     call to_c(text, chars, buffer_length)
   end function c_get_verdict
 
+  !> Warning number index (0-based; kcreep_get_results gives their count), whole:
+  !> a warning's text may contain any punctuation, so callers need not split
+  !> kcreep_get_verdict's joined string.
+  integer(c_int) function c_get_warning(handle, index, buffer, buffer_length) bind(c, name='kcreep_get_warning')
+    type(c_ptr), value :: handle, buffer
+    integer(c_int), value :: index, buffer_length
+    type(handle_t), pointer :: h
+    character(kind=c_char), pointer :: chars(:)
+    integer :: count
+    c_get_warning = solved(handle, h)
+    if (c_get_warning /= status_ok) return
+    count = 0
+    if (allocated(h%result%warnings)) count = size(h%result%warnings)
+    if (.not. c_associated(buffer) .or. buffer_length < 1 .or. index < 0 .or. index >= count) then
+      call fail(h%last, exit_bad_input, 'kcreep_get_warning: index = '//itoa(int(index))//' (allowed: 0 to '// &
+                itoa(count - 1)//'), buffer not NULL, buffer_length >= 1')
+      c_get_warning = finish(h)
+      return
+    end if
+    call c_f_pointer(buffer, chars, [buffer_length])
+    call to_c(trim(h%result%warnings(index + 1)), chars, buffer_length)
+  end function c_get_warning
+
   !> Cells in the patch solved (the finest level when extrapolated) and its grid.
   integer(c_int) function c_get_cells(handle, n, mx, my) bind(c, name='kcreep_get_cells')
     type(c_ptr), value :: handle

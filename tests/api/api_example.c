@@ -158,6 +158,9 @@ int main(int argc, char **argv) {
     printf("errors gap fn %.6e cells %d fx_full_slip %.6e\n", fn, cells, force[3]);
     int flags;
     expect(kcreep_get_verdict(h, &flags, NULL, 10) == KCREEP_BAD_INPUT, "NULL verdict buffer refused");
+    char warning[512];
+    expect(kcreep_get_warning(h, 1000, warning, sizeof warning) == KCREEP_BAD_INPUT, "warning index out of range refused");
+    expect(kcreep_get_warning(h, -1, warning, sizeof warning) == KCREEP_BAD_INPUT, "negative warning index refused");
     kcreep_handle gone = h;
     kcreep_delete(&gone);
     expect(gone == NULL, "delete sets the handle to NULL");
