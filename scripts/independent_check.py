@@ -22,20 +22,15 @@ import sys
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 import kcreep_levels as K  # noqa: E402
+from refine_kalker_table import T95, lstsq  # noqa: E402
 
-T95 = {1: 12.706, 2: 4.303, 3: 3.182, 4: 2.776, 5: 2.571, 6: 2.447, 7: 2.365, 8: 2.306, 9: 2.262, 10: 2.228}
 DEFAULT_CASES = "1:0.25,0.5:0.25,2:0.25,0.667:0.25,1.5:0.25,1:0,1:0.5"
 
 
 def fit(hs, fs):
     """f0 of the least-squares line f0 + K h and the 95 % half-width of f0."""
-    m = len(hs)
-    hm, fm = sum(hs) / m, sum(fs) / m
-    shh = sum((h - hm) ** 2 for h in hs)
-    slope = sum((h - hm) * (f - fm) for h, f in zip(hs, fs)) / shh
-    f0 = fm - slope * hm
-    s2 = sum((f - f0 - slope * h) ** 2 for h, f in zip(hs, fs)) / (m - 2)
-    return f0, T95[m - 2] * math.sqrt(s2 * (1 / m + hm ** 2 / shh))
+    f0, std_error, dof = lstsq(hs, fs, (1,))
+    return f0, T95[dof] * std_error
 
 
 def main():
