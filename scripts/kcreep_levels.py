@@ -7,6 +7,8 @@ error-control tests. An ellipse with semi-axes a = sqrt(r), b = 1/sqrt(r)
 `cells` cells across its shorter axis. The coefficients are normalised by the
 area of the cells inside the ellipse (c^2 = staircase area / pi): that is what
 makes the backward scheme converge cleanly at first order (docs/convergence.md).
+refer_to_ellipse() then takes out the staircase's aspect ratio as well, as
+kcreep's own levels do (src/coefficients/kcreep_staircase_normalisation.f90).
 """
 import sys as _sys
 
@@ -84,6 +86,72 @@ def ellipse_level(ratio, nu, cells, scheme="backward", method="iterative", extra
     for k in COEFFS:
         v = float(row[k]) if k in ("c11", "c22", "c23") else float(row["f" + k[1:]]) / (g * c ** POWERS[k])
         out[k] = v * q ** (POWERS[k] / 2)
+    return out
+
+
+def staircase_moments(ratio, mx, my):
+    """(a_s, b_s, harmonic4) of the ellipse a = sqrt(ratio), b = 1/sqrt(ratio) on
+    an mx x my grid: the semi-axes of the ellipse with the staircase's second
+    moments (cells with their own dx^2/12), and its four-fold harmonic
+    sum (X^4 - 6 X^2 Y^2 + Y^4) dX dY in X = x/a, Y = y/b (cell centres)."""
+    a, b = math.sqrt(ratio), 1 / math.sqrt(ratio)
+    dx, dy = 2 * a / mx, 2 * b / my
+    n = sxx = syy = h4 = 0.0
+    xs = [(-a + dx * (i + 0.5)) / a for i in range(mx)]
+    for j in range(my):
+        y = (-b + dy * (j + 0.5)) / b
+        for x in xs:
+            if x * x + y * y <= 1:
+                n += 1
+                sxx += x * x
+                syy += y * y
+                h4 += x ** 4 - 6 * x * x * y * y + y ** 4
+    ixx = (sxx * a * a + n * dx * dx / 12) / n
+    iyy = (syy * b * b + n * dy * dy / 12) / n
+    return 2 * math.sqrt(ixx), 2 * math.sqrt(iyy), h4 * (dx / a) * (dy / b)
+
+
+def table_slopes(ratio, nu, table=None):
+    """d ln C / d ln(a/b) of c11 c22 c23 c33 c32 from the refined table (central
+    differences between its rows at this nu, linear in ln(a/b) between them)."""
+    table = table or os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "docs", "data",
+                                  "kalker_refined.dat")
+    rows = {}
+    with open(table) as f:
+        for line in f:
+            if line.startswith("#") or not line.strip():
+                continue
+            p = [float(x) for x in line.split()]
+            if abs(p[1] - nu) < 1e-9:
+                rows[p[0]] = dict(zip(COEFFS, (p[2], p[4], p[6], p[8], p[10])))
+    rs = sorted(rows)
+    r = min(max(ratio, rs[0]), rs[-1])
+
+    def at_row(i):
+        lo, hi = rs[max(i - 1, 0)], rs[min(i + 1, len(rs) - 1)]
+        return {k: math.log(rows[hi][k] / rows[lo][k]) / math.log(hi / lo) for k in COEFFS}
+    i = max(k for k in range(len(rs)) if rs[k] <= r)
+    if i == len(rs) - 1:
+        return at_row(i)
+    w = math.log(r / rs[i]) / math.log(rs[i + 1] / rs[i])
+    s0, s1 = at_row(i), at_row(i + 1)
+    return {k: (1 - w) * s0[k] + w * s1[k] for k in COEFFS}
+
+
+def refer_to_ellipse(ratio, nu, level, slopes=None):
+    """An area-normalised level (ellipse_level's dict) referred to the ellipse by
+    its second moments: size as c^p, aspect ratio by the table's slopes. Adds
+    'harmonic4'. Returns a new dict."""
+    slopes = slopes or table_slopes(ratio, nu)
+    a_s, b_s, h4 = staircase_moments(ratio, level["mx"], level["my"])
+    area_c2 = math.pi * level["mx"] * level["my"] / (4 * level["n"])   # (c / c_area)^2, c = 1
+    log_scale = 0.5 * math.log(1 / (a_s * b_s))                                     # ln(c / c_moments)
+    log_aspect = math.log((a_s / b_s) / ratio)
+    out = dict(level)
+    for k in COEFFS:
+        raw = level[k] / area_c2 ** (POWERS[k] / 2)
+        out[k] = raw * math.exp(POWERS[k] * log_scale - slopes[k] * log_aspect)
+    out["harmonic4"] = h4
     return out
 
 

@@ -7,14 +7,17 @@
 For every a/b and nu of data/kalker-table-E3.dat: the ellipse with c = 1 on
 near-square grids with N cells across its shorter axis (the levels), the
 backward scheme on the iterative path, coefficients normalised by the area
-of the cells inside the ellipse. Each level's numbers are appended to
+of the cells inside the ellipse (as stored; each level is then referred to
+the ellipse by the staircase's second moments, kcreep_levels.refer_to_ellipse,
+as kcreep's own ellipse levels are). Each level's numbers are appended to
 docs/data/kalker_refined_levels.dat as soon as they exist, so the script
 resumes where it stopped (run it in chunks). The table
 docs/data/kalker_refined.dat is then rebuilt from all levels present:
 
-    value  the least-squares fit f0 + K h through the levels (order fixed at 1)
+    value  the least-squares fit f0 + K h + B harmonic4 through the levels
+           (order fixed at 1; harmonic4 the staircase's four-fold harmonic)
     u      max(t95 * standard error of f0, |f0 - f0'|), f0' the fit of
-           f0 + K h + L h^2: the scatter of the levels (the staircase noise)
+           f0 + K h + L h^2 + B harmonic4: the scatter of the levels (the staircase noise)
            and the model error, whichever is larger (absolute units)
 
 The fit uses the levels from --fit-from cells across up (the coarser ones
@@ -69,7 +72,9 @@ def read_levels():
                 continue
             row = dict(zip(LEVEL_COLUMNS, line.split()))
             k = key(float(row["a_over_b"]), float(row["nu"]))
-            data.setdefault(k, {})[int(row["N"])] = {c: float(row[c]) for c in ("c11", "c22", "c23", "c33", "c32")}
+            level = {c: float(row[c]) for c in ("c11", "c22", "c23", "c33", "c32")}
+            level.update({c: int(row[c]) for c in ("mx", "my", "n")})
+            data.setdefault(k, {})[int(row["N"])] = level
     return data
 
 
@@ -100,13 +105,35 @@ def lstsq(hs, fs, orders):
     return c[0], math.sqrt(s2 * e0), dof
 
 
+def lstsq_columns(columns, fs):
+    """f0 and its standard error of the least-squares fit of fs by the columns
+    (lists, the first all ones); NaN error without degrees of freedom."""
+    m, k = len(fs), len(columns)
+    scale = [max(abs(v) for v in col) or 1.0 for col in columns]
+    A = [[columns[a][i] / scale[a] for a in range(k)] for i in range(m)]
+    ATA = [[sum(A[i][a] * A[i][b] for i in range(m)) for b in range(k)] for a in range(k)]
+    ATf = [sum(A[i][a] * fs[i] for i in range(m)) for a in range(k)]
+    c = K.solve(ATA, ATf)
+    res = [fs[i] - sum(A[i][a] * c[a] for a in range(k)) for i in range(m)]
+    dof = m - k
+    if dof <= 0:
+        return c[0] / scale[0], float("nan"), dof
+    s2 = sum(x * x for x in res) / dof
+    e0 = K.solve(ATA, [1.0] + [0.0] * (k - 1))[0]
+    return c[0] / scale[0], math.sqrt(s2 * e0) / scale[0], dof
+
+
 def refined_value(levels, coeff):
-    """(value, u) from {N: {coeff: value}}."""
+    """(value, u) from {N: level referred to the ellipse (K.refer_to_ellipse)}:
+    the fit f0 + K h + B harmonic4 (as kcreep's own ellipse levels), u the
+    larger of its 95 % interval and its change when an h^2 term is added."""
     Ns = sorted(levels)
     hs = [1.0 / N for N in Ns]
+    h4 = [levels[N]["harmonic4"] for N in Ns]
     fs = [levels[N][coeff] for N in Ns]
-    f1, se1, dof1 = lstsq(hs, fs, (1,))
-    f2, _, _ = lstsq(hs, fs, (1, 2))
+    ones = [1.0] * len(Ns)
+    f1, se1, dof1 = lstsq_columns([ones, hs, h4], fs)
+    f2, _, _ = lstsq_columns([ones, hs, [h * h for h in hs], h4], fs)
     u = max(T95.get(dof1, 2.0) * se1, abs(f1 - f2))
     return f1, u
 
@@ -115,8 +142,10 @@ def write_table(data, points, fit_from):
     rows = []
     for r, nu, _ in points:
         lv = {N: v for N, v in data.get(key(r, nu), {}).items() if N >= fit_from}
-        if len(lv) < 4:
+        if len(lv) < 5:
             continue
+        slopes = K.table_slopes(r, nu)
+        lv = {N: K.refer_to_ellipse(r, nu, v, slopes) for N, v in lv.items()}
         vals = []
         for c in ("c11", "c22", "c23", "c33", "c32"):
             vals.extend(refined_value(lv, c))
@@ -125,7 +154,8 @@ def write_table(data, points, fit_from):
     with open(tmp, "w") as f:
         f.write("# Kalker's creep coefficients recomputed by kcreep (scripts/refine_kalker_table.py):\n"
                 "# ellipse with c = sqrt(ab) = 1, backward scheme on near-square cells, levels from Nmin to Nmax\n"
-                "# cells across the shorter axis, normalised by the staircase area, least-squares fit f0 + K h;\n"
+                "# cells across the shorter axis, each referred to the ellipse by the staircase's second moments\n"
+                "# (scripts/kcreep_levels.py refer_to_ellipse), least-squares fit f0 + K h + B harmonic4;\n"
                 "# u = absolute uncertainty: max(95 % interval of the fit, change when an h^2 term is added).\n"
                 "# c32 = f32/(G c^3) (= -c23 by reciprocity, kept as a check), c33 = f33/(G c^4).\n")
         f.write("# a_over_b nu c11 u11 c22 u22 c23 u23 c33 u33 c32 u32 Nmin Nmax levels\n")

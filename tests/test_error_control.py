@@ -97,9 +97,9 @@ if ref_rows:
         true = abs(r[c] - ref[c]) / ref[c]
         kc.check(r[e] + ref[u] / ref[c] >= true,
                  f"a/b = 0.2 default run: {e} = {r[e]:.2e} bounds the error {true:.2e} (reference u {ref[u] / ref[c]:.1e})")
-# a loose target stops at the base levels: finest 48 cells across
+# a loose target stops at the base levels: finest 96 cells across (kcreep_error_run base_levels)
 r = kc.run(nml("semi_a=1, semi_b=1", solver="target_error=0.01"), folder, "loose_e")[3][0]
-kc.check(r["verdict"] == "ok" and r["mx"] == 48, f"circle, target 1 %: ok on the base levels ({r['mx']} x {r['my']})")
+kc.check(r["verdict"] == "ok" and r["mx"] == 96, f"circle, target 1 %: ok on the base levels ({r['mx']} x {r['my']})")
 
 # --- 5. bad input
 code, out, err, t = kc.run(nml("semi_a=1, semi_b=1", solver="target_error=-1"), folder, "bad", expect_ok=False)

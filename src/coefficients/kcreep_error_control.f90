@@ -28,7 +28,8 @@ module kcreep_error_control
   private
   public :: default_target_error, c23_target_factor, min_estimate_cells, fit_width
   public :: coefficient_targets, ellipse_level_grid, next_level, level_cell_budget, student_t95
-  public :: first_order_fit, level_estimate, smooth_level_estimate, basis_fit, single_grid_estimate
+  public :: first_order_fit, level_estimate, ellipse_level_estimate, smooth_level_estimate, basis_fit
+  public :: single_grid_estimate, ellipse_fit_min, ellipse_fit_width
   public :: split_grid_estimate, within_target, uncertain_flag
 
   !> &solver target_error when not given: the relative error aimed at for C11 and C22.
@@ -42,6 +43,9 @@ module kcreep_error_control
   integer, parameter :: min_estimate_cells = 12
   !> Levels in one fit: the finest this many (Student's factor 2.45 for 8).
   integer, parameter :: fit_width = 8
+  !> An ellipse's levels: the fewest in a fit (ellipse_level_estimate, 3
+  !> coefficients), and the finest this many in one fit (Student's factor 2.57).
+  integer, parameter :: ellipse_fit_min = 5, ellipse_fit_width = 8
   !> Patch cells of the finest level kcreep may choose at target_error = 1e-3;
   !> scaled by (1e-3 / target)**(1/4) for other targets (level_cell_budget):
   !> 71,000 at 1e-4. A run-time budget: a level of 40,000 cells takes about
@@ -125,7 +129,7 @@ contains
   end subroutine first_order_fit
 
   !> Limit and relative 95 % error estimate from the levels (h the cell size of
-  !> each level, any consistent unit; f the area-normalised coefficient).
+  !> each level, any consistent unit; f the normalised coefficient).
   !> Two levels: the first-order extrapolation, and as estimate the size of the
   !> correction itself (|limit - f(finest)|, no scatter to measure).
   pure subroutine level_estimate(h, f, limit, rel_error)
@@ -142,45 +146,88 @@ contains
     end if
   end subroutine level_estimate
 
+  !> Limit and relative 95 % error estimate from an ellipse's levels (at least
+  !> ellipse_fit_min of them, from 56 cells across): the fit f0 + K h + B shape,
+  !> shape being each level's four-fold staircase harmonic
+  !> (kcreep_staircase_normalisation), which takes out what is left of the
+  !> staircase's level-to-level scatter after the second moments (it halves
+  !> it). Coarser levels bend away from the straight line (C11 of the circle
+  !> by 0.1 % between 32 and 148 across) and are not used. Checked against
+  !> references from grids of 160 to 384 cells across (docs/accuracy.md).
+  pure subroutine ellipse_level_estimate(h, f, shape, limit, rel_error)
+    real(real64), intent(in) :: h(:), f(:), shape(:)
+    real(real64), intent(out) :: limit, rel_error
+    real(real64) :: se
+    call three_column_fit(h, f, shape, limit, se)
+    rel_error = student_t95(size(h) - 3) * se / abs(limit)
+  end subroutine ellipse_level_estimate
+
   !> Least-squares fit f = f0 + K h + L g(h) with g(h) = h**1.5 (kind 1) or
   !> h log h (kind 2); std_error of f0 (NaN without degrees of freedom left).
   pure subroutine basis_fit(h, f, kind, f0, std_error)
     real(real64), intent(in) :: h(:), f(:)
     integer, intent(in) :: kind
     real(real64), intent(out) :: f0, std_error
-    real(real64) :: a(size(h), 3), ata(3, 3), atf(3), inv(3, 3), c(3), s2, det
-    integer :: m
-    m = size(h)
+    if (kind == 1) then
+      call three_column_fit(h, f, h**1.5_real64, f0, std_error)
+    else
+      call three_column_fit(h, f, h * log(h), f0, std_error)
+    end if
+  end subroutine basis_fit
+
+  !> Least-squares fit f = f0 + K h + L g; std_error of f0 (NaN without
+  !> degrees of freedom left).
+  pure subroutine three_column_fit(h, f, g, f0, std_error)
+    real(real64), intent(in) :: h(:), f(:), g(:)
+    real(real64), intent(out) :: f0, std_error
+    real(real64) :: a(size(h), 3)
     a(:, 1) = 1
     a(:, 2) = h
-    if (kind == 1) then
-      a(:, 3) = h**1.5_real64
-    else
-      a(:, 3) = h * log(h)
-    end if
-    ata = matmul(transpose(a), a)
-    atf = matmul(transpose(a), f)
-    ! the 3 x 3 inverse by cofactors (well conditioned enough for h in (0, 1])
-    inv(1, 1) = ata(2, 2) * ata(3, 3) - ata(2, 3) * ata(3, 2)
-    inv(1, 2) = ata(1, 3) * ata(3, 2) - ata(1, 2) * ata(3, 3)
-    inv(1, 3) = ata(1, 2) * ata(2, 3) - ata(1, 3) * ata(2, 2)
-    inv(2, 1) = ata(2, 3) * ata(3, 1) - ata(2, 1) * ata(3, 3)
-    inv(2, 2) = ata(1, 1) * ata(3, 3) - ata(1, 3) * ata(3, 1)
-    inv(2, 3) = ata(1, 3) * ata(2, 1) - ata(1, 1) * ata(2, 3)
-    inv(3, 1) = ata(2, 1) * ata(3, 2) - ata(2, 2) * ata(3, 1)
-    inv(3, 2) = ata(1, 2) * ata(3, 1) - ata(1, 1) * ata(3, 2)
-    inv(3, 3) = ata(1, 1) * ata(2, 2) - ata(1, 2) * ata(2, 1)
-    det = ata(1, 1) * inv(1, 1) + ata(1, 2) * inv(2, 1) + ata(1, 3) * inv(3, 1)
-    inv = inv / det
-    c = matmul(inv, atf)
-    f0 = c(1)
-    if (m > 3) then
-      s2 = sum((f - matmul(a, c))**2) / (m - 3)
-      std_error = sqrt(s2 * inv(1, 1))
+    a(:, 3) = g
+    call limit_fit(a, f, f0, std_error)
+  end subroutine three_column_fit
+
+  !> Least-squares fit of f by the columns of a, the first being ones: f0 its
+  !> coefficient, std_error its standard error from the residual scatter (NaN
+  !> without degrees of freedom left). Normal equations on columns scaled to
+  !> unit size, solved by Gauss-Jordan elimination (at most a few columns).
+  pure subroutine limit_fit(a, f, f0, std_error)
+    real(real64), intent(in) :: a(:, :), f(:)
+    real(real64), intent(out) :: f0, std_error
+    real(real64) :: scaled(size(a, 1), size(a, 2)), scale(size(a, 2))
+    real(real64) :: m(size(a, 2), 2 * size(a, 2) + 1), c(size(a, 2)), s2, pivot
+    integer :: k, n, i, j, p
+    n = size(a, 1)
+    k = size(a, 2)
+    do j = 1, k
+      scale(j) = max(maxval(abs(a(:, j))), tiny(1.0_real64))
+      scaled(:, j) = a(:, j) / scale(j)
+    end do
+    ! [A'A | I | A'f] -> [I | inv(A'A) | c]
+    m = 0
+    m(:, 1:k) = matmul(transpose(scaled), scaled)
+    do j = 1, k
+      m(j, k + j) = 1
+    end do
+    m(:, 2 * k + 1) = matmul(transpose(scaled), f)
+    do j = 1, k
+      p = j - 1 + maxloc(abs(m(j:k, j)), 1)
+      if (p /= j) m([j, p], :) = m([p, j], :)
+      pivot = m(j, j)
+      m(j, :) = m(j, :) / pivot
+      do i = 1, k
+        if (i /= j) m(i, :) = m(i, :) - m(i, j) * m(j, :)
+      end do
+    end do
+    c = m(:, 2 * k + 1)
+    f0 = c(1) / scale(1)
+    if (n > k) then
+      s2 = sum((f - matmul(scaled, c))**2) / (n - k)
+      std_error = sqrt(s2 * m(1, k + 1)) / scale(1)
     else
       std_error = ieee_value(1.0_real64, ieee_quiet_nan)
     end if
-  end subroutine basis_fit
+  end subroutine limit_fit
 
   !> Levels without staircase noise (a mask whose cells are split: the same
   !> patch on every level): the convergence is smooth but not straight (the

@@ -3,10 +3,12 @@
 !> estimates, or the estimate of a single given grid.
 !>
 !> target > 0 on an ellipse without a given grid: kcreep chooses near-square
-!>   grids, levels 16, 20, 24, 28, 32, 36, 40, 48 cells across the shorter
-!>   axis, then one level about 15 % finer at a time (56, 64, 72, 84, 96, ...)
-!>   while an estimate is above its target, each fit through the finest 8
-!>   levels, as long as the next level stays within the cell budget of the
+!>   grids, levels 56, 64, 72, 84, 96 cells across the shorter axis, then one
+!>   level about 15 % finer at a time (112, 128, 148, ...) while an estimate is
+!>   above its target, each level referred to the ellipse by its staircase's
+!>   second moments (kcreep_staircase_normalisation), each fit (with the
+!>   staircase's four-fold harmonic, ellipse_level_estimate) through the finest
+!>   8 levels, as long as the next level stays within the cell budget of the
 !>   target (level_cell_budget).
 !> target > 0 on a mask: every cell is split into k x k subcells, k = 1, 2, 3, 4
 !>   (the staircase is the patch the user gave; it is not smoothed).
@@ -26,20 +28,23 @@ module kcreep_error_run
   use kcreep_verdict, only: message_length
   use kcreep_fastsim, only: fastsim_flexibilities
   use kcreep_error_control
+  use kcreep_staircase_normalisation, only: ellipse_normalised, staircase_harmonic4
   use kcreep_gap_levels, only: run_gap_patch
   implicit none
   private
   public :: run_controlled, max_level_cells, base_levels, mask_factors
 
   !> Base levels on an ellipse (cells across the shorter axis).
-  integer, parameter :: base_levels(8) = [16, 20, 24, 28, 32, 36, 40, 48]
+  integer, parameter :: base_levels(5) = [56, 64, 72, 84, 96]
+  !> The base levels of a long ellipse are scaled down to its cell budget, to no fewer than this.
+  integer, parameter :: min_base_cells = 32
   !> Patch cells of the finest split of a mask or of a single grid's
   !> auxiliary grid (the ellipse levels use level_cell_budget).
   integer, parameter :: max_level_cells = 20000
   !> Split factors of a mask.
   integer, parameter :: mask_factors(4) = [1, 2, 3, 4]
-  !> Power of c in f_ij = G c^p C_ij.
-  integer, parameter :: c_power(3, 3) = reshape([2, 2, 3, 2, 2, 3, 3, 3, 4], [3, 3])
+  !> The f entries of C11, C22, C23.
+  integer, parameter :: entry_of(2, 3) = reshape([1, 1, 2, 2, 2, 3], [2, 3])
 
 contains
 
@@ -77,8 +82,8 @@ contains
     type(problem_t) :: aux
     type(result_t) :: aux_result
     character(len=message_length) :: line
-    real(real64) :: q, q_aux, area_error
-    integer :: i, across, p
+    real(real64) :: f_h(3, 3), f_2h(3, 3)
+    integer :: i, across
 
     call run_case(problem, result, status, cache)
     if (status%failed()) return
@@ -113,23 +118,26 @@ contains
       result%t_factor = result%t_factor + aux_result%t_factor
       result%t_solve = result%t_solve + aux_result%t_solve
       result%t_total = result%t_total + aux_result%t_total
-      q = area_ratio(patch)
-      q_aux = area_ratio(aux%patch)
+      if (patch%kind == 'ellipse') then
+        f_h = ellipse_normalised(patch, problem%nu, result%f)
+        f_2h = ellipse_normalised(aux%patch, problem%nu, aux_result%f)
+      end if
       do i = 1, 3
-        p = merge(2, 3, i < 3)
-        if (patch%kind == 'ellipse') then
-          area_error = q**(p / 2.0_real64) - 1
-          result%err(i) = single_grid_estimate(result%cn(i) * q**(p / 2.0_real64), &
-                                               aux_result%cn(i) * q_aux**(p / 2.0_real64), area_error)
-        else
-          result%err(i) = split_grid_estimate(result%cn(i), aux_result%cn(i))
-        end if
+        associate (e => entry_of(:, i))
+          if (patch%kind == 'ellipse') then
+            ! the normalisation's own size is added in full: it is a correction, not a limit
+            result%err(i) = single_grid_estimate(f_h(e(1), e(2)), f_2h(e(1), e(2)), &
+                                                 f_h(e(1), e(2)) / result%f(e(1), e(2)) - 1)
+          else
+            result%err(i) = split_grid_estimate(result%cn(i), aux_result%cn(i))
+          end if
+        end associate
       end do
     end associate
   end subroutine run_single
 
   !> Ellipse levels chosen by kcreep: the base levels, then one finer level
-  !> at a time (next_level), each fit through the finest fit_width levels,
+  !> at a time (next_level), each fit through the finest ellipse_fit_width levels,
   !> until the estimates meet the target or the next level would exceed the
   !> cell budget of the target.
   subroutine run_ellipse_levels(problem, result, status)
@@ -138,18 +146,21 @@ contains
     type(status_t), intent(inout) :: status
     type(problem_t) :: level_problem
     integer, allocatable :: levels(:)
-    real(real64), allocatable :: fnorm(:, :, :)    !< (3, 3, level) area-normalised f
+    real(real64), allocatable :: fnorm(:, :, :)    !< (3, 3, level) f referred to the patch (kcreep_staircase_normalisation)
+    real(real64), allocatable :: harmonic4(:)      !< (level) the staircase's four-fold harmonic
     character(len=message_length), allocatable :: warnings(:)
     character(len=message_length) :: line
     integer :: k, mx, my, finest, first
     real(real64) :: t(4), budget
 
-    allocate (fnorm(3, 3, 0), warnings(0))
+    allocate (fnorm(3, 3, 0), harmonic4(0), warnings(0))
     t = 0
     level_problem = problem
     budget = level_cell_budget(problem%target_error)
-    levels = base_levels
     associate (a => problem%patch%semi_a, b => problem%patch%semi_b)
+      ! long ellipses: the base levels scaled down so that the finest keeps to the budget
+      call ellipse_level_grid(a, b, base_levels(size(base_levels)), mx, my)
+      levels = max(min_base_cells, nint(base_levels * min(1.0_real64, sqrt(budget / (0.79_real64 * mx * my)))))
       k = 1
       do
         call ellipse_level_grid(a, b, levels(k), mx, my)
@@ -158,9 +169,10 @@ contains
         call place_like(level_problem%patch, problem%patch)
         call run_level(level_problem, levels(k), result, fnorm, warnings, t, status)
         if (status%failed()) return
-        if (k == size(levels)) then
-          first = max(1, k - fit_width + 1)
-          call fit_levels(1.0_real64 / levels(first:k), fnorm(:, :, first:k), result)
+        harmonic4 = [harmonic4, staircase_harmonic4(level_problem%patch)]
+        if (k == size(levels) .and. k >= ellipse_fit_min) then
+          first = max(1, k - ellipse_fit_width + 1)
+          call fit_levels(1.0_real64 / levels(first:k), fnorm(:, :, first:k), result, shape=harmonic4(first:k))
           if (within_target(result%err, coefficient_targets(problem%target_error))) exit
           finest = next_level(levels(k))
           call ellipse_level_grid(a, b, finest, mx, my)
@@ -227,17 +239,22 @@ contains
     t = t + [result%t_assemble, result%t_factor, result%t_solve, result%t_total]
     allocate (f(3, 3, size(fnorm, 3) + 1))
     f(:, :, 1:size(fnorm, 3)) = fnorm
-    f(:, :, size(f, 3)) = result%f * area_ratio(level_problem%patch)**(c_power / 2.0_real64)
+    if (level_problem%patch%kind == 'ellipse') then
+      f(:, :, size(f, 3)) = ellipse_normalised(level_problem%patch, level_problem%nu, result%f)
+    else
+      f(:, :, size(f, 3)) = result%f
+    end if
     call move_alloc(f, fnorm)
     call append_prefixed(warnings, 'level '//itoa(label)//' ('//itoa(level_problem%patch%mx)//' x '// &
                          itoa(level_problem%patch%my)//'): ', result%warnings)
   end subroutine run_level
 
   !> The fit of every f entry: the result gets the limits, err those of C11, C22, C23.
-  subroutine fit_levels(h, fnorm, result, smooth)
+  subroutine fit_levels(h, fnorm, result, smooth, shape)
     real(real64), intent(in) :: h(:), fnorm(:, :, :)
     type(result_t), intent(inout) :: result
     logical, intent(in), optional :: smooth   !< levels without staircase noise (mask splits)
+    real(real64), intent(in), optional :: shape(:)   !< an ellipse's staircase harmonic per level (ellipse_level_estimate)
     real(real64) :: limit, rel
     integer :: i, j
     result%err = ieee_value(1.0_real64, ieee_quiet_nan)
@@ -249,6 +266,8 @@ contains
         end if
         if (present(smooth)) then
           call smooth_level_estimate(h, fnorm(i, j, :), limit, rel)
+        else if (present(shape)) then
+          call ellipse_level_estimate(h, fnorm(i, j, :), shape, limit, rel)
         else
           call level_estimate(h, fnorm(i, j, :), limit, rel)
         end if
@@ -260,8 +279,8 @@ contains
     end do
   end subroutine fit_levels
 
-  !> result%f holds limits normalised by the staircase's own c: they refer to
-  !> the patch's c (ellipse: sqrt(ab); mask: its own). The c's and summed times.
+  !> result%f holds the limits referred to the patch (an ellipse: the ellipse
+  !> itself, not its staircase; a mask: its cells). The C's and summed times.
   subroutine finish_result(result, t)
     type(result_t), intent(inout) :: result
     real(real64), intent(in) :: t(4)
@@ -274,16 +293,5 @@ contains
     result%t_solve = t(3)
     result%t_total = t(4)
   end subroutine finish_result
-
-  !> (area the coefficients refer to) / (area of the cells): pi a b / staircase for an ellipse, 1 otherwise.
-  pure real(real64) function area_ratio(patch)
-    type(patch_t), intent(in) :: patch
-    real(real64), parameter :: pi = acos(-1.0_real64)
-    if (patch%kind == 'ellipse') then
-      area_ratio = pi * patch%semi_a * patch%semi_b / patch%area()
-    else
-      area_ratio = 1
-    end if
-  end function area_ratio
 
 end module kcreep_error_run
