@@ -37,8 +37,8 @@ contains
     write (output_unit, '(2x, a, 2es14.6, a, 2es14.6, a)') 'centroid (xc, yc):', record%centroid, &
       ';  spin centre:', record%spin_centre, ' ('//cfg%spin_centre//')'
     if (record%method == 'table') then
-      write (output_unit, '(2x, a, g0.4, a, es10.3)') 'scheme: none (method = ''table''), nu = ', cfg%nu, &
-        ', G = ', cfg%g
+      write (output_unit, '(2x, a, g0.4, a, es10.3)') 'scheme: none (method = '''//cfg%solve%method// &
+        '''), nu = ', cfg%nu, ', G = ', cfg%g
     else if (cfg%scheme%name == 'collocation') then
       write (output_unit, '(2x, a, f6.3, a, g0.4, a, es10.3)') 'scheme: collocation, alpha = ', &
         cfg%scheme%alpha, ', nu = ', cfg%nu, ', G = ', cfg%g
@@ -84,7 +84,10 @@ contains
         end associate
       end do
     end if
-    if (record%method == 'table') then
+    if (record%method == 'table' .and. cfg%solve%method == 'auto') then
+      write (output_unit, '(2x, a)') 'method: table, chosen by method = ''auto'' (the refined table''s stated '// &
+        'uncertainty meets the target; nothing solved, no tractions; method = ''iterative'' solves, docs/accuracy.md)'
+    else if (record%method == 'table') then
       write (output_unit, '(2x, a)') 'method: table (interpolated in kcreep''s refined table of Kalker''s '// &
         'coefficients, docs/accuracy.md; nothing solved, no tractions)'
     else if (record%method == 'dense') then

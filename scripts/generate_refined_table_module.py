@@ -8,7 +8,7 @@ u11 c22 u22 c23 u23 c33 u33 c32 u32 Nmin Nmax levels) and writes MODULE
 (default src/coefficients/kcreep_refined_table_data.f90) with the values and
 their absolute uncertainties as parameter arrays, rows in increasing a/b and
 the a/b > 1 rows written as 1/g, g = b/a as in Kalker's table. The table must
-be complete (every a/b at nu = 0, 0.25, 0.5) and c32 = -c23 to its digits.
+be complete (every a/b at nu = 0, 0.125, 0.25, 0.375, 0.5) and c32 = -c23 to its digits.
 The test refined_table_module regenerates the module and compares it with
 the committed one byte for byte. Standard library only.
 """
@@ -20,7 +20,7 @@ DEFAULT_TABLE = os.path.join(ROOT, "docs", "data", "kalker_refined.dat")
 DEFAULT_MODULE = os.path.join(ROOT, "src", "coefficients", "kcreep_refined_table_data.f90")
 COLUMNS = ["a_over_b", "nu", "c11", "u11", "c22", "u22", "c23", "u23", "c33", "u33", "c32", "u32",
            "Nmin", "Nmax", "levels"]
-NUS = ["0", "0.25", "0.5"]
+NUS = ["0", "0.125", "0.25", "0.375", "0.5"]
 COEFFS = ["c11", "c22", "c23", "c33"]
 
 
@@ -50,7 +50,7 @@ def read_table(path):
                 except ValueError:
                     fail(f"{path} line {number}: {name} = '{row[name]}' is not a number")
             if row["nu"] not in NUS:
-                fail(f"{path} line {number}: nu = {row['nu']} (allowed: 0, 0.25, 0.5)")
+                fail(f"{path} line {number}: nu = {row['nu']} (allowed: {', '.join(NUS)})")
             rows.setdefault(row["a_over_b"], {})[row["nu"]] = row
     if not header_seen:
         fail(f"{path}: no header line '# {' '.join(COLUMNS)}'")
@@ -99,6 +99,7 @@ def module_text(rows, source_name):
     w("!> Ellipse with semi-axis a along the rolling direction, b lateral, c = sqrt(a b);")
     w("!> C11 = f11/(G c^2), C22 = f22/(G c^2), C23 = f23/(G c^3) = -f32/(G c^3),")
     w("!> C33 = f33/(G c^4); u: the absolute uncertainty of each value.")
+    w("!> Rows: Kalker's a/b (g = 0.1 ... 1, g = a/b or b/a) and those halfway between in g.")
     w("module kcreep_refined_table_data")
     w("  use, intrinsic :: iso_fortran_env, only: real64")
     w("  implicit none")
@@ -107,8 +108,9 @@ def module_text(rows, source_name):
     w("")
     w(f"  integer, parameter :: refined_rows = {n}")
     w("  !> Poisson's ratios of the columns.")
-    w("  real(real64), parameter :: refined_nu(3) = [0.0_real64, 0.25_real64, 0.5_real64]")
-    w("  !> a/b of the rows, increasing (above 1 written as 1/g, Kalker's g = b/a).")
+    w(f"  real(real64), parameter :: refined_nu({len(NUS)}) = [" + ", ".join(literal(nu if "." in nu else nu + ".0")
+                                                                        for nu in NUS) + "]")
+    w("  !> a/b of the rows, increasing (above 1 written as 1/g, g = b/a).")
     w("  real(real64), parameter :: refined_ratio(refined_rows) = [ &")
     lits = [ratio_literal(k)[0] for k in keys]
     for i in range(0, n, 5):
@@ -116,13 +118,13 @@ def module_text(rows, source_name):
         w(f"    {chunk}" + (", &" if i + 5 < n else "]"))
     for array, prefix, what in (("refined_c", "c", "values"), ("refined_u", "u", "absolute uncertainties")):
         w(f"  !> The {what}: (coefficient C11 C22 C23 C33, nu, row).")
-        w(f"  real(real64), parameter :: {array}(4, 3, refined_rows) = reshape([ &")
+        w(f"  real(real64), parameter :: {array}(4, {len(NUS)}, refined_rows) = reshape([ &")
         for i, k in enumerate(keys):
             for j, nu in enumerate(NUS):
                 r = rows[k][nu]
                 vals = ", ".join(literal(r[prefix + name[1:]]) for name in COEFFS)
                 last = i == n - 1 and j == len(NUS) - 1
-                end = "], [4, 3, refined_rows])" if last else ", &"
+                end = f"], [4, {len(NUS)}, refined_rows])" if last else ", &"
                 w(f"    {vals}{end}  ! a/b {k}, nu {nu}")
     w("")
     w("end module kcreep_refined_table_data")

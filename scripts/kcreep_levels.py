@@ -113,17 +113,29 @@ def staircase_moments(ratio, mx, my):
 
 def table_slopes(ratio, nu, table=None):
     """d ln C / d ln(a/b) of c11 c22 c23 c33 c32 from the refined table (central
-    differences between its rows at this nu, linear in ln(a/b) between them)."""
+    differences between its rows, linear in ln(a/b) between them; linear in nu
+    between the table's nu columns, a nu outside them clamped)."""
     table = table or os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "docs", "data",
                                   "kalker_refined.dat")
-    rows = {}
+    columns = {}
     with open(table) as f:
         for line in f:
             if line.startswith("#") or not line.strip():
                 continue
             p = [float(x) for x in line.split()]
-            if abs(p[1] - nu) < 1e-9:
-                rows[p[0]] = dict(zip(COEFFS, (p[2], p[4], p[6], p[8], p[10])))
+            columns.setdefault(p[1], {})[p[0]] = dict(zip(COEFFS, (p[2], p[4], p[6], p[8], p[10])))
+    nus = sorted(columns)
+    nu = min(max(nu, nus[0]), nus[-1])
+    k = max(i for i in range(len(nus)) if nus[i] <= nu)
+    if nus[k] == nu or k == len(nus) - 1:
+        return _slopes_at(columns[nus[k]], ratio)
+    w = (nu - nus[k]) / (nus[k + 1] - nus[k])
+    s0, s1 = _slopes_at(columns[nus[k]], ratio), _slopes_at(columns[nus[k + 1]], ratio)
+    return {c: (1 - w) * s0[c] + w * s1[c] for c in COEFFS}
+
+
+def _slopes_at(rows, ratio):
+    """The slopes of one nu column {a/b: {coefficient: value}} at ratio."""
     rs = sorted(rows)
     r = min(max(ratio, rs[0]), rs[-1])
 

@@ -57,6 +57,19 @@ def kalker_points():
     return out
 
 
+#: the table's columns of nu: Kalker's three and the two between them
+TABLE_NU = (0.0, 0.125, 0.25, 0.375, 0.5)
+
+
+def table_points():
+    """[(a_over_b, nu)] of the refined table: Kalker's rows (g = b/a or a/b =
+    0.1 ... 1) and the rows halfway between them in g (0.15, 0.25, ... 0.95 on
+    each side), at the nu of TABLE_NU; increasing a/b."""
+    gs = [round(0.1 * k, 2) for k in range(1, 11)] + [round(0.05 + 0.1 * k, 2) for k in range(1, 10)]
+    ratios = sorted(set(gs) | {1 / g for g in gs if g < 1})
+    return [(r, nu) for r in ratios for nu in TABLE_NU]
+
+
 def key(r, nu):
     """As the levels file writes them (6 significant digits)."""
     return (f"{r:.6g}", f"{nu:.6g}")
@@ -140,7 +153,7 @@ def refined_value(levels, coeff):
 
 def write_table(data, points, fit_from):
     rows = []
-    for r, nu, _ in points:
+    for r, nu in points:
         lv = {N: v for N, v in data.get(key(r, nu), {}).items() if N >= fit_from}
         if len(lv) < 5:
             continue
@@ -169,18 +182,18 @@ def main():
     ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     ap.add_argument("--levels", default="56,64,72,84,96,112,128,148")
     ap.add_argument("--fit-from", type=int, default=56, help="fit the levels from this many cells across up")
-    ap.add_argument("--ratios", default="", help="comma-separated a/b subset (default: all of Kalker's)")
-    ap.add_argument("--nu", default="0,0.25,0.5")
+    ap.add_argument("--ratios", default="", help="comma-separated a/b subset (default: all rows of the table)")
+    ap.add_argument("--nu", default=",".join(f"{nu:g}" for nu in TABLE_NU))
     ap.add_argument("--max-seconds", type=float, default=float("inf"), help="stop starting new levels after this")
     ap.add_argument("--table-only", action="store_true")
     args = ap.parse_args()
-    points = kalker_points()
+    points = table_points()
     data = read_levels()
     if not args.table_only:
         levels = [int(x) for x in args.levels.split(",")]
         ratios = [float(x) for x in args.ratios.split(",")] if args.ratios else None
         nus = [float(x) for x in args.nu.split(",")]
-        todo = [(r, nu) for r, nu, _ in points
+        todo = [(r, nu) for r, nu in points
                 if nu in nus and (ratios is None or any(abs(r - x) < 1e-6 * x for x in ratios))]
         todo.sort(key=lambda p: max(p[0], 1 / p[0]))     # cheap (round) ellipses first
         t0 = time.time()

@@ -32,7 +32,7 @@ module kcreep
   use kcreep_equivalent_ellipse, only: equivalent_ellipse_t, equivalent_ellipses
   use kcreep_extrapolation, only: run_extrapolated
   use kcreep_error_run, only: run_controlled
-  use kcreep_table_run, only: run_table
+  use kcreep_table_run, only: run_table, table_meets_target
   implicit none
   private
   public :: kcreep_solve, kcreep_version, kcreep_version_number
@@ -99,10 +99,11 @@ contains
 
     !> Extrapolation when asked for, else the run under error control (which
     !> solves a given grid as given when the target is 0 or refine_grid off);
-    !> method = 'table': interpolation in the refined table, nothing solved.
+    !> method = 'table', or 'auto' where the table meets the target:
+    !> interpolation in the refined table, nothing solved.
     subroutine solve_as_given(p)
       type(problem_t), intent(in) :: p
-      if (p%solve%method == 'table') then
+      if (p%solve%method == 'table' .or. table_meets_target(p)) then
         call run_table(p, result, status)
       else if (p%extrapolate) then
         call run_extrapolated(p, result, status)

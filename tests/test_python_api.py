@@ -83,10 +83,18 @@ kc.check(np.all(np.isfinite(e.ext_error)) and np.all(e.ext_error > 0), f"error e
 kc.check(np.all(np.isnan(r.ext_error)), "no estimate without extrapolation: NaN")
 
 # error control through the API: kcreep chooses the grids for the target and
-# the estimate comes back (the circle: C11 of the refined table 4.11199, docs/data/kalker_refined.dat)
-controlled = kcreep.Solver(nu=0.25, target_error=1e-3, refine_grid=True).solve_ellipse(1.0, 1.0)
-kc.check(np.all(np.isfinite(controlled.err)) and np.all(controlled.err > 0), f"relative error estimate {controlled.err}")
-kc.check(abs(controlled.c[0] / 4.11199 - 1) <= controlled.err[0], "the estimate bounds the error of C11")
+# the estimate comes back; against the refined table's circle (with its u)
+ref = [r for r in kcreep.table.read(os.path.join(source_dir, "docs", "data", "kalker_refined.dat"))
+       if r["a_over_b"] == 1 and r["nu"] == 0.25][0]
+controlled = kcreep.Solver(nu=0.25, target_error=1e-3, refine_grid=True, method="iterative").solve_ellipse(1.0, 1.0)
+kc.check(np.all(np.isfinite(controlled.err)) and np.all(controlled.err > 0) and controlled.n > 0,
+         f"relative error estimate {controlled.err} ({controlled.n} cells solved)")
+kc.check(abs(controlled.c[0] / ref["c11"] - 1) <= controlled.err[0] + ref["u11"] / ref["c11"],
+         f"the estimate bounds the error of C11 ({controlled.c[0]:.5f} vs {ref['c11']})")
+# method 'auto' (the default) answers the same ellipse from the refined table: nothing solved
+auto = kcreep.Solver(nu=0.25, target_error=1e-3, refine_grid=True).solve_ellipse(1.0, 1.0)
+kc.check(auto.n == 0 and auto.verdict == "ok" and abs(auto.c[0] / ref["c11"] - 1) < 1e-5,
+         f"method 'auto', target 1e-3: the refined table's C11 ({auto.c[0]:.5f}), no cells, verdict {auto.verdict}")
 try:
     kcreep.Solver(target_error=2.0)
     kc.check(False, "target_error 2 refused")

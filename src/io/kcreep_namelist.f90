@@ -893,6 +893,7 @@ contains
     problem%refine_grid = cfg%refine_grid .and. .not. cfg%extrapolate
     problem%extrapolate_levels = cfg%extrapolate_levels
     problem%refine_ratio = cfg%refine_ratio
+    problem%tractions_wanted = len(cfg%traction_file) > 0
     select case (cfg%spin_centre)
     case ('centroid')
       problem%spin_centre = patch%centroid()

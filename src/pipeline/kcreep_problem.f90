@@ -63,6 +63,9 @@ module kcreep_problem
     !> coordinate origin by default.
     real(real64) :: spin_centre(2) = 0
     type(normal_problem_t) :: normal            !< patch from the normal contact problem
+    !> The tractions are wanted (a traction file): method = 'auto' then
+    !> solves even where the refined table would meet the target.
+    logical :: tractions_wanted = .false.
   end type problem_t
 
   type :: result_t

@@ -5,6 +5,11 @@
 !> uncertainties of C11, C22, C23 and the verdict is 'ok' or 'uncertain'
 !> against target_error as on the other paths. The patch is kept in the
 !> result for FASTSIM, which needs only a grid and the coefficients.
+!>
+!> method = 'auto' takes this path too (table_meets_target) for an ellipse
+!> whose grids kcreep would choose, when the table's stated uncertainty meets
+!> the target: the table holds the continuum limits that such a run would
+!> extrapolate to, computed at higher resolution than the run could afford.
 module kcreep_table_run
   use, intrinsic :: iso_fortran_env, only: real64, int64
   use, intrinsic :: ieee_arithmetic, only: ieee_value, ieee_quiet_nan
@@ -16,9 +21,10 @@ module kcreep_table_run
   use kcreep_verdict, only: verdict_ok
   use kcreep_table_interpolation, only: table_coefficients
   use kcreep_problem, only: problem_t, result_t, add_uncertain
+  use kcreep_error_control, only: coefficient_targets, within_target
   implicit none
   private
-  public :: run_table, table_matrix
+  public :: run_table, table_matrix, table_meets_target
 
 contains
 
@@ -68,6 +74,27 @@ contains
     call system_clock(t1)
     result%t_total = real(t1 - t0, real64) / rate
   end subroutine run_table
+
+  !> method = 'auto' answers from the table: an ellipse whose grids kcreep
+  !> chooses (refine_grid, target_error > 0), the backward scheme as by
+  !> default (the table's limits are the continuum's, which any scheme
+  !> converges to, but a scheme asked for by name is run), no extrapolation
+  !> asked for, no tractions wanted, a/b and nu in the table, and the table's
+  !> stated uncertainty of C11, C22, C23 within their targets.
+  pure logical function table_meets_target(problem) result(meets)
+    type(problem_t), intent(in) :: problem
+    real(real64) :: c4(4), rel(4)
+    type(status_t) :: status
+    meets = .false.
+    if (.not. allocated(problem%solve%method)) return
+    if (problem%solve%method /= 'auto') return
+    if (problem%patch%kind /= 'ellipse' .or. .not. problem%refine_grid .or. problem%target_error <= 0) return
+    if (problem%extrapolate .or. problem%tractions_wanted .or. problem%normal%active) return
+    if (problem%scheme%name /= 'backward' .or. problem%scheme%spin_shift /= 0) return
+    call table_coefficients(problem%patch%semi_a / problem%patch%semi_b, problem%nu, c4, rel, status)
+    if (status%failed()) return
+    meets = within_target(rel(1:3), coefficient_targets(problem%target_error))
+  end function table_meets_target
 
   !> f(3, 3) about the origin of an ellipse centred at centre = (xc, yc) from
   !> the table's C11 C22 C23 C33 (about its centre) and their relative

@@ -1,0 +1,124 @@
+#!/usr/bin/env python3
+"""How far the ellipse levels scatter about a straight line in the cell size,
+normalised three ways (docs/accuracy.md section 1, the figure
+docs/figures/staircase_normalisation.png).
+
+    /usr/bin/python3 scripts/staircase_normalisation_study.py [--from 32] [--levels-file F] [--no-figure]
+
+Data: docs/data/kalker_refined_levels.dat (the refined table's levels, 32 to
+148 cells across the shorter axis, stored normalised by the staircase area).
+For every ellipse in it, the levels from --from cells across are fitted
+three ways, and the scatter (rms residual / C0, with the degrees of freedom
+of the fit) is averaged over the ellipses:
+
+    area      f0 + K h on the area-normalised levels (kcreep before)
+    moments   f0 + K h on the levels referred to the ellipse by the
+              staircase's second moments (size and aspect ratio;
+              kcreep_levels.refer_to_ellipse)
+    harmonic  f0 + K h + B harmonic4 on those (what kcreep fits)
+
+The figure shows three ellipses' C11 and C23 against 1/N, the harmonic
+variant with B harmonic4 taken off each level. Needs numpy and matplotlib
+(Debian: python3-numpy, python3-matplotlib; /usr/bin/python3).
+"""
+import argparse
+import os
+import sys
+
+import numpy as np
+
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+import kcreep_levels as K  # noqa: E402
+
+ROOT = os.path.join(os.path.dirname(os.path.abspath(__file__)), "..")
+LEVELS = os.path.join(ROOT, "docs", "data", "kalker_refined_levels.dat")
+FIGURE = os.path.join(ROOT, "docs", "figures", "staircase_normalisation.png")
+SHOWN = [(1.0, 0.25), (0.7, 0.25), (2.5, 0.5)]
+NAMES = ("c11", "c22", "c23")
+
+
+def read_levels(path):
+    data = {}
+    with open(path) as f:
+        for line in f:
+            if line.startswith("#") or not line.strip():
+                continue
+            p = line.split()
+            level = {"mx": int(p[3]), "my": int(p[4]), "n": int(p[5])}
+            level.update(dict(zip(K.COEFFS, map(float, p[6:11]))))
+            data.setdefault((float(p[0]), float(p[1])), {})[int(p[2])] = level
+    return data
+
+
+def fit(columns, f):
+    a = np.column_stack(columns)
+    coef, *_ = np.linalg.lstsq(a, f, rcond=None)
+    res = f - a @ coef
+    return coef, np.sqrt(res @ res / (len(f) - a.shape[1])) / coef[0]
+
+
+def main():
+    ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
+    ap.add_argument("--from", dest="first", type=int, default=32)
+    ap.add_argument("--levels-file", default=LEVELS)
+    ap.add_argument("--no-figure", action="store_true")
+    args = ap.parse_args()
+    data = read_levels(args.levels_file)
+    scatter = {v: [] for v in ("area", "moments", "harmonic")}
+    curves = {}
+    for (r, nu), levels in sorted(data.items()):
+        ns = sorted(n for n in levels if n >= args.first)
+        if len(ns) < 6:
+            continue
+        slopes = K.table_slopes(r, nu)
+        referred = [K.refer_to_ellipse(r, nu, levels[n], slopes) for n in ns]
+        h = 1.0 / np.array(ns)
+        h4 = np.array([x["harmonic4"] for x in referred])
+        one = np.ones_like(h)
+        rows = {v: [] for v in scatter}
+        for c in NAMES:
+            area = np.array([levels[n][c] for n in ns])
+            moments = np.array([x[c] for x in referred])
+            rows["area"].append(fit([one, h], area)[1])
+            rows["moments"].append(fit([one, h], moments)[1])
+            coef, s = fit([one, h, h4], moments)
+            rows["harmonic"].append(s)
+            if (r, nu) in SHOWN:
+                curves[(r, nu, c)] = (ns, area, moments, moments - coef[2] * h4)
+        for v in scatter:
+            scatter[v].append(rows[v])
+    print(f"scatter about the fit, levels from {args.first} cells across, rms / C0 in %, "
+          f"mean (worst) over {len(scatter['area'])} ellipses:")
+    print("| normalisation and fit | C11 | C22 | C23 |")
+    print("|---|---|---|---|")
+    for v, label in (("area", "area, f0 + K h"), ("moments", "second moments, f0 + K h"),
+                     ("harmonic", "second moments, f0 + K h + B harmonic4")):
+        s = 100 * np.array(scatter[v])
+        print(f"| {label} | " + " | ".join(f"{m:.4f} ({w:.4f})" for m, w in zip(s.mean(0), s.max(0))) + " |")
+    if args.no_figure:
+        return
+    import matplotlib
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+    fig, axes = plt.subplots(2, len(SHOWN), figsize=(12, 6.5))
+    for j, (r, nu) in enumerate(SHOWN):
+        for i, c in enumerate(("c11", "c23")):
+            ax = axes[i, j]
+            ns, area, moments, harmonic = curves[(r, nu, c)]
+            x = 1.0 / np.array(ns)
+            for y, style, label in ((area, "o-", "area"), (moments, "s-", "second moments"),
+                                    (harmonic, "^-", "second moments, harmonic taken off")):
+                ax.plot(x, y, style, ms=4, label=label)
+            ax.set_title(f"a/b = {r:g}, nu = {nu:g}: {c.upper()}", fontsize=10)
+            ax.set_xlabel("1 / N (N cells across the shorter axis)")
+            ax.grid(alpha=0.3)
+            if i == 0 and j == 0:
+                ax.legend(fontsize=8)
+    fig.suptitle("Ellipse levels normalised three ways (docs/data/kalker_refined_levels.dat)")
+    fig.tight_layout()
+    fig.savefig(FIGURE, dpi=110)
+    print(f"figure: {FIGURE}")
+
+
+if __name__ == "__main__":
+    main()
