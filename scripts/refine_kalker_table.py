@@ -16,9 +16,10 @@ docs/data/kalker_refined.dat is then rebuilt from all levels present:
 
     value  the least-squares fit f0 + K h + B harmonic4 through the levels
            (order fixed at 1; harmonic4 the staircase's four-fold harmonic)
-    u      max(t95 * standard error of f0, |f0 - f0'|), f0' the fit of
-           f0 + K h + L h^2 + B harmonic4: the scatter of the levels (the staircase noise)
-           and the model error, whichever is larger (absolute units)
+    u      max(t95 * standard error of f0, |f0 - f0'|) + 0.1 |f0 - f(finest)|,
+           f0' the fit of f0 + K h + L h^2 + B harmonic4: the scatter of the
+           levels (the staircase noise) or the model error, whichever is larger,
+           plus the order's uncertainty (kcreep_error_control order_margin); absolute units
 
 The fit uses the levels from --fit-from cells across up (the coarser ones
 carry more staircase noise). Cases with fewer than 4 such levels are left
@@ -136,10 +137,16 @@ def lstsq_columns(columns, fs):
     return c[0] / scale[0], math.sqrt(s2 * e0) / scale[0], dof
 
 
+#: the share of the extrapolation f0 - f(finest) counted as the order's
+#: uncertainty (as kcreep_error_control order_margin)
+ORDER_MARGIN = 0.1
+
+
 def refined_value(levels, coeff):
     """(value, u) from {N: level referred to the ellipse (K.refer_to_ellipse)}:
     the fit f0 + K h + B harmonic4 (as kcreep's own ellipse levels), u the
-    larger of its 95 % interval and its change when an h^2 term is added."""
+    larger of its 95 % interval and its change when an h^2 term is added,
+    plus ORDER_MARGIN times the extrapolation from the finest level."""
     Ns = sorted(levels)
     hs = [1.0 / N for N in Ns]
     h4 = [levels[N]["harmonic4"] for N in Ns]
@@ -147,7 +154,7 @@ def refined_value(levels, coeff):
     ones = [1.0] * len(Ns)
     f1, se1, dof1 = lstsq_columns([ones, hs, h4], fs)
     f2, _, _ = lstsq_columns([ones, hs, [h * h for h in hs], h4], fs)
-    u = max(T95.get(dof1, 2.0) * se1, abs(f1 - f2))
+    u = max(T95.get(dof1, 2.0) * se1, abs(f1 - f2)) + ORDER_MARGIN * abs(f1 - fs[-1])
     return f1, u
 
 
@@ -169,7 +176,8 @@ def write_table(data, points, fit_from):
                 "# ellipse with c = sqrt(ab) = 1, backward scheme on near-square cells, levels from Nmin to Nmax\n"
                 "# cells across the shorter axis, each referred to the ellipse by the staircase's second moments\n"
                 "# (scripts/kcreep_levels.py refer_to_ellipse), least-squares fit f0 + K h + B harmonic4;\n"
-                "# u = absolute uncertainty: max(95 % interval of the fit, change when an h^2 term is added).\n"
+                "# u = absolute uncertainty: max(95 % interval of the fit, change when an h^2 term is added)\n"
+                "# + 0.1 x the extrapolation from the finest level (the order is 1 to within 0.06).\n"
                 "# c32 = f32/(G c^3) (= -c23 by reciprocity, kept as a check), c33 = f33/(G c^4).\n")
         f.write("# a_over_b nu c11 u11 c22 u22 c23 u23 c33 u33 c32 u32 Nmin Nmax levels\n")
         for r, nu, nmin, nmax, nl, v in rows:

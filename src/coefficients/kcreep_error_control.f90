@@ -46,6 +46,9 @@ module kcreep_error_control
   !> An ellipse's levels: the fewest in a fit (ellipse_level_estimate, 3
   !> coefficients), and the finest this many in one fit (Student's factor 2.57).
   integer, parameter :: ellipse_fit_min = 5, ellipse_fit_width = 8
+  !> The share of an ellipse's extrapolation (f0 - f(finest level)) counted
+  !> as the uncertainty of its order (ellipse_level_estimate).
+  real(real64), parameter :: order_margin = 0.1_real64
   !> Patch cells of the finest level kcreep may choose at target_error = 1e-3;
   !> scaled by (1e-3 / target)**(1/4) for other targets (level_cell_budget):
   !> 71,000 at 1e-4. A run-time budget: a level of 40,000 cells takes about
@@ -152,14 +155,19 @@ contains
   !> (kcreep_staircase_normalisation), which takes out what is left of the
   !> staircase's level-to-level scatter after the second moments (it halves
   !> it). Coarser levels bend away from the straight line (C11 of the circle
-  !> by 0.1 % between 32 and 148 across) and are not used. Checked against
-  !> references from grids of 160 to 384 cells across (docs/accuracy.md).
+  !> by 0.1 % between 32 and 148 across) and are not used.
+  !> Estimate: t95 x the standard error of f0 (the scatter), plus
+  !> order_margin x the extrapolation's own size |f0 - f(finest)| (the order
+  !> is 1 only to within about 0.06: fits with a free order give 0.94 to 1;
+  !> a straight line through levels 56-148 then misses f0 by up to 9 % of the
+  !> correction). Checked against references from grids of 136 to 384 cells
+  !> across (docs/accuracy.md section 3.1).
   pure subroutine ellipse_level_estimate(h, f, shape, limit, rel_error)
     real(real64), intent(in) :: h(:), f(:), shape(:)
     real(real64), intent(out) :: limit, rel_error
     real(real64) :: se
     call three_column_fit(h, f, shape, limit, se)
-    rel_error = student_t95(size(h) - 3) * se / abs(limit)
+    rel_error = (student_t95(size(h) - 3) * se + order_margin * abs(limit - f(minloc(h, 1)))) / abs(limit)
   end subroutine ellipse_level_estimate
 
   !> Least-squares fit f = f0 + K h + L g(h) with g(h) = h**1.5 (kind 1) or
