@@ -71,9 +71,8 @@ contains
     real(real64), intent(in) :: a_over_b, nu
     real(real64), intent(out) :: value(4), table_part(4), interpolation_part(4)
     real(real64) :: column(4, size(nus)), column_table(4, size(nus)), column_error(4, size(nus))
-    real(real64), allocatable :: w(:)
-    real(real64) :: y
-    integer :: k, q, at_nu, first
+    real(real64) :: w(4), y
+    integer :: k, q, at_nu, first, width
 
     do k = 1, size(nus)
       call interpolate_ratio(ratio, c(:, k, :), u(:, k, :), a_over_b, column(:, k), column_table(:, k), &
@@ -88,14 +87,18 @@ contains
     end if
     do q = 1, 4
       ! on 1/C: relative uncertainties of 1/C are those of C
-      call interpolate_nodes(nus, 1 / column(q, :), nu, y, w, first, interpolation_part(q))
+      call nearest_window(nus, nu, first, width)
+      call interpolate_nodes(nus(first:first + width - 1), 1 / column(q, first:first + width - 1), nu, y, w, &
+                             interpolation_part(q))
       value(q) = 1 / y
       interpolation_part(q) = interpolation_part(q) * value(q)
-      associate (window => [(k, k=first, first + size(w) - 1)])
-        table_part(q) = sum(abs(w) * column_table(q, window) / column(q, window)) * value(q)
-        interpolation_part(q) = interpolation_part(q) + &
-                                sum(abs(w) * column_error(q, window) / column(q, window)) * value(q)
-      end associate
+      table_part(q) = 0
+      do k = 1, width
+        associate (j => first + k - 1)
+          table_part(q) = table_part(q) + abs(w(k)) * column_table(q, j) / column(q, j) * value(q)
+          interpolation_part(q) = interpolation_part(q) + abs(w(k)) * column_error(q, j) / column(q, j) * value(q)
+        end associate
+      end do
     end do
   end subroutine interpolate_table
 
@@ -104,9 +107,8 @@ contains
     real(real64), intent(in) :: ratio(:), c(:, :), u(:, :)   !< c, u: (4, size(ratio))
     real(real64), intent(in) :: a_over_b
     real(real64), intent(out) :: value(4), table_part(4), error(4)
-    real(real64), allocatable :: w(:)
-    real(real64) :: y
-    integer :: row, q, first, k
+    real(real64) :: w(4), y
+    integer :: row, q, first, width, k
 
     row = findloc(ratio == a_over_b, .true., 1)
     if (row > 0) then
@@ -115,42 +117,50 @@ contains
       error = 0
       return
     end if
+    ! (the window is the same in a/b as in ln(a/b))
+    call nearest_window(ratio, a_over_b, first, width)
     do q = 1, 4
-      call interpolate_nodes(log(ratio), log(c(q, :)), log(a_over_b), y, w, first, error(q))
+      call interpolate_nodes(log(ratio(first:first + width - 1)), log(c(q, first:first + width - 1)), &
+                             log(a_over_b), y, w, error(q))
       value(q) = exp(y)
-      associate (window => [(k, k=first, first + size(w) - 1)])
-        table_part(q) = sum(abs(w) * u(q, window) / c(q, window))
-      end associate
+      table_part(q) = 0
+      do k = 1, width
+        table_part(q) = table_part(q) + abs(w(k)) * u(q, first + k - 1) / c(q, first + k - 1)
+      end do
     end do
   end subroutine interpolate_ratio
 
-  !> Lagrange interpolation of y(nodes) at x through the four nearest nodes
-  !> (the interval of x in the middle, but at the ends; three nodes if there
-  !> are only three): value, the weights w of nodes(first:first + size(w) - 1),
-  !> and the error estimate, the larger difference to the interpolants of one
-  !> order less through all but the first or all but the last of those nodes
-  !> (only the one that interpolates at x: in an end interval the other would
-  !> extrapolate).
-  pure subroutine interpolate_nodes(nodes, y, x, value, w, first, error)
-    real(real64), intent(in) :: nodes(:), y(:), x
-    real(real64), intent(out) :: value
-    real(real64), allocatable, intent(out) :: w(:)
-    integer, intent(out) :: first
-    real(real64), intent(out) :: error
-    integer :: m, width, last
+  !> The four nodes nearest x (the interval of x in the middle, but at the
+  !> ends; three if there are only three): nodes(first:first + width - 1).
+  pure subroutine nearest_window(nodes, x, first, width)
+    real(real64), intent(in) :: nodes(:), x
+    integer, intent(out) :: first, width
+    integer :: m
     m = size(nodes)
     width = min(4, m)
     first = 1
     do while (first < m - width + 1 .and. nodes(first + width / 2) < x)
       first = first + 1
     end do
-    last = first + width - 1
-    w = lagrange_weights(nodes(first:last), x)
-    value = sum(w * y(first:last))
+  end subroutine nearest_window
+
+  !> Lagrange interpolation of y(nodes) at x through all the (three or four)
+  !> nodes: value, the weights w(1:size(nodes)), and the error estimate, the
+  !> larger difference to the interpolants of one order less through all but
+  !> the first or all but the last node (only the one that interpolates at x:
+  !> in an end interval the other would extrapolate).
+  pure subroutine interpolate_nodes(nodes, y, x, value, w, error)
+    real(real64), intent(in) :: nodes(:), y(:), x
+    real(real64), intent(out) :: value, w(4)
+    real(real64), intent(out) :: error
+    integer :: last
+    last = size(nodes)
+    w = 0
+    w(1:last) = lagrange_weights(nodes, x)
+    value = sum(w(1:last) * y)
     error = 0
-    if (x <= nodes(last - 1)) error = abs(value - sum(lagrange_weights(nodes(first:last - 1), x) * y(first:last - 1)))
-    if (x >= nodes(first + 1)) error = max(error, abs(value - sum(lagrange_weights(nodes(first + 1:last), x) * &
-                                                                   y(first + 1:last))))
+    if (x <= nodes(last - 1)) error = abs(value - sum(lagrange_weights(nodes(1:last - 1), x) * y(1:last - 1)))
+    if (x >= nodes(2)) error = max(error, abs(value - sum(lagrange_weights(nodes(2:last), x) * y(2:last))))
   end subroutine interpolate_nodes
 
   !> Lagrange weights of the nodes at x (exactly 1 and 0 at a node).
