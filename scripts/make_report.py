@@ -202,9 +202,9 @@ def evt_rows():
 
 def describe_row(r):
     if r["scheme"] == "default":
-        return f"default run (error control, target 1e-3; finest grid {r['m']} x {r['m']})"
+        return f"error control, solved (target 1e-3, method = 'iterative'; finest grid {r['m']} x {r['m']})"
     if r["scheme"] == "accurate":
-        return f"accurate mode (target_error = 1e-4; finest grid {r['m']} x {r['m']})"
+        return f"accurate mode (target_error = 1e-4, method = 'iterative'; finest grid {r['m']} x {r['m']})"
     if r["scheme"].endswith("+extrapolate"):
         m = r["m"]
         return f"{r['scheme'].split('+')[0]}, extrapolate = .true., levels {m // 4}, {m // 2}, {m}"
@@ -345,8 +345,9 @@ def texts(values):
         near = [r for r in rows if r["scheme"] in ("collocation", "backward")]
         best_fixed = min(near, key=lambda r: max(r["err"]))
         below_u = all(e <= ref1[c][1] / ref1[c][0] for e, c in zip(d["err"], COEF))
-        lines.append(f"- **kcreep's default run** (only semi_a, semi_b and nu given; error control with target "
-                     f"1e-3; finest level {d['m']} cells across) took {d['t']:.2f} s and lands "
+        lines.append(f"- **kcreep's run under error control, solved** (semi_a, semi_b, nu and `method = 'iterative'` "
+                     f"given; target 1e-3; finest level {d['m']} cells across; without `method` the default 'auto' "
+                     f"answers this ellipse from the refined table itself) took {d['t']:.2f} s and lands "
                      + ", ".join(apct(e, 3) for e in d["err"]) + " from the refined values"
                      + (", inside the reference's own uncertainty (" + ", ".join(apct(ref1[c][1] / ref1[c][0]) for c in COEF)
                         + "): this comparison cannot tell it from the continuum" if below_u else "")
@@ -356,14 +357,14 @@ def texts(values):
                      + ", ".join(apct(e) for e in best_fixed["err"]) + f" off in {best_fixed['t']:.2f} s, "
                      + f"{min(e / (ref1[c][1] / ref1[c][0]) for e, c in zip(best_fixed['err'], COEF)):.1f} to "
                      + f"{max(e / (ref1[c][1] / ref1[c][0]) for e, c in zip(best_fixed['err'], COEF)):.1f} times the "
-                       "reference's u: what the default run buys is an error that this reference can no longer "
+                       "reference's u: what the solved run buys is an error that this reference can no longer "
                        "resolve, and an estimate of it.")
-        lines.append("- Read the default run's small error with care: the refined table is a fit through levels of "
-                     "32 to 96 cells across of the same scheme and normalisation, and the default run's levels "
+        lines.append("- Read the solved run's small error with care: the refined table is a fit through levels of "
+                     "56 to 196 cells across of the same scheme and normalisation, and the solved run's levels "
                      + ("are among them" if d["m"] <= 96 else f"(up to {d['m']} across) overlap them in part")
-                     + ", so the two agreeing says partly that the fits agree. Independent checks of the default "
-                     "run's estimate: docs/accuracy.md section 3 (coarse levels against fine ones) and "
-                     "`scripts/independent_check.py` (grids of 216-384 cells across); the fixed grids above do not "
+                     + ", so the two agreeing says partly that the fits agree. The independent check of its "
+                     "estimate and of the table's: docs/accuracy.md section 3.1 "
+                     "(`scripts/independent_check.py`, grids of 136-384 cells across); the fixed grids above do not "
                      "share any level with the reference.")
     a = ctl.get("accurate")
     if a and d:
@@ -483,7 +484,9 @@ def recommendation(v, rows, ctl):
     d = ctl.get("default")
     if d:
         out.append(f"- **Recommended: the default run** — give the patch (semi_a, semi_b; or a mask) and nothing "
-                   f"in `&solver`. On the circle it took {d['t']:.2f} s, is "
+                   f"in `&solver`. An ellipse is answered from the refined table when its stated uncertainty meets "
+                   f"the target (microseconds), else solved under error control; solved, the circle took "
+                   f"{d['t']:.2f} s, is "
                    + ", ".join(apct(e, 3) for e in d["err"]) + " from the refined values (C11, C22, C23) and "
                    "reports its own error estimate (" + ", ".join(apct(e) for e in d["est"])
                    + f") and verdict (`{d['verdict']}`; `ok` means every estimate within its target). "

@@ -25,7 +25,10 @@ import argparse
 import os
 import sys
 
-import numpy as np
+if __name__ == "__main__" and any(a in ("-h", "--help") for a in sys.argv[1:]):
+    print("usage: scripts/staircase_normalisation_study.py [options]\n" + __doc__)
+    sys.exit(0)
+import numpy as np  # noqa: E402
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 import kcreep_levels as K  # noqa: E402
