@@ -202,7 +202,7 @@ def main():
         ratios = [float(x) for x in args.ratios.split(",")] if args.ratios else None
         nus = [float(x) for x in args.nu.split(",")]
         todo = [(r, nu) for r, nu in points
-                if nu in nus and (ratios is None or any(abs(r - x) < 1e-6 * x for x in ratios))]
+                if nu in nus and (ratios is None or any(abs(r - x) < 1e-5 * x for x in ratios))]
         todo.sort(key=lambda p: max(p[0], 1 / p[0]))     # cheap (round) ellipses first
         t0 = time.time()
         for r, nu in todo:
