@@ -3,11 +3,13 @@
 normalised three ways (docs/accuracy.md section 1, the figure
 docs/figures/staircase_normalisation.png).
 
-    /usr/bin/python3 scripts/staircase_normalisation_study.py [--from 32] [--levels-file F] [--no-figure]
+    /usr/bin/python3 scripts/staircase_normalisation_study.py [--from 32] [--to 148] [--kalker] [--levels-file F]
+                                                              [--no-figure]
 
-Data: docs/data/kalker_refined_levels.dat (the refined table's levels, 32 to
-148 cells across the shorter axis, stored normalised by the staircase area).
-For every ellipse in it, the levels from --from cells across are fitted
+Data: docs/data/kalker_refined_levels.dat (the refined table's levels, stored
+normalised by the staircase area; Kalker's 57 points have levels 32 to 196
+cells across, --kalker keeps only those). For every ellipse in it, the
+levels from --from to --to cells across are fitted
 three ways, and the scatter (rms residual / C0, with the degrees of freedom
 of the fit) is averaged over the ellipses:
 
@@ -63,6 +65,8 @@ def fit(columns, f):
 def main():
     ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     ap.add_argument("--from", dest="first", type=int, default=32)
+    ap.add_argument("--to", dest="last", type=int, default=148)
+    ap.add_argument("--kalker", action="store_true", help="only Kalker's 57 points")
     ap.add_argument("--levels-file", default=LEVELS)
     ap.add_argument("--no-figure", action="store_true")
     args = ap.parse_args()
@@ -70,8 +74,8 @@ def main():
     scatter = {v: [] for v in ("area", "moments", "harmonic")}
     curves = {}
     for (r, nu), levels in sorted(data.items()):
-        ns = sorted(n for n in levels if n >= args.first)
-        if len(ns) < 6:
+        ns = sorted(n for n in levels if args.first <= n <= args.last)
+        if len(ns) < 6 or (args.kalker and 32 not in levels):
             continue
         slopes = K.table_slopes(r, nu)
         referred = [K.refer_to_ellipse(r, nu, levels[n], slopes) for n in ns]
@@ -90,7 +94,7 @@ def main():
                 curves[(r, nu, c)] = (ns, area, moments, moments - coef[2] * h4)
         for v in scatter:
             scatter[v].append(rows[v])
-    print(f"scatter about the fit, levels from {args.first} cells across, rms / C0 in %, "
+    print(f"scatter about the fit, levels {args.first} to {args.last} cells across, rms / C0 in %, "
           f"mean (worst) over {len(scatter['area'])} ellipses:")
     print("| normalisation and fit | C11 | C22 | C23 |")
     print("|---|---|---|---|")

@@ -78,7 +78,7 @@ contains
   !> method = 'auto' answers from the table: an ellipse whose grids kcreep
   !> chooses (refine_grid, target_error > 0), the backward scheme as by
   !> default (the table's limits are the continuum's, which any scheme
-  !> converges to, but a scheme asked for by name is run), no extrapolation
+  !> converges to, but the paper's collocation, when chosen, is run), no extrapolation
   !> asked for, no tractions wanted, a/b and nu in the table, and the table's
   !> stated uncertainty of C11, C22, C23 within their targets.
   pure logical function table_meets_target(problem) result(meets)
