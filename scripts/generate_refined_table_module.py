@@ -99,7 +99,7 @@ def module_text(rows, source_name):
     w("!> Ellipse with semi-axis a along the rolling direction, b lateral, c = sqrt(a b);")
     w("!> C11 = f11/(G c^2), C22 = f22/(G c^2), C23 = f23/(G c^3) = -f32/(G c^3),")
     w("!> C33 = f33/(G c^4); u: the absolute uncertainty of each value.")
-    w("!> Rows: Kalker's a/b (g = 0.1 ... 1, g = a/b or b/a) and those halfway between in g.")
+    w("!> Rows: Kalker's a/b (g = 0.1 ... 1, g = a/b or b/a), those halfway between in g, and g = 0.125.")
     w("module kcreep_refined_table_data")
     w("  use, intrinsic :: iso_fortran_env, only: real64")
     w("  implicit none")

@@ -64,9 +64,10 @@ TABLE_NU = (0.0, 0.125, 0.25, 0.375, 0.5)
 
 def table_points():
     """[(a_over_b, nu)] of the refined table: Kalker's rows (g = b/a or a/b =
-    0.1 ... 1) and the rows halfway between them in g (0.15, 0.25, ... 0.95 on
-    each side), at the nu of TABLE_NU; increasing a/b."""
-    gs = [round(0.1 * k, 2) for k in range(1, 11)] + [round(0.05 + 0.1 * k, 2) for k in range(1, 10)]
+    0.1 ... 1), the rows halfway between them in g (0.15, 0.25, ... 0.95 on
+    each side) and g = 0.125 (the end interval is the widest in ln g), at the
+    nu of TABLE_NU; increasing a/b."""
+    gs = [round(0.1 * k, 2) for k in range(1, 11)] + [round(0.05 + 0.1 * k, 2) for k in range(1, 10)] + [0.125]
     ratios = sorted(set(gs) | {1 / g for g in gs if g < 1})
     return [(r, nu) for r in ratios for nu in TABLE_NU]
 

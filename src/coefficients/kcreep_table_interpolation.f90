@@ -4,7 +4,7 @@
 !> estimate of the interpolation error.
 !>
 !> In a/b, at each tabulated nu: the cubic through the four nearest rows on
-!>   ln C against ln(a/b) (rows at g = 0.1, 0.15, 0.2, ... 1, g = a/b or b/a);
+!>   ln C against ln(a/b) (rows at g = 0.1, 0.125, 0.15, 0.2, 0.25, ... 1, g = a/b or b/a);
 !> in nu, between the columns (0, 0.125, 0.25, 0.375, 0.5): the cubic through
 !>   the four nearest on 1/C (the compliance is nearly linear in nu, the
 !>   elastic kernel being linear in it).
