@@ -8,7 +8,9 @@
 !> Then the stated relative uncertainties of C11 C22 C23 over the first 2000
 !> of those points (median and largest), and at how many of them all three
 !> meet the default target (1e-3, C23 3e-3), where method = 'auto' answers
-!> from the table instead of solving. Run it under flock /tmp/kcreep-bench.lock.
+!> from the table instead of solving; and the same on a regular grid of 401
+!> a/b (log-spaced) x 101 nu over the whole range, with the largest stated
+!> uncertainties. Run it under flock /tmp/kcreep-bench.lock.
 !>   kcreep_table_bench [CALLS [M]]
 program table_bench
   use, intrinsic :: iso_fortran_env, only: real64, int64, output_unit
@@ -78,8 +80,29 @@ program table_bench
   write (output_unit, '(a, i0, a, i0, a)') 'within the default target (1e-3, C23 3e-3) at ', &
     count(rel(1, :) <= 1e-3_real64 .and. rel(2, :) <= 1e-3_real64 .and. rel(3, :) <= 3e-3_real64), ' of ', &
     size(rel, 2), ' points (method = ''auto'' answers those from the table)'
+  call grid_sweep()
 
 contains
+
+  !> The stated uncertainty on a regular 401 x 101 grid of a/b (log-spaced, 0.1 to 10) and nu (0 to 0.5).
+  subroutine grid_sweep()
+    integer, parameter :: n_ratio = 401, n_nu = 101
+    integer :: i, j, within
+    real(real64) :: worst(4), c4(4), r4(4)
+    type(status_t) :: sweep_status
+    within = 0
+    worst = 0
+    do j = 0, n_nu - 1
+      do i = 0, n_ratio - 1
+        call table_coefficients(10.0_real64**(2 * real(i, real64) / (n_ratio - 1) - 1), &
+                                0.5_real64 * j / (n_nu - 1), c4, r4, sweep_status)
+        worst = max(worst, r4)
+        if (r4(1) <= 1e-3_real64 .and. r4(2) <= 1e-3_real64 .and. r4(3) <= 3e-3_real64) within = within + 1
+      end do
+    end do
+    write (output_unit, '(a, i0, a, i0, a, 3f8.4)') 'grid of 401 a/b x 101 nu: within the default target at ', &
+      within, ' of ', n_ratio * n_nu, ' points; largest stated uncertainty of C11 C22 C23 [%]:', 100 * worst(1:3)
+  end subroutine grid_sweep
 
   subroutine report(what, t)
     character(len=*), intent(in) :: what
