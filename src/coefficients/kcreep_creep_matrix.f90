@@ -10,9 +10,20 @@ module kcreep_creep_matrix
   use kcreep_patch, only: patch_t
   implicit none
   private
-  public :: creep_matrix, normalised, traction_coherence
+  public :: creep_matrix, normalised, traction_coherence, centre_transfer
 
 contains
+
+  !> T of f = T' f0 T, f0 the creep matrix about the point centre = (xc, yc)
+  !> and f the one about the origin: the spin about the origin is a spin
+  !> about the centre plus the creepages (xi, eta) = phi (-yc, xc), and Mz
+  !> about the origin adds xc Fy - yc Fx. T of -centre is its inverse.
+  pure function centre_transfer(centre) result(t)
+    real(real64), intent(in) :: centre(2)
+    real(real64) :: t(3, 3)
+    t = reshape([1.0_real64, 0.0_real64, 0.0_real64, 0.0_real64, 1.0_real64, 0.0_real64, &
+                 -centre(2), centre(1), 1.0_real64], [3, 3])
+  end function centre_transfer
 
   !> f(:, j) = -(Fx, Fy, Mz) of load case j; NaN for the cases not solved.
   pure function creep_matrix(patch, traction, solved) result(f)

@@ -17,6 +17,7 @@ module kcreep_staircase_normalisation
   use, intrinsic :: ieee_arithmetic, only: ieee_is_nan
   use kcreep_status, only: status_t
   use kcreep_patch, only: patch_t
+  use kcreep_creep_matrix, only: centre_transfer
   use kcreep_table_interpolation, only: table_coefficients, table_ratio_range, table_nu_range
   implicit none
   private
@@ -36,7 +37,7 @@ contains
     type(patch_t), intent(in) :: patch
     real(real64), intent(out) :: a_s, b_s
     real(real64) :: centre(2), ixx, iyy
-    centre = ellipse_centre(patch)
+    centre = patch%ellipse_centre()
     ixx = sum((patch%cell_x(patch%ix) - centre(1))**2) + patch%n * patch%dx**2 / 12
     iyy = sum((patch%cell_y(patch%iy) - centre(2))**2) + patch%n * patch%dy**2 / 12
     a_s = 2 * sqrt(ixx / patch%n)
@@ -53,7 +54,7 @@ contains
     type(patch_t), intent(in) :: patch
     real(real64) :: centre(2)
     real(real64), allocatable :: x(:), y(:)
-    centre = ellipse_centre(patch)
+    centre = patch%ellipse_centre()
     x = (patch%cell_x(patch%ix) - centre(1)) / patch%semi_a
     y = (patch%cell_y(patch%iy) - centre(2)) / patch%semi_b
     h4 = sum(x**4 - 6 * x**2 * y**2 + y**4) * (patch%dx / patch%semi_a) * (patch%dy / patch%semi_b)
@@ -92,13 +93,10 @@ contains
     slope = aspect_slopes(patch%semi_a / patch%semi_b, nu)
     log_scale = 0.5_real64 * log(patch%semi_a * patch%semi_b / (a_s * b_s))
     log_aspect = log((a_s / b_s) / (patch%semi_a / patch%semi_b))
-    ! f = T' f0 T, T = [1 0 -yc; 0 1 xc; 0 0 1]: the spin about the origin is
-    ! a spin about the centre plus the creepages phi (-yc, xc)
-    centre = ellipse_centre(patch)
-    t = reshape([1.0_real64, 0.0_real64, 0.0_real64, 0.0_real64, 1.0_real64, 0.0_real64, &
-                 -centre(2), centre(1), 1.0_real64], [3, 3])
-    t_inv = reshape([1.0_real64, 0.0_real64, 0.0_real64, 0.0_real64, 1.0_real64, 0.0_real64, &
-                     centre(2), -centre(1), 1.0_real64], [3, 3])
+    ! f = T' f0 T (kcreep_creep_matrix centre_transfer)
+    centre = patch%ellipse_centre()
+    t = centre_transfer(centre)
+    t_inv = centre_transfer(-centre)
     missing = ieee_is_nan(f)
     ! without every column the move is not exact: then scale f where it is
     ! (exact about the centre; the off-centre terms are scaled as the centred)
@@ -118,12 +116,5 @@ contains
       fn = matmul(transpose(t), matmul(f0, t))
     end if
   end function ellipse_normalised
-
-  !> Centre of the ellipse of an ellipse patch, where the patch was placed.
-  pure function ellipse_centre(patch) result(centre)
-    type(patch_t), intent(in) :: patch
-    real(real64) :: centre(2)
-    centre = [patch%x0 - (-patch%semi_a + patch%dx / 2), patch%y0 - (-patch%semi_b + patch%dy / 2)]
-  end function ellipse_centre
 
 end module kcreep_staircase_normalisation

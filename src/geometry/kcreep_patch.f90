@@ -26,7 +26,7 @@ module kcreep_patch
     integer :: n = 0                          !< number of patch cells
     integer, allocatable :: ix(:), iy(:)      !< grid indices of patch cell k
   contains
-    procedure :: cell_x, cell_y, area, equivalent_radius, centroid, grid_box
+    procedure :: cell_x, cell_y, area, equivalent_radius, centroid, grid_box, ellipse_centre
     procedure :: mirror_symmetric_in_x, mirror_symmetric_in_y
   end type patch_t
 
@@ -67,8 +67,10 @@ contains
   pure subroutine place_like(patch, source)
     type(patch_t), intent(inout) :: patch
     type(patch_t), intent(in) :: source
-    patch%x0 = patch%x0 + (source%x0 - (-source%semi_a + source%dx / 2))
-    patch%y0 = patch%y0 + (source%y0 - (-source%semi_b + source%dy / 2))
+    real(real64) :: shift(2)
+    shift = source%ellipse_centre()
+    patch%x0 = patch%x0 + shift(1)
+    patch%y0 = patch%y0 + shift(2)
   end subroutine place_like
 
   !> A patch from an explicit mask on a grid with given cell sizes and origin.
@@ -152,6 +154,14 @@ contains
       equivalent_radius = sqrt(self%area() / pi)
     end if
   end function equivalent_radius
+
+  !> Centre of an ellipse patch's ellipse, where the patch was placed (the
+  !> grid of ellipse_patch spans [-a, a] x [-b, b] about it).
+  pure function ellipse_centre(self) result(xy)
+    class(patch_t), intent(in) :: self
+    real(real64) :: xy(2)
+    xy = [self%x0 - (-self%semi_a + self%dx / 2), self%y0 - (-self%semi_b + self%dy / 2)]
+  end function ellipse_centre
 
   !> Centre of area of the patch cells.
   pure function centroid(self) result(xy)

@@ -14,7 +14,7 @@ module kcreep_table_run
   use, intrinsic :: iso_fortran_env, only: real64, int64
   use, intrinsic :: ieee_arithmetic, only: ieee_value, ieee_quiet_nan
   use kcreep_status, only: status_t
-  use kcreep_creep_matrix, only: normalised
+  use kcreep_creep_matrix, only: normalised, centre_transfer
   use kcreep_kalker_table, only: kalker_coefficients
   use kcreep_fastsim, only: fastsim_flexibilities
   use kcreep_equivalent_ellipse, only: equivalent_ellipses
@@ -45,7 +45,7 @@ contains
       if (status%failed()) return
       result%c = sqrt(patch%semi_a * patch%semi_b)
       ! the ellipse's centre where the patch was placed (the spin centre is the origin here)
-      result%centroid = [patch%x0 - (-patch%semi_a + patch%dx / 2), patch%y0 - (-patch%semi_b + patch%dy / 2)]
+      result%centroid = patch%ellipse_centre()
       call table_matrix(c4, rel, problem%g, result%c, result%centroid, result%f, result%err)
       do j = 1, 3
         if (.not. problem%requested(j)) result%f(:, j) = nan
@@ -112,8 +112,7 @@ contains
     f0(2, 3) = g * c**3 * c4(3)
     f0(3, 2) = -f0(2, 3)
     f0(3, 3) = g * c**4 * c4(4)
-    t = reshape([1.0_real64, 0.0_real64, 0.0_real64, 0.0_real64, 1.0_real64, 0.0_real64, &
-                 -centre(2), centre(1), 1.0_real64], [3, 3])
+    t = centre_transfer(centre)
     f = matmul(transpose(t), matmul(f0, t))
     err(1:2) = rel(1:2)
     ! f23 = f0_23 + xc f22: the absolute uncertainties add
