@@ -37,20 +37,6 @@ DEFAULT_CASES = ("1:0.25,1:0,1:0.5,0.5:0.25,2:0.25,0.667:0.25,1.5:0.25,0.7:0.25,
 COLUMNS = ["a_over_b", "nu", "N", "mx", "my", "n"] + list(K.COEFFS)
 
 
-def read_cache():
-    data = {}
-    if os.path.exists(CACHE):
-        with open(CACHE) as f:
-            for line in f:
-                if line.startswith("#") or not line.strip():
-                    continue
-                p = line.split()
-                level = {"mx": int(p[3]), "my": int(p[4]), "n": int(p[5])}
-                level.update(dict(zip(K.COEFFS, map(float, p[6:11]))))
-                data.setdefault((float(p[0]), float(p[1])), {})[int(p[2])] = level
-    return data
-
-
 def append_cache(ratio, nu, n, level):
     new = not os.path.exists(CACHE)
     with open(CACHE, "a") as f:
@@ -85,7 +71,7 @@ def main():
     args = ap.parse_args()
     levels = [int(x) for x in args.levels.split(",")]
     cases = [tuple(float(v) for v in c.split(":")) for c in args.cases.split(",")]
-    cache = read_cache()
+    cache = K.read_level_file(CACHE)
     lines = ["| a/b | nu | coefficient | reference (u) | solved: error / estimate | table: error / stated | "
              "solved finest grid |", "|---|---|---|---|---|---|---|"]
     counts = {"solved": [0, 0, 0], "table": [0, 0, 0]}      # bounded, bounded allowing u, cases

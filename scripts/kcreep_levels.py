@@ -89,6 +89,25 @@ def ellipse_level(ratio, nu, cells, scheme="backward", method="iterative", extra
     return out
 
 
+def read_level_file(path):
+    """{(a_over_b, nu): {N: level}} of a levels file (columns a_over_b nu N mx my
+    n c11 c22 c23 c33 c32, further columns ignored; the coefficients as stored,
+    normalised by the staircase area as ellipse_level gives them); {} when the
+    file does not exist."""
+    data = {}
+    if not os.path.exists(path):
+        return data
+    with open(path) as f:
+        for line in f:
+            if line.startswith("#") or not line.strip():
+                continue
+            p = line.split()
+            level = {"mx": int(p[3]), "my": int(p[4]), "n": int(p[5])}
+            level.update(dict(zip(COEFFS, map(float, p[6:11]))))
+            data.setdefault((float(p[0]), float(p[1])), {})[int(p[2])] = level
+    return data
+
+
 def staircase_moments(ratio, mx, my):
     """(a_s, b_s, harmonic4) of the ellipse a = sqrt(ratio), b = 1/sqrt(ratio) on
     an mx x my grid: the semi-axes of the ellipse with the staircase's second

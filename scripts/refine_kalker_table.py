@@ -78,19 +78,8 @@ def key(r, nu):
 
 
 def read_levels():
-    data = {}
-    if not os.path.exists(LEVELS_FILE):
-        return data
-    with open(LEVELS_FILE) as f:
-        for line in f:
-            if line.startswith("#") or not line.strip():
-                continue
-            row = dict(zip(LEVEL_COLUMNS, line.split()))
-            k = key(float(row["a_over_b"]), float(row["nu"]))
-            level = {c: float(row[c]) for c in ("c11", "c22", "c23", "c33", "c32")}
-            level.update({c: int(row[c]) for c in ("mx", "my", "n")})
-            data.setdefault(k, {})[int(row["N"])] = level
-    return data
+    """{key(a/b, nu): {N: level}} of the levels file."""
+    return {key(r, nu): levels for (r, nu), levels in K.read_level_file(LEVELS_FILE).items()}
 
 
 def append_level(r, nu, N, d):

@@ -19,25 +19,16 @@ import os
 import sys
 
 REPO = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
+sys.path.insert(0, os.path.join(REPO, "python"))
+from kcreep import table  # noqa: E402  (standard library only)
+
 TABLE = os.path.join(REPO, "docs", "data", "kalker_refined.dat")
 COEFS = ("c11", "c22", "c23")
 
 
 def load(path=TABLE):
     """{(a_over_b, nu): {'c11': value, 'u11': u, ...}} of every row."""
-    columns, rows = None, {}
-    with open(path) as f:
-        for line in f:
-            if line.startswith("#"):
-                columns = line[1:].split()
-                continue
-            if not line.strip():
-                continue
-            if columns is None:
-                raise ValueError(f"{path}: no '#' header line naming the columns")
-            w = dict(zip(columns, (float(x) for x in line.split())))
-            rows[(w["a_over_b"], w["nu"])] = w
-    return rows
+    return {(w["a_over_b"], w["nu"]): w for w in table.read(path)}
 
 
 def node(ratio, nu, path=TABLE):

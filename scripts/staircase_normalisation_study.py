@@ -42,19 +42,6 @@ SHOWN = [(1.0, 0.25), (0.7, 0.25), (2.5, 0.5)]
 NAMES = ("c11", "c22", "c23")
 
 
-def read_levels(path):
-    data = {}
-    with open(path) as f:
-        for line in f:
-            if line.startswith("#") or not line.strip():
-                continue
-            p = line.split()
-            level = {"mx": int(p[3]), "my": int(p[4]), "n": int(p[5])}
-            level.update(dict(zip(K.COEFFS, map(float, p[6:11]))))
-            data.setdefault((float(p[0]), float(p[1])), {})[int(p[2])] = level
-    return data
-
-
 def fit(columns, f):
     a = np.column_stack(columns)
     coef, *_ = np.linalg.lstsq(a, f, rcond=None)
@@ -70,7 +57,7 @@ def main():
     ap.add_argument("--levels-file", default=LEVELS)
     ap.add_argument("--no-figure", action="store_true")
     args = ap.parse_args()
-    data = read_levels(args.levels_file)
+    data = K.read_level_file(args.levels_file)
     scatter = {v: [] for v in ("area", "moments", "harmonic")}
     curves = {}
     for (r, nu), levels in sorted(data.items()):
