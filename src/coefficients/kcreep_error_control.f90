@@ -26,7 +26,7 @@ module kcreep_error_control
   use, intrinsic :: ieee_arithmetic, only: ieee_value, ieee_quiet_nan
   implicit none
   private
-  public :: default_target_error, c23_target_factor, min_estimate_cells, fit_width
+  public :: default_target_error, c23_target_factor, min_estimate_cells
   public :: coefficient_targets, ellipse_level_grid, next_level, level_cell_budget, student_t95
   public :: first_order_fit, level_estimate, ellipse_level_estimate, smooth_level_estimate, basis_fit
   public :: single_grid_estimate, ellipse_fit_min, ellipse_fit_width
@@ -41,8 +41,6 @@ module kcreep_error_control
   !> the level is outside the first-order range (errors of 10-50 %, the sign of the
   !> error still changes); no estimate is made from it.
   integer, parameter :: min_estimate_cells = 12
-  !> Levels in one fit: the finest this many (Student's factor 2.45 for 8).
-  integer, parameter :: fit_width = 8
   !> An ellipse's levels: the fewest in a fit (ellipse_level_estimate, 3
   !> coefficients), and the finest this many in one fit (Student's factor 2.57).
   integer, parameter :: ellipse_fit_min = 5, ellipse_fit_width = 8

@@ -38,6 +38,8 @@ module kcreep_error_run
   integer, parameter :: base_levels(5) = [56, 64, 72, 84, 96]
   !> The base levels of a long ellipse are scaled down to its cell budget, to no fewer than this.
   integer, parameter :: min_base_cells = 32
+  !> The share of an ellipse's bounding grid inside it (pi/4), for its patch cells.
+  real(real64), parameter :: ellipse_fill = 0.79_real64
   !> Patch cells of the finest split of a mask or of a single grid's
   !> auxiliary grid (the ellipse levels use level_cell_budget).
   integer, parameter :: max_level_cells = 20000
@@ -160,7 +162,7 @@ contains
     associate (a => problem%patch%semi_a, b => problem%patch%semi_b)
       ! long ellipses: the base levels scaled down so that the finest keeps to the budget
       call ellipse_level_grid(a, b, base_levels(size(base_levels)), mx, my)
-      levels = max(min_base_cells, nint(base_levels * min(1.0_real64, sqrt(budget / (0.79_real64 * mx * my)))))
+      levels = max(min_base_cells, nint(base_levels * min(1.0_real64, sqrt(budget / (ellipse_fill * mx * my)))))
       k = 1
       do
         call ellipse_level_grid(a, b, levels(k), mx, my)
@@ -176,8 +178,7 @@ contains
           if (within_target(result%err, coefficient_targets(problem%target_error))) exit
           finest = next_level(levels(k))
           call ellipse_level_grid(a, b, finest, mx, my)
-          ! pi/4 of the grid is inside the ellipse
-          if (0.79_real64 * mx * my > budget) then
+          if (ellipse_fill * mx * my > budget) then
             line = 'error control: the next level, '//itoa(mx)//' x '//itoa(my)//', would exceed the budget of '// &
                    itoa(nint(budget))//' patch cells at target_error '//rtoa(problem%target_error)// &
                    ', stopped at '//itoa(levels(k))//' cells across'
