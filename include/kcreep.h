@@ -58,6 +58,10 @@ int kcreep_set_extrapolation(kcreep_handle handle, int levels, int ratio);   /* 
  * estimate 0 (with target 0) skips the estimate of a given grid, which costs
  * one more solve (default 1): for loops whose grid was judged once. */
 int kcreep_set_error_control(kcreep_handle handle, double target_error, int refine_grid, int estimate);
+/* The most patch cells of a level kcreep chooses under error control (0: the
+ * defaults, a run-time budget; 1e3 to 1e7, checked when solving): raised for
+ * reference work, e.g. target_error 1e-4 to reach "ok". */
+int kcreep_set_cell_budget(kcreep_handle handle, double cells);
 
 /* Geometry: an ellipse on an mx x my grid over [-a, a] x [-b, b], or a mask
  * inside[iy * mx + ix] != 0 (rows in increasing y) with cell sizes dx, dy and

@@ -2,7 +2,7 @@
 """Check kcreep's stated errors against an independent reference.
 
     independent_check.py [--cases 1:0.25,0.5:0.25,...] [--levels 136,152,160,...,384] [--max-cells 200000]
-                         [--markdown] [--out FILE]
+                         [--cache FILE] [--target T] [--cell-budget CELLS] [--markdown] [--out FILE]
 
 For each case (a/b : nu; ellipse with c = sqrt(ab) = 1) kcreep is run twice
 with only semi_a, semi_b, nu given:
@@ -12,12 +12,25 @@ with only semi_a, semi_b, nu given:
     table   &solver method = 'table': the refined table, interpolated (most
             cases lie between its rows and columns), its stated uncertainty
 
+With --target T the solved run gets &solver target_error = T (T = 1e-4: the
+accurate mode, levels to about 300 cells across) and the verdict is shown;
+--cell-budget sets &solver cell_budget (the finest level's cells) with it.
+
 The reference comes from grids much finer than either uses (--levels, cells
 across the shorter axis, as far as a/b x N^2 <= --max-cells), each referred
 to the ellipse by the staircase's second moments (kcreep_levels.refer_to_ellipse)
-and fitted by f0 + K h + B harmonic4, with its 95 % interval u (Student's t).
-The reference levels are kept in docs/data/independent_reference_levels.dat
-and reused (delete it to recompute: about 25 minutes on one core). Printed
+and fitted by f0 + K h + B harmonic4; its uncertainty u is the larger of the
+fit's 95 % interval (Student's t) and the change of f0 when an h^2 term is
+added (as the refined table's u). The reference levels are kept in
+docs/data/independent_reference_levels.dat (--cache) and reused (delete it
+to recompute: about 25 minutes on one core). The accurate mode's check uses
+grids of 256 to 2048 cells across, kept in docs/data/fine_reference_levels.dat
+(about 90 minutes on one core):
+
+    independent_check.py --cache docs/data/fine_reference_levels.dat --target 1e-4 \
+        --cases 1:0.25,1:0.5,2:0.25,0.5:0.25,4:0.25,0.25:0.25 \
+        --levels 256,296,340,384,448,512,576,640,768,896,1024 --max-cells 1.1e6
+Printed
 per coefficient: each answer's error against the reference, its stated error,
 and whether that bounds the error (also allowing u). Standard library only.
 """
@@ -37,9 +50,9 @@ DEFAULT_CASES = ("1:0.25,1:0,1:0.5,0.5:0.25,2:0.25,0.667:0.25,1.5:0.25,0.7:0.25,
 COLUMNS = ["a_over_b", "nu", "N", "mx", "my", "n"] + list(K.COEFFS)
 
 
-def append_cache(ratio, nu, n, level):
-    new = not os.path.exists(CACHE)
-    with open(CACHE, "a") as f:
+def append_cache(cache, ratio, nu, n, level):
+    new = not os.path.exists(cache)
+    with open(cache, "a") as f:
         if new:
             f.write("# reference levels of scripts/independent_check.py: ellipse c = 1, backward scheme, N cells across\n"
                     "# the shorter axis, coefficients normalised by the staircase area (as kcreep_levels.ellipse_level)\n"
@@ -54,10 +67,13 @@ def reference(levels, ratio, nu):
     ns = sorted(levels)
     referred = [K.refer_to_ellipse(ratio, nu, levels[n], slopes) for n in ns]
     columns = [[1.0] * len(ns), [1.0 / n for n in ns], [x["harmonic4"] for x in referred]]
+    quadratic = columns + [[1.0 / n ** 2 for n in ns]]
     out = {}
     for c in ("c11", "c22", "c23"):
-        f0, se, dof = lstsq_columns(columns, [x[c] for x in referred])
-        out[c] = (f0, T95.get(dof, 2.0) * se)
+        values = [x[c] for x in referred]
+        f0, se, dof = lstsq_columns(columns, values)
+        f0_quadratic = lstsq_columns(quadratic, values)[0]
+        out[c] = (f0, max(T95.get(dof, 2.0) * se, abs(f0_quadratic - f0)))
     return out
 
 
@@ -66,28 +82,36 @@ def main():
     ap.add_argument("--cases", default=DEFAULT_CASES)
     ap.add_argument("--levels", default="136,152,160,184,216,240,272,304,344,384")
     ap.add_argument("--max-cells", type=float, default=2.0e5)
+    ap.add_argument("--cache", default=CACHE, help="the reference levels file (read and appended to)")
+    ap.add_argument("--target", type=float, default=0.0, help="&solver target_error of the solved run (0: its default)")
+    ap.add_argument("--cell-budget", type=float, default=0.0, help="&solver cell_budget of the solved run")
     ap.add_argument("--markdown", action="store_true")
     ap.add_argument("--out", default="")
     args = ap.parse_args()
     levels = [int(x) for x in args.levels.split(",")]
     cases = [tuple(float(v) for v in c.split(":")) for c in args.cases.split(",")]
-    cache = K.read_level_file(CACHE)
+    cache = K.read_level_file(args.cache)
+    target = f", target_error = {args.target!r}" if args.target > 0 else ""
+    if args.cell_budget > 0:
+        target += f", cell_budget = {args.cell_budget!r}"
     lines = ["| a/b | nu | coefficient | reference (u) | solved: error / estimate | table: error / stated | "
-             "solved finest grid |", "|---|---|---|---|---|---|---|"]
+             "solved: finest grid, verdict, wall time |", "|---|---|---|---|---|---|---|"]
     counts = {"solved": [0, 0, 0], "table": [0, 0, 0]}      # bounded, bounded allowing u, cases
     for ratio, nu in cases:
         have = cache.setdefault((ratio, nu), {})
         for n in levels:
             if n not in have and max(ratio, 1 / ratio) * n * n <= args.max_cells:
                 have[n] = K.ellipse_level(ratio, nu, n)
-                append_cache(ratio, nu, n, have[n])
-        ref = reference(have, ratio, nu)
+                append_cache(args.cache, ratio, nu, n, have[n])
+        ref = reference({n: v for n, v in have.items() if n in levels}, ratio, nu)
         a, b = math.sqrt(ratio), 1 / math.sqrt(ratio)
-        rows = {}
+        rows, walls = {}, {}
         for name, method in (("solved", "iterative"), ("table", "table")):
             nml = (f"&patch shape = 'ellipse', semi_a = {a!r}, semi_b = {b!r} /\n&material nu = {nu!r} /\n"
-                   f"&solver method = '{method}' /\n&output table_file = 'case.tab' /\n")
-            rows[name] = K.run_kcreep(nml)[0][-1]
+                   f"&solver method = '{method}'{target if name == 'solved' else ''} /\n"
+                   f"&output table_file = 'case.tab' /\n")
+            table_rows, walls[name], _ = K.run_kcreep(nml)
+            rows[name] = table_rows[-1]
         for c, e in (("c11", "err11"), ("c22", "err22"), ("c23", "err23")):
             f0, u = ref[c]
             cells = []
@@ -99,7 +123,8 @@ def main():
                 counts[name][2] += 1
                 cells.append(f"{100 * err:.3f} / {100 * stated:.3f} %" + ("" if stated >= err else " (not bounded)"))
             lines.append(f"| {ratio:g} | {nu:g} | {c.upper()} | {f0:.5f} ({100 * u / abs(f0):.3f} %) | "
-                         f"{cells[0]} | {cells[1]} | {rows['solved']['mx']} x {rows['solved']['my']} |")
+                         f"{cells[0]} | {cells[1]} | {rows['solved']['mx']} x {rows['solved']['my']}, "
+                         f"{rows['solved']['verdict']}, {walls['solved']:.1f} s |")
             print(lines[-1], flush=True)
     lines.append("")
     for name in ("solved", "table"):

@@ -100,6 +100,24 @@ try:
     kc.check(False, "target_error 2 refused")
 except kcreep.KcreepError as e:
     kc.check("target_error" in str(e), f"KcreepError: {e}")
+# cell_budget: the finest level keeps to it; a small budget at a tight target
+# stops early ('uncertain', the warning names the setting), a larger one goes
+# further and its estimates are smaller (circle at 2e-4: 5,000 cells stop at
+# 80 across, 15,000 at about 136, both short of the target)
+small, large = (kcreep.Solver(nu=0.25, target_error=2e-4, refine_grid=True, method="iterative",
+                              cell_budget=b).solve_ellipse(1.0, 1.0) for b in (5000.0, 15000.0))
+# (the base levels are scaled to the budget and rounded to whole cells across:
+# up to about 1 % over it, 5,024 cells measured for 5,000)
+kc.check(small.n <= 1.01 * 5000 and 5000 < large.n <= 1.01 * 15000,
+         f"finest levels {small.n}, {large.n} cells within the budgets")
+kc.check(small.verdict == "uncertain" and any("cell_budget" in w for w in small.warnings),
+         f"budget stop: verdict {small.verdict}, warnings {small.warnings}")
+kc.check(np.all(large.err < small.err), f"estimates {small.err} -> {large.err} with the larger budget")
+try:
+    kcreep.Solver(target_error=1e-3, refine_grid=True, cell_budget=10.0).solve_ellipse(1.0, 1.0)
+    kc.check(False, "cell_budget 10 refused")
+except kcreep.KcreepError as e:
+    kc.check("cell_budget = 10" in str(e), f"KcreepError: {e}")
 
 # the normal problem from a gap (Hertz: a sphere-like quadratic gap) and FASTSIM on its pressure
 gy, gx = np.mgrid[0:64, 0:64]

@@ -71,6 +71,7 @@ _signatures = {
     "kcreep_get_reuse_count": ([_h, ctypes.POINTER(_i)], _i),
     "kcreep_get_results": ([_h, _i, _p], _i),
     "kcreep_set_error_control": ([_h, _d, _i, _i], _i),
+    "kcreep_set_cell_budget": ([_h, _d], _i),
     "kcreep_get_relative_error": ([_h, _p], _i),
     "kcreep_set_bodies": ([_h, _d, _d, _d, _d], _i),
     "kcreep_set_spin_centre": ([_h, _d, _d], _i),
@@ -107,15 +108,19 @@ class Solver:
     reuse the operator table when grid, scheme and material stay the same.
     method: "auto", "dense", "iterative", or "table" (ellipses with 0.1 <= a/b
     <= 10 from kcreep's refined table in microseconds, err the stated
-    uncertainty, no tractions)."""
+    uncertainty, no tractions). cell_budget: the most patch cells of a level
+    kcreep chooses under error control (0: the defaults, a run-time budget;
+    raise it for reference work, e.g. target_error=1e-4)."""
 
     def __init__(self, *, nu=0.25, g=1.0, scheme="backward", alpha=0.5, spin_shift=0.0,
                  method="auto", tolerance=0.0, extrapolate_levels=0, refine_ratio=2,
-                 target_error=0.0, refine_grid=False, estimate_error=True, spin_centre=(0.0, 0.0), bodies=None):
+                 target_error=0.0, refine_grid=False, estimate_error=True, cell_budget=0.0, spin_centre=(0.0, 0.0),
+                 bodies=None):
         self._handle = _h(_lib.kcreep_new())
         self._check(_lib.kcreep_set_spin_centre(self._handle, float(spin_centre[0]), float(spin_centre[1])))
         self._check(_lib.kcreep_set_error_control(self._handle, target_error, int(bool(refine_grid)),
                                                   int(bool(estimate_error))))
+        self._check(_lib.kcreep_set_cell_budget(self._handle, float(cell_budget)))
         self._check(_lib.kcreep_set_material(self._handle, g, nu))
         self._check(_lib.kcreep_set_scheme(self._handle, scheme.encode(), alpha, spin_shift))
         self._check(_lib.kcreep_set_solver(self._handle, method.encode(), tolerance))

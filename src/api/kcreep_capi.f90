@@ -201,6 +201,19 @@ contains
     c_set_error_control = finish(h)
   end function c_set_error_control
 
+  !> The most patch cells of a level kcreep chooses under error control
+  !> (0: the defaults, a run-time budget; 1e3 to 1e7): raised for reference
+  !> work, e.g. target_error 1e-4 to reach `ok`. Checked when solving.
+  integer(c_int) function c_set_cell_budget(handle, cells) bind(c, name='kcreep_set_cell_budget')
+    type(c_ptr), value :: handle
+    real(c_double), value :: cells
+    type(handle_t), pointer :: h
+    c_set_cell_budget = begin(handle, h)
+    if (c_set_cell_budget /= status_ok) return
+    h%problem%cell_budget = cells
+    c_set_cell_budget = finish(h)
+  end function c_set_cell_budget
+
   !> The estimated relative errors of C11, C22, C23 of the last solve (every
   !> run makes one; NaN when the grid is too coarse to judge itself).
   integer(c_int) function c_get_relative_error(handle, error) bind(c, name='kcreep_get_relative_error')

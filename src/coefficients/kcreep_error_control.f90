@@ -28,6 +28,7 @@ module kcreep_error_control
   private
   public :: default_target_error, c23_target_factor, min_estimate_cells
   public :: coefficient_targets, ellipse_level_grid, next_level, level_cell_budget, student_t95
+  public :: min_cell_budget, max_cell_budget
   public :: first_order_fit, level_estimate, ellipse_level_estimate, smooth_level_estimate, basis_fit
   public :: single_grid_estimate, ellipse_fit_min, ellipse_fit_width
   public :: split_grid_estimate, within_target, uncertain_flag
@@ -55,6 +56,12 @@ module kcreep_error_control
   !> below it add up to about 3 N). Measured CPU (one thread) at target 1e-4
   !> without the budget: the unit circle 27 s to reach 392 cells across.
   real(real64), parameter :: cells_at_default_target = 40000
+  !> The range of a cell budget the caller gives (&solver cell_budget): below
+  !> the minimum no ellipse reaches its base levels (32 cells across is 800
+  !> cells); the maximum, 10 million patch cells, needs about 3 GB on the
+  !> iterative path (the circle at 2048 cells across, 3.3 million cells, took
+  !> 5 minutes on one core of the development machine).
+  real(real64), parameter :: min_cell_budget = 1000, max_cell_budget = 1e7_real64
 
 contains
 

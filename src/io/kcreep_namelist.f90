@@ -20,7 +20,7 @@ module kcreep_namelist
   use kcreep_table_interpolation, only: table_ratio_range
   use kcreep_dense, only: refine_modes
   use kcreep_problem, only: problem_t
-  use kcreep_error_control, only: default_target_error
+  use kcreep_error_control, only: default_target_error, min_cell_budget, max_cell_budget
   use kcreep_check, only: collocation_aspect_limit
   use kcreep_problem, only: problem_t, normal_problem_t
   use kcreep_gap, only: gap_t, polynomial_gap_t, gap_from_polynomial, auto_grid
@@ -63,6 +63,7 @@ module kcreep_namelist
     logical :: requested(n_load_cases) = .true.
     logical :: extrapolate = .false.            !< Richardson in the mesh size (mesh_extrapolation)
     real(real64) :: target_error = 0            !< &solver target_error (kcreep_error_control)
+    real(real64) :: cell_budget = 0             !< &solver cell_budget (problem_t%cell_budget; 0: the defaults)
     logical :: refine_grid = .false.            !< kcreep chooses the grids (ellipse without mx, my; mask)
     integer :: extrapolate_levels = 3, refine_ratio = 2
     character(len=:), allocatable :: refine     !< see dense_solver refine_modes
@@ -105,7 +106,7 @@ contains
     ! namelist variables, with their defaults
     character(len=32) :: shape, scheme, method, refine, spin_centre, preconditioner
     real(real64) :: spin_centre_x, spin_centre_y
-    real(real64) :: semi_a, semi_b, dx, dy, x0, y0, g, nu, alpha, spin_shift, tolerance, target_error
+    real(real64) :: semi_a, semi_b, dx, dy, x0, y0, g, nu, alpha, spin_shift, tolerance, target_error, cell_budget
     integer :: mx, my, extrapolate_levels, refine_ratio, max_iterations, restart
     logical :: extrapolate, split_systems
     character(len=4096) :: mask_file, table_file, traction_file
@@ -133,7 +134,7 @@ contains
     logical :: material_given, scheme_given
     namelist /patch/ shape, semi_a, semi_b, mx, my, mask_file, mask_rows, dx, dy, x0, y0, contact_file, contact_case
     namelist /material/ g, nu
-    namelist /solver/ target_error, scheme, alpha, spin_shift, load_cases, extrapolate, extrapolate_levels, &
+    namelist /solver/ target_error, cell_budget, scheme, alpha, spin_shift, load_cases, extrapolate, extrapolate_levels, &
                       refine_ratio, refine, method, tolerance, max_iterations, restart, split_systems, spin_centre, &
                       spin_centre_x, spin_centre_y, preconditioner
     namelist /output/ table_file, traction_file, pressure_file, contact_mask_file, creep_file, &
@@ -166,6 +167,7 @@ contains
     nu = unset
     scheme = ''
     target_error = unset
+    cell_budget = 0
     alpha = unset
     spin_shift = unset
     load_cases = 'xi eta phi'
@@ -368,6 +370,11 @@ contains
     cfg%refine_grid = (cfg%shape == 'ellipse' .and. mx == 0 .and. my == 0) .or. &
                       (cfg%shape == 'mask' .and. len_trim(pressure_input_file) == 0) .or. &
                       (cfg%shape == 'gap' .and. len_trim(contact_inp) == 0 .and. mx == 0 .and. my == 0)
+    cfg%cell_budget = cell_budget
+    if (cell_budget /= 0 .and. .not. (cfg%refine_grid .and. target_error > 0 .and. .not. extrapolate)) &
+      call fail(status, exit_bad_input, where//'&solver cell_budget = '//rtoa(cell_budget)//' limits the grids '// &
+                'kcreep chooses under error control; this case has none (a given grid, target_error = 0 or '// &
+                'extrapolate): leave cell_budget out')
     if (spin_shift == unset) spin_shift = merge(contact_spin_shift, 0.0_real64, cfg%shape == 'contact')
     material_given = g /= unset .or. nu /= unset
     if (g == unset) g = 1
@@ -746,6 +753,10 @@ contains
         '&solver spin_shift = '//rtoa(cfg%scheme%spin_shift)//' (allowed: -1 <= spin_shift <= 1 cell)')
     if (.not. (cfg%target_error >= 0 .and. cfg%target_error < 1)) call fail(status, exit_bad_input, where// &
         '&solver target_error = '//rtoa(cfg%target_error)//' (allowed: 0 <= target_error < 1; 0: the grid as given)')
+    if (.not. (cfg%cell_budget == 0 .or. (cfg%cell_budget >= min_cell_budget .and. &
+                                          cfg%cell_budget <= max_cell_budget))) call fail(status, exit_bad_input, &
+        where//'&solver cell_budget = '//rtoa(cfg%cell_budget)//' (allowed: 0, the defaults, or '// &
+        rtoa(min_cell_budget)//' to '//rtoa(max_cell_budget)//' patch cells)')
     if (cfg%extrapolate .and. (cfg%extrapolate_levels < 2 .or. cfg%extrapolate_levels > 3)) &
       call fail(status, exit_bad_input, where//'&solver extrapolate_levels = '//itoa(cfg%extrapolate_levels)// &
                 ' (allowed: 2 or 3)')
@@ -890,6 +901,7 @@ contains
     problem%refine = cfg%refine
     problem%extrapolate = cfg%extrapolate
     problem%target_error = cfg%target_error
+    problem%cell_budget = cfg%cell_budget
     problem%refine_grid = cfg%refine_grid .and. .not. cfg%extrapolate
     problem%extrapolate_levels = cfg%extrapolate_levels
     problem%refine_ratio = cfg%refine_ratio

@@ -159,6 +159,7 @@ contains
     t = 0
     level_problem = problem
     budget = level_cell_budget(problem%target_error)
+    if (problem%cell_budget > 0) budget = problem%cell_budget
     associate (a => problem%patch%semi_a, b => problem%patch%semi_b)
       ! long ellipses: the base levels scaled down so that the finest keeps to the budget
       call ellipse_level_grid(a, b, base_levels(size(base_levels)), mx, my)
@@ -181,7 +182,7 @@ contains
           if (ellipse_fill * mx * my > budget) then
             line = 'error control: the next level, '//itoa(mx)//' x '//itoa(my)//', would exceed the budget of '// &
                    itoa(nint(budget))//' patch cells at target_error '//rtoa(problem%target_error)// &
-                   ', stopped at '//itoa(levels(k))//' cells across'
+                   ', stopped at '//itoa(levels(k))//' cells across (&solver cell_budget raises it)'
             warnings = [warnings, line]
             exit
           end if
@@ -203,14 +204,15 @@ contains
     real(real64), allocatable :: fnorm(:, :, :)
     character(len=message_length), allocatable :: warnings(:)
     integer :: k, used
-    real(real64) :: t(4)
+    real(real64) :: t(4), budget
 
     allocate (fnorm(3, 3, 0), warnings(0))
     t = 0
     level_problem = problem
+    budget = merge(problem%cell_budget, real(max_level_cells, real64), problem%cell_budget > 0)
     used = 0
     do k = 1, size(mask_factors)
-      if (problem%patch%n * mask_factors(k)**2 > max_level_cells .and. used >= 3) exit
+      if (problem%patch%n * mask_factors(k)**2 > budget .and. used >= 3) exit
       if (mask_factors(k) > 1) then
         call refined_patch(problem%patch, mask_factors(k), level_problem%patch, status)
         if (status%failed()) return

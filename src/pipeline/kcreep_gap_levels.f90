@@ -169,7 +169,7 @@ contains
     real(real64), allocatable :: cnorm(:, :, :), area(:)
     character(len=message_length), allocatable :: warnings(:)
     character(len=message_length) :: line
-    real(real64) :: box(4), diameter, t(4)
+    real(real64) :: box(4), diameter, t(4), budget
     integer :: refinement, k
 
     ! the contact area on the given grid: its size and where it is
@@ -180,14 +180,15 @@ contains
 
     allocate (done(0), cnorm(3, 3, 0), area(0), warnings(0))
     t = 0
+    budget = merge(problem%cell_budget, real(max_gap_level_cells, real64), problem%cell_budget > 0)
     do refinement = 0, max_refinements
       want = gap_base_levels * 2**refinement
       if (refinement > 0) then
         ! contact cells of the finest new level: area / h^2
-        if (first%area() * (want(size(want)) / diameter)**2 > max_gap_level_cells) then
+        if (first%area() * (want(size(want)) / diameter)**2 > budget) then
           line = 'error control: refining to '//itoa(want(size(want)))//' cells across the contact area would '// &
-                 'exceed about '//itoa(max_gap_level_cells)//' contact cells, stopped at '// &
-                 itoa(want(size(want)) / 2)//' cells across'
+                 'exceed about '//itoa(nint(budget))//' contact cells, stopped at '// &
+                 itoa(want(size(want)) / 2)//' cells across (&solver cell_budget raises it)'
           warnings = [warnings, line]
           want = gap_base_levels * 2**(refinement - 1)
           exit

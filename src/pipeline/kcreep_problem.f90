@@ -53,6 +53,11 @@ module kcreep_problem
     !> kcreep may choose the grids (ellipse: near-square cells) or split the
     !> cells (mask) to meet target_error; false: the grid is solved as given.
     logical :: refine_grid = .false.
+    !> The most patch cells of a level kcreep chooses under error control
+    !> (ellipse levels, mask splits, gap levels); 0: the defaults, a run-time
+    !> budget (kcreep_error_control level_cell_budget; masks and gaps 20,000).
+    !> Raised for reference work, where minutes per case are acceptable.
+    real(real64) :: cell_budget = 0
     !> With target_error = 0: still estimate the error of the given grid (one
     !> more solve on a coarser or split grid). Off only in loops that solve the
     !> same kind of patch over and over and judged its grid once (the C API's
