@@ -7,11 +7,6 @@
 #   QUICK=1 scripts/bench.sh         small sizes only (checks the script, not the numbers)
 #   KCREEP_BUILD_DIR=dir             build somewhere else (default build/)
 #   scripts/bench.sh --help          this text (nothing is built or run)
-usage() { awk 'NR > 1 && /^#/ { sub(/^# ?/, ""); print; next } NR > 1 { exit }' "${BASH_SOURCE[0]}"; }
-for arg in "$@"; do case $arg in -h | --help) usage; exit 0 ;; --) break ;; esac; done
-set -euo pipefail
-here=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
-build_dir=${KCREEP_BUILD_DIR:-$here/build}
-cmake -S "$here" -B "$build_dir" -DCMAKE_BUILD_TYPE=Release >/dev/null
-cmake --build "$build_dir" -j "$(nproc)" >/dev/null
+source "$(dirname "${BASH_SOURCE[0]}")/prebuild_lib.sh"
+build_kcreep -j "$(nproc)"
 exec python3 "$here/scripts/bench.py" "$build_dir" "$here"

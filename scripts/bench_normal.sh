@@ -8,13 +8,8 @@
 #   KCREEP_BUILD_DIR=dir                 build somewhere else (default build/)
 # Every timing runs under flock /tmp/kcreep-bench.lock (one benchmark at a time).
 #   scripts/bench_normal.sh --help       this text (nothing is built or run)
-usage() { awk 'NR > 1 && /^#/ { sub(/^# ?/, ""); print; next } NR > 1 { exit }' "${BASH_SOURCE[0]}"; }
-for arg in "$@"; do case $arg in -h | --help) usage; exit 0 ;; --) break ;; esac; done
-set -euo pipefail
-here=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
-build_dir=${KCREEP_BUILD_DIR:-$here/build}
-cmake -S "$here" -B "$build_dir" -DCMAKE_BUILD_TYPE=Release >/dev/null
-cmake --build "$build_dir" -j 2 --target kcreep_normal_bench >/dev/null
+source "$(dirname "${BASH_SOURCE[0]}")/prebuild_lib.sh"
+build_kcreep -j 2 --target kcreep_normal_bench
 bench=$build_dir/kcreep_normal_bench
 if [[ -n "${QUICK:-}" ]]; then sizes="50 100 200"; else sizes="50 100 200 400 700 1000"; fi
 rows=""

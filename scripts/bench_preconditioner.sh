@@ -12,13 +12,8 @@
 #   KCREEP_BUILD_DIR=dir                       build somewhere else (default build/)
 # Every timing runs under flock /tmp/kcreep-bench.lock (one benchmark at a time).
 #   scripts/bench_preconditioner.sh --help     this text (nothing is built or run)
-usage() { awk 'NR > 1 && /^#/ { sub(/^# ?/, ""); print; next } NR > 1 { exit }' "${BASH_SOURCE[0]}"; }
-for arg in "$@"; do case $arg in -h | --help) usage; exit 0 ;; --) break ;; esac; done
-set -euo pipefail
-here=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
-build_dir=${KCREEP_BUILD_DIR:-$here/build}
-cmake -S "$here" -B "$build_dir" -DCMAKE_BUILD_TYPE=Release >/dev/null
-cmake --build "$build_dir" -j 2 --target kcreep >/dev/null
+source "$(dirname "${BASH_SOURCE[0]}")/prebuild_lib.sh"
+build_kcreep -j 2 --target kcreep
 kcreep=$build_dir/kcreep
 work=$(mktemp -d)
 trap 'rm -rf "$work"' EXIT

@@ -36,6 +36,9 @@ from scipy.special import ellipe, ellipk
 
 HERE = os.path.dirname(os.path.abspath(__file__))
 ROOT = os.path.dirname(HERE)
+sys.path.insert(0, os.path.join(ROOT, "python"))
+from kcreep import contact_inp  # noqa: E402  (standard library only)
+
 T95 = {1: 12.706, 2: 4.303, 3: 3.182, 4: 2.776, 5: 2.571, 6: 2.447, 7: 2.365, 8: 2.306, 9: 2.262, 10: 2.228}
 KEYS = ("c11", "c22", "c23")
 
@@ -91,7 +94,8 @@ class Runner:
 
 
 def fit(h, f):
-    """First-order least squares f0 + K h: f0 and its 95 % interval (absolute)."""
+    """First-order least squares f0 + K h: f0, its 95 % interval (absolute) and
+    the rms residual."""
     h, f = np.asarray(h, float), np.asarray(f, float)
     m = len(h)
     a = np.vstack([np.ones(m), h]).T
@@ -99,7 +103,7 @@ def fit(h, f):
     r = f - a @ c
     hm = h.mean()
     se = math.sqrt((r @ r) / (m - 2) * (1 / m + hm ** 2 / ((h - hm) ** 2).sum()))
-    return c[0], T95.get(m - 2, 1.96 + 2.5 / (m - 2)) * se
+    return c[0], T95.get(m - 2, 1.96 + 2.5 / (m - 2)) * se, math.sqrt(r @ r / m)
 
 
 def keys_weights(t):
@@ -199,17 +203,9 @@ def nonelliptic_cases(runner, samples, quick):
     load = "normal_force = 80000.0, e1 = 210000.0, nu1 = 0.28, e2 = 210000.0, nu2 = 0.28 "
     cases = [("wheel_rail", wheel, open(gap_path).read(), load, (-8.0, 8.0, -11.0, 13.0))]
     if samples and not quick:
-        inp = os.path.join(samples, "kidney_nu25.inp")
-        with open(inp) as f:
-            lines = f.read().split("\n")
-        start = next(i for i, l in enumerate(lines) if "IBASE" in l and not l.startswith("%")) + 1
-        values = []
-        for line in lines[start:]:
-            if "MODULE" in line:
-                break
-            values += line.split()
+        values = contact_inp.gap_values(os.path.join(samples, "kidney_nu25.inp"), 36 * 60)
         dx = 1 / 24
-        h = np.array([float(v) for v in values[:36 * 60]]).reshape(60, 36).T
+        h = np.array([float(v) for v in values]).reshape(60, 36).T
         x0, y0 = -0.625 + dx / 2, -1.25 + dx / 2
 
         def kidney(xs, ys, h=h, dx=dx, x0=x0, y0=y0):

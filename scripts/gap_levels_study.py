@@ -26,21 +26,15 @@ import tempfile
 import numpy as np
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-from gap_error_calibration import Runner, hertz, T95  # noqa: E402
+from gap_error_calibration import Runner, fit, hertz  # noqa: E402
 
 KEYS = ("c11", "c22", "c23")
 
 
 def fit_rel(h, f):
     """f0, the relative 95 % interval and the rms residual of the fit f0 + K h."""
-    h, f = np.asarray(h, float), np.asarray(f, float)
-    m = len(h)
-    a = np.vstack([np.ones(m), h]).T
-    c = np.linalg.lstsq(a, f, rcond=None)[0]
-    r = f - a @ c
-    hm = h.mean()
-    se = math.sqrt((r @ r) / (m - 2) * (1 / m + hm ** 2 / ((h - hm) ** 2).sum()))
-    return c[0], T95.get(m - 2, 1.96 + 2.5 / (m - 2)) * se / abs(c[0]), math.sqrt(r @ r / m) / abs(c[0])
+    f0, half, rms = fit(h, f)
+    return f0, half / abs(f0), rms / abs(f0)
 
 
 def level(runner, rx, n):

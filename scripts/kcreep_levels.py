@@ -20,6 +20,9 @@ import os
 import subprocess
 import tempfile
 
+_sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "python"))
+from kcreep import table as kcreep_table  # noqa: E402  (standard library only)
+
 KCREEP = os.environ.get("KCREEP", os.path.join(os.path.dirname(__file__), "..", "build", "kcreep"))
 # the grid exactly as given, without the one-grid error estimate's extra grid
 # (set KCREEP_TARGET_ZERO='' for a kcreep older than &solver target_error)
@@ -37,15 +40,8 @@ def square_grid(ratio, cells):
 
 
 def read_table(path):
-    columns, rows = None, []
-    with open(path) as f:
-        for line in f:
-            if line.startswith("#"):
-                columns = line[1:].split()
-                continue
-            if line.strip():
-                rows.append(dict(zip(columns, line.split())))
-    return rows
+    """Rows as dicts of strings (the callers convert what they need)."""
+    return kcreep_table.read(path, numbers=False)
 
 
 def run_kcreep(nml_text, name="case", kcreep=None, folder=None):

@@ -4,13 +4,8 @@
 #   docs/figures/normal_wheel_rail.png          pressure of the worn-wheel-on-rail example
 #   scripts/normal_figures.sh          (from the repository root; about 10 s)
 #   scripts/normal_figures.sh --help   this text
-usage() { awk 'NR > 1 && /^#/ { sub(/^# ?/, ""); print; next } NR > 1 { exit }' "${BASH_SOURCE[0]}"; }
-for arg in "$@"; do case $arg in -h | --help) usage; exit 0 ;; --) break ;; esac; done
-set -euo pipefail
-here=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
-build_dir=${KCREEP_BUILD_DIR:-$here/build}
-cmake -S "$here" -B "$build_dir" -DCMAKE_BUILD_TYPE=Release >/dev/null
-cmake --build "$build_dir" -j 2 --target kcreep kcreep_hertz_convergence >/dev/null
+source "$(dirname "${BASH_SOURCE[0]}")/prebuild_lib.sh"
+build_kcreep -j 2 --target kcreep kcreep_hertz_convergence
 work=$(mktemp -d)
 trap 'rm -rf "$work"' EXIT
 "$build_dir/kcreep_hertz_convergence" 320 > "$work/hertz.md"

@@ -93,22 +93,6 @@ def append_level(r, nu, N, d):
                 f"{d['c23']:.12e} {d['c33']:.12e} {d['c32']:.12e} {d['iterations']} {d['time']:.3f}\n")
 
 
-def lstsq(hs, fs, orders):
-    """f0 and its standard error of the fit f = f0 + sum K_p h^p (normal equations, small)."""
-    m, k = len(hs), len(orders) + 1
-    A = [[1.0] + [h ** p for p in orders] for h in hs]
-    ATA = [[sum(A[i][a] * A[i][b] for i in range(m)) for b in range(k)] for a in range(k)]
-    ATf = [sum(A[i][a] * fs[i] for i in range(m)) for a in range(k)]
-    c = K.solve(ATA, ATf)
-    res = [fs[i] - sum(A[i][a] * c[a] for a in range(k)) for i in range(m)]
-    dof = m - k
-    if dof <= 0:
-        return c[0], float("nan"), dof
-    s2 = sum(x * x for x in res) / dof
-    e0 = K.solve(ATA, [1.0] + [0.0] * (k - 1))[0]     # (ATA^-1)_00
-    return c[0], math.sqrt(s2 * e0), dof
-
-
 def lstsq_columns(columns, fs):
     """f0 and its standard error of the least-squares fit of fs by the columns
     (lists, the first all ones); NaN error without degrees of freedom."""
@@ -123,7 +107,7 @@ def lstsq_columns(columns, fs):
     if dof <= 0:
         return c[0] / scale[0], float("nan"), dof
     s2 = sum(x * x for x in res) / dof
-    e0 = K.solve(ATA, [1.0] + [0.0] * (k - 1))[0]
+    e0 = K.solve(ATA, [1.0] + [0.0] * (k - 1))[0]     # (ATA^-1)_00
     return c[0] / scale[0], math.sqrt(s2 * e0) / scale[0], dof
 
 

@@ -31,24 +31,13 @@ while (($#)); do
     --alphas) alphas=$2; shift 2 ;;
     --grid) grid=$2; shift 2 ;;
     --no-square) square=0; shift ;;
-    --nu) nu=$2; shift 2 ;;
-    --out) out=$2; shift 2 ;;
-    --jobs) jobs=(--jobs "$2"); shift 2 ;;
-    --slurm) read -r -a slurm <<<"--slurm $2"; shift 2 ;;
-    --docs) docs=1; shift ;;
     --replot) replot=1; shift ;;
-    -h | --help) study_usage; exit 0 ;;
-    *) study_die "unknown option '$1' (see --help)" ;;
+    *) study_option "$@"; shift "$study_used" ;;
   esac
 done
 # the reference of each ratio: "ratio c11 u11 c22 u22 c23 u23;" ...
-refs=""
-for r in $ratios; do
-  ref=$(python3 "$study_here/refined_reference.py" "$r" "$nu") || study_die "no reference for a/b = $r, nu = $nu"
-  refs+="$r $ref;"
-done
-mkdir -p "$out" || study_die "cannot create '$out'"
-out=$(cd "$out" && pwd)
+refs=$(study_refs "$nu" $ratios) || exit 2
+out=$(study_out_dir "$out") || exit 2
 
 status=0
 if ((replot)); then
@@ -57,11 +46,7 @@ else
   list=$out/cases.list
   : >"$list"
   for r in $ratios; do
-    grids="paper:$grid:$grid"
-    if ((square)) && [[ $(awk -v r="$r" 'BEGIN { print (r != 1) }') == 1 ]]; then
-      read -r smx smy < <(square_grid "$grid" "$r")
-      grids+=" square:$smx:$smy"
-    fi
+    grids=$(study_grids "$grid" "$r" "$square")
     for g in $grids; do
       IFS=: read -r kind mx my <<<"$g"
       for al in $alphas; do
@@ -79,8 +64,7 @@ fi
 
 # Plot data: per ratio and grid kind, alpha and the three ratios to the refined values.
 columns "$out/sweep_alpha.tab" case mx my alpha c11 c22 c23 klt11 klt22 klt23 verdict |
-  awk -v out="$out" -v refs="$refs" 'BEGIN { n = split(refs, rr, ";"); for (i = 1; i <= n; i++) if (split(rr[i], w, " ") == 7)
-         { ref11[w[1]] = w[2]; ref22[w[1]] = w[4]; ref23[w[1]] = w[6] } }
+  awk -v out="$out" -v refs="$refs" "$study_refs_awk"'
        { split($1, p, "_"); r = substr(p[1], 2); f = out "/plot_" p[1] "_" p[2] ".dat"
          print $4, $5 / ref11[r], $6 / ref22[r], $7 / ref23[r], $2, $3, $11 > f }'
 if have_gnuplot; then
@@ -121,9 +105,7 @@ EOF
   done
   echo "sweep_alpha: plots $out/sweep_alpha_f{11,22,23}{,_zoom}.png"
   if ((docs)); then
-    mkdir -p "$study_repo/docs/figures" "$study_repo/docs/data"
-    cp "$out"/sweep_alpha_*.png "$study_repo/docs/figures/"
-    cp "$out/sweep_alpha.tab" "$study_repo/docs/data/sweep_alpha.dat"
+    study_to_docs "$out/sweep_alpha.tab" sweep_alpha "$out"/sweep_alpha_*.png
   fi
 fi
 exit $status

@@ -33,34 +33,19 @@ while (($#)); do
     --meshes) meshes=$2; shift 2 ;;
     --alpha) alpha=$2; shift 2 ;;
     --no-square) square=0; shift ;;
-    --nu) nu=$2; shift 2 ;;
-    --out) out=$2; shift 2 ;;
-    --jobs) jobs=(--jobs "$2"); shift 2 ;;
-    --slurm) read -r -a slurm <<<"--slurm $2"; shift 2 ;;
-    --docs) docs=1; shift ;;
-    -h | --help) study_usage; exit 0 ;;
-    *) study_die "unknown option '$1' (see --help)" ;;
+    *) study_option "$@"; shift "$study_used" ;;
   esac
 done
 # the reference of each ratio: "ratio c11 u11 c22 u22 c23 u23;" ...
-refs=""
-for r in $ratios; do
-  ref=$(python3 "$study_here/refined_reference.py" "$r" "$nu") || study_die "no reference for a/b = $r, nu = $nu"
-  refs+="$r $ref;"
-done
-mkdir -p "$out" || study_die "cannot create '$out'"
-out=$(cd "$out" && pwd)
+refs=$(study_refs "$nu" $ratios) || exit 2
+out=$(study_out_dir "$out") || exit 2
 
 list=$out/cases.list
 : >"$list"
 # largest meshes first: the long points start early and the pool stays full
 for m in $(tr ' ' '\n' <<<"$meshes" | sort -rn); do
   for r in $ratios; do
-    grids="paper:$m:$m"
-    if ((square)) && [[ $(awk -v r="$r" 'BEGIN { print (r != 1) }') == 1 ]]; then
-      read -r smx smy < <(square_grid "$m" "$r")
-      grids+=" square:$smx:$smy"
-    fi
+    grids=$(study_grids "$m" "$r" "$square")
     for g in $grids; do
       IFS=: read -r kind mx my <<<"$g"
       for scheme in collocation backward; do
@@ -83,8 +68,7 @@ cat "$out/order.dat"
 # Plot data: one file per series, rows sorted by mesh M: M, C/C_ref for C11, C22, C23 (as computed), ...
 rm -f "$out"/plot_*.dat
 columns "$out/sweep_n.tab" case mx my n c11 c22 c23 klt11 klt22 klt23 t_total verdict |
-  awk -v out="$out" -v refs="$refs" 'BEGIN { n = split(refs, rr, ";"); for (i = 1; i <= n; i++) if (split(rr[i], w, " ") == 7)
-         { ref11[w[1]] = w[2]; ref22[w[1]] = w[4]; ref23[w[1]] = w[6] } }
+  awk -v out="$out" -v refs="$refs" "$study_refs_awk"'
        { split($1, p, "_"); r = substr(p[1], 2); m = substr(p[4], 2); f = out "/plot_" p[1] "_" p[2] "_" p[3] ".dat"
          print m, $5 / ref11[r], $6 / ref22[r], $7 / ref23[r], $2, $3, $4, $11, $12 > f }'
 # the largest relative uncertainty of the reference over the ratios, per coefficient
@@ -120,9 +104,7 @@ EOF
   done
   echo "sweep_n: plots $out/sweep_n_{collocation,backward}_f{11,22,23}.png"
   if ((docs)); then
-    mkdir -p "$study_repo/docs/figures" "$study_repo/docs/data"
-    cp "$out"/sweep_n_*.png "$study_repo/docs/figures/"
-    cp "$out/sweep_n.tab" "$study_repo/docs/data/sweep_n.dat"
+    study_to_docs "$out/sweep_n.tab" sweep_n "$out"/sweep_n_*.png
   fi
 fi
 exit $status

@@ -19,6 +19,7 @@ import os
 import sys
 
 import kctest as kc
+from kcreep import contact_inp  # (kctest puts python/ on the path)
 
 
 def agm_k_e(k):
@@ -114,15 +115,7 @@ if samples and os.path.isdir(samples):
     kc.check(len(p) == 708 and abs(sum(p) * dxy / r["fn"] - 1) < 1e-12 and abs(max(p) / r["pmax"] - 1) < 1e-15,
              "pressure_file: one pressure per contact cell, summing to fn, maximum pmax")
     # the same gap as a gap file (written from the .inp values) gives the same row
-    with open(inp) as f:
-        lines = f.read().split("\n")
-    start = next(i for i, l in enumerate(lines) if "IBASE" in l and not l.startswith("%")) + 1
-    values = []
-    for line in lines[start:]:
-        if "MODULE" in line:
-            break
-        values += line.split()
-    values = values[:36 * 60]
+    values = contact_inp.gap_values(inp, 36 * 60)
     rows = [" ".join(values[j * 36:(j + 1) * 36]) for j in range(60)]
     header = f"36 60 {1 / 24!r} {1 / 24!r} {-0.625 + 1 / 48!r} {-1.25 + 1 / 48!r}"
     # (target_error = 0: the gap file's own grid, as the .inp case is solved)

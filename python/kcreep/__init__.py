@@ -8,7 +8,8 @@
 
 The solver is the shared library libkcreep (found in the build tree
 `build/`, beside an installed package, or where KCREEP_LIBRARY says);
-`kcreep.table` reads kcreep's table files and needs nothing but Python.
+`kcreep.table` reads kcreep's table files and `kcreep.contact_inp` the gap
+values of CONTACT's input files; both need nothing but Python.
 """
 from . import table  # noqa: F401  (standard library only)
 

@@ -14,6 +14,7 @@
 module kcreep_fastsim
   use, intrinsic :: iso_fortran_env, only: real64
   use kcreep_patch, only: patch_t
+  use kcreep_fastsim_forces, only: mask_strip_integrals
   implicit none
   private
   public :: fastsim_flexibilities, strip_integrals
@@ -29,31 +30,12 @@ contains
     flex = [moments(1) / f11, moments(1) / f22, moments(2) / f23]
   end function fastsim_flexibilities
 
-  !> (I1, I3): per cell of half length h centred at x_k in a segment with leading edge x_l,
-  !> Int (x_l - x) dx = 2h (x_l - x_k) and Int (x_l^2 - x^2)/2 dx = h (x_l^2 - x_k^2) - h^3/3.
+  !> (I1, I3) of the patch's cells (kcreep_fastsim_forces mask_strip_integrals, which
+  !> gives the per-cell integrals).
   pure function strip_integrals(patch) result(moments)
     type(patch_t), intent(in) :: patch
     real(real64) :: moments(2)
-    real(real64) :: h, x_lead, x
-    integer :: ix, iy
-
-    h = patch%dx / 2
-    moments = 0
-    do iy = 1, patch%my
-      x_lead = 0
-      do ix = patch%mx, 1, -1          ! walk upstream from +x, where each segment starts
-        if (.not. patch%inside(ix, iy)) cycle
-        if (ix == patch%mx) then
-          x_lead = patch%cell_x(ix) + h
-        else if (.not. patch%inside(ix + 1, iy)) then
-          x_lead = patch%cell_x(ix) + h
-        end if
-        x = patch%cell_x(ix)
-        moments(1) = moments(1) + 2 * h * (x_lead - x)
-        moments(2) = moments(2) + h * (x_lead**2 - x**2) - h**3 / 3
-      end do
-    end do
-    moments = moments * patch%dy
+    moments = mask_strip_integrals(patch%inside, patch%dx, patch%dy, patch%x0)
   end function strip_integrals
 
 end module kcreep_fastsim

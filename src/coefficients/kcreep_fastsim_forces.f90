@@ -130,8 +130,7 @@ contains
       do ix = mx, 1, -1                       ! from the leading edge (+x) downstream
         if (.not. inside(ix, iy)) cycle
         x = x0 + (ix - 1) * dx
-        leading = ix == mx
-        if (.not. leading) leading = .not. inside(ix + 1, iy)
+        leading = leading_cell(inside(:, iy), ix)
         if (leading) then
           tx = 0; ty = 0
           step = h
@@ -195,11 +194,7 @@ contains
       do ix = mx, 1, -1
         if (.not. inside(ix, iy)) cycle
         x = x0 + (ix - 1) * dx
-        if (ix == mx) then
-          x_lead = x + h
-        else if (.not. inside(ix + 1, iy)) then
-          x_lead = x + h
-        end if
+        if (leading_cell(inside(:, iy), ix)) x_lead = x + h
         j2 = j2 + (y**2 + dy**2 / 12) * 2 * h * (x_lead - x)
         ! Int x (x_l^2 - x^2)/2 dx over the cell [x - h, x + h]
         j3 = j3 + (x_lead**2 * x * h - (x**3 * h + x * h**3))
@@ -214,8 +209,10 @@ contains
   end function spin_x_flexibility
 
   !> (I1, I3) of the patch: I1 = Int (x_l - x) dA, I3 = Int (x_l^2 - x^2)/2 dA over every strip
-  !> segment with leading edge x_l, integrated exactly over the cells (as kcreep_fastsim does for
-  !> a patch_t): FASTSIM's full-adhesion forces are I1 xi / L1, I1 eta / L2, I3 phi / L3.
+  !> segment with leading edge x_l, integrated exactly over the cells (kcreep_fastsim
+  !> strip_integrals for a patch_t): FASTSIM's full-adhesion forces are I1 xi / L1, I1 eta / L2,
+  !> I3 phi / L3. Per cell of half length h centred at x_k: Int (x_l - x) dx = 2h (x_l - x_k)
+  !> and Int (x_l^2 - x^2)/2 dx = h (x_l^2 - x_k^2) - h^3/3.
   pure function mask_strip_integrals(inside, dx, dy, x0) result(moments)
     logical, intent(in) :: inside(:, :)
     real(real64), intent(in) :: dx, dy, x0
@@ -231,16 +228,21 @@ contains
       do ix = mx, 1, -1
         if (.not. inside(ix, iy)) cycle
         x = x0 + (ix - 1) * dx
-        if (ix == mx) then
-          x_lead = x + h
-        else if (.not. inside(ix + 1, iy)) then
-          x_lead = x + h
-        end if
+        if (leading_cell(inside(:, iy), ix)) x_lead = x + h
         moments(1) = moments(1) + 2 * h * (x_lead - x)
         moments(2) = moments(2) + h * (x_lead**2 - x**2) - h**3 / 3
       end do
     end do
     moments = moments * dy
   end function mask_strip_integrals
+
+  !> Whether cell ix of a grid row is the leading (+x) cell of its strip segment: the row's
+  !> last cell, or followed by a cell outside the patch (the caller knows ix is inside).
+  pure logical function leading_cell(row, ix)
+    logical, intent(in) :: row(:)
+    integer, intent(in) :: ix
+    leading_cell = ix == size(row)
+    if (.not. leading_cell) leading_cell = .not. row(ix + 1)
+  end function leading_cell
 
 end module kcreep_fastsim_forces

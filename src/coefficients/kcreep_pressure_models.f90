@@ -24,17 +24,10 @@ contains
     logical, intent(in) :: inside(:, :)
     real(real64), intent(in) :: dx, dy, x0, y0, semi_a, semi_b, fn
     real(real64) :: pn(size(inside, 1), size(inside, 2))
-    real(real64) :: x, y
-    integer :: ix, iy
+    real(real64), dimension(size(inside, 1), size(inside, 2)) :: x, y
+    call cell_centres(dx, dy, x0, y0, x, y)
     pn = 0
-    do iy = 1, size(inside, 2)
-      y = y0 + (iy - 1) * dy
-      do ix = 1, size(inside, 1)
-        if (.not. inside(ix, iy)) cycle
-        x = x0 + (ix - 1) * dx
-        pn(ix, iy) = sqrt(max(0.0_real64, 1 - (x / semi_a)**2 - (y / semi_b)**2))
-      end do
-    end do
+    where (inside) pn = sqrt(max(0.0_real64, 1 - (x / semi_a)**2 - (y / semi_b)**2))
     pn = scale_to_load(pn, dx * dy, fn)
   end function hertz_pressure
 
@@ -45,19 +38,25 @@ contains
     logical, intent(in) :: inside(:, :)
     real(real64), intent(in) :: dx, dy, x0, y0, semi_a, semi_b, fn
     real(real64) :: pn(size(inside, 1), size(inside, 2))
-    real(real64) :: x, y
-    integer :: ix, iy
+    real(real64), dimension(size(inside, 1), size(inside, 2)) :: x, y
+    call cell_centres(dx, dy, x0, y0, x, y)
     pn = 0
-    do iy = 1, size(inside, 2)
-      y = y0 + (iy - 1) * dy
-      do ix = 1, size(inside, 1)
-        if (.not. inside(ix, iy)) cycle
-        x = x0 + (ix - 1) * dx
-        pn(ix, iy) = max(0.0_real64, 1 - (x**2 + dx**2 / 12) / semi_a**2 - (y**2 + dy**2 / 12) / semi_b**2)
-      end do
-    end do
+    where (inside) pn = max(0.0_real64, 1 - (x**2 + dx**2 / 12) / semi_a**2 - (y**2 + dy**2 / 12) / semi_b**2)
     pn = scale_to_load(pn, dx * dy, fn)
   end function paraboloid_pressure
+
+  !> The centres of the grid's cells: x(ix, iy) = x0 + (ix - 1) dx, y(ix, iy) = y0 + (iy - 1) dy.
+  pure subroutine cell_centres(dx, dy, x0, y0, x, y)
+    real(real64), intent(in) :: dx, dy, x0, y0
+    real(real64), intent(out) :: x(:, :), y(:, :)
+    integer :: ix, iy
+    do iy = 1, size(x, 2)
+      do ix = 1, size(x, 1)
+        x(ix, iy) = x0 + (ix - 1) * dx
+        y(ix, iy) = y0 + (iy - 1) * dy
+      end do
+    end do
+  end subroutine cell_centres
 
   !> The parabolic strip model (see the module note), cell averages, scaled to fn.
   pure function strip_parabolic_pressure(inside, dx, dy, fn) result(pn)
