@@ -8,6 +8,8 @@ module kcreep_app_case
   use kcreep, only: problem_t, patch_t, kcreep_solve, mask_patch
   use kcreep_namelist, only: config_t, read_config, build_patch, problem_of
   use kcreep_extrapolation, only: memory_need
+  use kcreep_error_run, only: controlled_finest_patch
+  use kcreep_table_run, only: table_meets_target
   use kcreep_table, only: run_record_t, case_name
   use kcreep_app_files, only: check_output_path
   use kcreep_app_memory, only: memory_limit_bytes
@@ -104,6 +106,16 @@ contains
       bytes = bytes + need
       return
     end if
+    if (table_meets_target(problem)) then
+      ! method 'auto' answers this ellipse from the refined table
+      bytes = 0
+      method = 'table'
+      return
+    end if
+    ! under error control: the finest level kcreep may choose
+    call controlled_finest_patch(problem, bound, status)
+    if (status%failed()) return
+    problem%patch = bound
     call memory_need(problem, bytes, method, level, status)
   end subroutine case_memory_bytes
 

@@ -6,6 +6,7 @@ import math
 import os
 import signal
 import subprocess
+import sys
 import time
 import kctest as kc
 import tablecmp
@@ -178,6 +179,30 @@ kc.check(dense <= values[0] <= 1.05 * dense, f"dense 60 x 60: estimate {values[0
 n80 = 5024 * 0.8   # about: the 80 x 80 ellipse with b/a = 0.8 has as many cells as 0.8 of the circle
 kc.check(0 < values[3] < 8 * n80 ** 2 / 4, f"iterative 80 x 80: estimate {values[3]} far below a dense matrix")
 kc.check(values[2] >= 8 * (2 * 10) ** 2, "mask case relative to its namelist folder: estimated")
+# under error control the estimate is that of the finest level kcreep may choose
+# (the cell budget), not of the namelist's grid; the default ellipse run is
+# answered from the refined table (0 bytes, path 'table'). Checked against the
+# peak RSS of the run itself (a child process of a fresh interpreter, so that
+# ru_maxrss is this run's), less the program's own 10-20 MB (measured above).
+write(os.path.join(sub, "ctl.nml"), "&patch semi_a=1, semi_b=1 /\n&solver method='iterative' /\n&output table_file='' /\n")
+write(os.path.join(sub, "ctl_small.nml"),
+      "&patch semi_a=1, semi_b=1 /\n&solver method='iterative', cell_budget=5000 /\n&output table_file='' /\n")
+write(os.path.join(sub, "tbl.nml"), "&patch semi_a=1, semi_b=1 /\n&output table_file='' /\n")
+est = subprocess.run([kc.KCREEP, "--estimate-memory", "sub/ctl.nml", "sub/ctl_small.nml", "sub/tbl.nml"],
+                     cwd=folder, capture_output=True, text=True)
+fields = [l.rsplit(" ", 2) for l in est.stdout.strip().splitlines()]
+kc.check(est.returncode == 0 and [f[2] for f in fields] == ["iterative", "iterative", "table"] and
+         int(fields[2][1]) == 0, f"error control and table estimates: {est.stdout.strip()}")
+peak = subprocess.run([sys.executable, "-c", "import resource, subprocess, sys; "
+                       "subprocess.run(sys.argv[1:], capture_output=True, check=True); "
+                       "print(resource.getrusage(resource.RUSAGE_CHILDREN).ru_maxrss * 1024)",
+                       kc.KCREEP, "sub/ctl.nml"], cwd=folder, capture_output=True, text=True)
+rss = int(peak.stdout.strip() or 0)
+kc.check(peak.returncode == 0 and int(fields[0][1]) >= rss - 20e6,
+         f"solved ellipse under error control: estimate {int(fields[0][1])} B covers the run's peak RSS {rss} B "
+         f"less 20 MB")
+kc.check(int(fields[1][1]) < int(fields[0][1]) / 3,
+         f"cell_budget 5000: estimate {fields[1][1]} B well below the default budget's {fields[0][1]} B")
 proc = subprocess.run([kc.KCREEP, "--estimate-memory", "sub/bad.nml"], cwd=folder, capture_output=True, text=True)
 kc.check(proc.returncode == 2 and "shape = 'circle'" in proc.stderr, "estimate of a bad input: status 2")
 kc.finish()

@@ -32,7 +32,7 @@ module kcreep_error_run
   use kcreep_gap_levels, only: run_gap_patch
   implicit none
   private
-  public :: run_controlled, max_level_cells, base_levels, mask_factors
+  public :: run_controlled, controlled_finest_patch, max_level_cells, base_levels, mask_factors
 
   !> Base levels on an ellipse (cells across the shorter axis).
   integer, parameter :: base_levels(5) = [56, 64, 72, 84, 96]
@@ -158,12 +158,9 @@ contains
     allocate (fnorm(3, 3, 0), harmonic4(0), warnings(0))
     t = 0
     level_problem = problem
-    budget = level_cell_budget(problem%target_error)
-    if (problem%cell_budget > 0) budget = problem%cell_budget
+    budget = ellipse_budget(problem)
     associate (a => problem%patch%semi_a, b => problem%patch%semi_b)
-      ! long ellipses: the base levels scaled down so that the finest keeps to the budget
-      call ellipse_level_grid(a, b, base_levels(size(base_levels)), mx, my)
-      levels = max(min_base_cells, nint(base_levels * min(1.0_real64, sqrt(budget / (ellipse_fill * mx * my)))))
+      levels = ellipse_base_levels(a, b, budget)
       k = 1
       do
         call ellipse_level_grid(a, b, levels(k), mx, my)
@@ -194,6 +191,53 @@ contains
     call finish_result(result, t)
     result%warnings = warnings
   end subroutine run_ellipse_levels
+
+  !> The most patch cells of an ellipse's levels: &solver cell_budget, else the target's.
+  pure real(real64) function ellipse_budget(problem) result(budget)
+    type(problem_t), intent(in) :: problem
+    budget = level_cell_budget(problem%target_error)
+    if (problem%cell_budget > 0) budget = problem%cell_budget
+  end function ellipse_budget
+
+  !> An ellipse's base levels; a long one's scaled down so that the finest keeps to the budget.
+  pure function ellipse_base_levels(a, b, budget) result(levels)
+    real(real64), intent(in) :: a, b, budget
+    integer :: levels(size(base_levels)), mx, my
+    call ellipse_level_grid(a, b, base_levels(size(base_levels)), mx, my)
+    levels = max(min_base_cells, nint(base_levels * min(1.0_real64, sqrt(budget / (ellipse_fill * mx * my)))))
+  end function ellipse_base_levels
+
+  !> The largest patch a run under error control may solve (ellipse: the
+  !> finest level within the budget; mask: the finest split), for the memory
+  !> a job needs; the problem's own patch when kcreep chooses no grid.
+  subroutine controlled_finest_patch(problem, finest, status)
+    type(problem_t), intent(in) :: problem
+    type(patch_t), intent(out) :: finest
+    type(status_t), intent(inout) :: status
+    integer :: cells, mx, my, k
+    real(real64) :: budget
+    finest = problem%patch
+    if (.not. (problem%target_error > 0 .and. problem%refine_grid) .or. problem%normal%active) return
+    if (problem%patch%kind == 'ellipse') then
+      budget = ellipse_budget(problem)
+      associate (a => problem%patch%semi_a, b => problem%patch%semi_b)
+        cells = maxval(ellipse_base_levels(a, b, budget))
+        do
+          call ellipse_level_grid(a, b, next_level(cells), mx, my)
+          if (ellipse_fill * mx * my > budget) exit
+          cells = next_level(cells)
+        end do
+        call ellipse_level_grid(a, b, cells, mx, my)
+        call ellipse_patch(a, b, mx, my, finest, status)
+      end associate
+    else
+      budget = merge(problem%cell_budget, real(max_level_cells, real64), problem%cell_budget > 0)
+      do k = size(mask_factors), 1, -1
+        if (problem%patch%n * mask_factors(k)**2 <= budget .or. k <= 3) exit
+      end do
+      if (mask_factors(k) > 1) call refined_patch(problem%patch, mask_factors(k), finest, status)
+    end if
+  end subroutine controlled_finest_patch
 
   !> Mask levels: every cell split into k x k subcells.
   subroutine run_mask_levels(problem, result, status)
