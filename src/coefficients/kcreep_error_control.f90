@@ -1,24 +1,19 @@
 !> Error control in the mesh size: which grids to run for a target error, the
 !> extrapolation to zero cell size, the error estimate and the verdict.
 !>
-!> The model (measured, docs/accuracy.md): with the backward scheme on
-!> near-square cells, and for an ellipse with the coefficients normalised by
-!> the area of the cells inside it, every coefficient behaves as
-!>     f(h) = f0 + K h + noise(h),
-!> first order in the cell size h, plus an irregular part from the staircase
-!> boundary that no smooth model captures (about 0.03 % of C11 on a circle at
-!> 32 to 256 cells across; up to 0.1 % on elongated ellipses). Fitting the order
-!> from three levels mistakes that noise for a change of order; so the order is
-!> fixed at 1 and the levels are used as a regression, not as an interpolation:
-!>   levels   N/3, N/2, 2N/3, N cells across the shorter axis (N a multiple of 6),
-!>   limit    the least-squares fit of f0 + K h through the levels,
-!>   error    t * (standard error of f0), t the two-sided 95 % Student factor for
-!>            the degrees of freedom left (levels - 2): the scatter of the levels
-!>            about the straight line measures the noise, and the noise is what
-!>            limits the accuracy at these resolutions.
-!> Measured honesty (docs/accuracy.md): this estimate bounded the error against
-!> an independent fine-grid reference in 19 or 20 of 20 ellipses for C11, C22,
-!> C23 at N = 48.
+!> The model (measured, docs/accuracy.md sections 1 and 6): with the backward
+!> scheme on near-square cells, and an ellipse's levels referred to the
+!> ellipse by the staircase's second moments (kcreep_staircase_normalisation),
+!> every coefficient behaves as
+!>     f(h) = f0 + K h + L h^2 + B harmonic4 + noise(h),
+!> h = 1 / (cells across the shorter axis), the noise the staircase's
+!> level-to-level scatter (about 0.5 % / N of the coefficient) that no smooth
+!> term takes out. Levels from 56 cells across (coarser ones bend with L h^2)
+!> are fitted by f0 + K h + B harmonic4 as a regression, not an
+!> interpolation, and the estimate is t95 x the standard error of f0 plus a
+!> tenth of the extrapolation (ellipse_level_estimate). Masks and gaps use
+!> their own fits (smooth_level_estimate, level_estimate). Measured honesty:
+!> docs/accuracy.md sections 3 and 6 (45 of 45 and 18 of 18 bounded).
 !>
 !> Everything here is pure: the driver runs the levels and calls these.
 module kcreep_error_control
