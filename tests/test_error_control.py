@@ -110,6 +110,19 @@ if ref_rows:
 r = kc.run(nml("semi_a=1, semi_b=1", solver="target_error=0.01, method='iterative'"), folder, "loose_e")[3][0]
 kc.check(r["verdict"] == "ok" and r["mx"] == 96, f"circle, target 1 %: ok on the base levels ({r['mx']} x {r['my']})")
 
+# the levels' GMRES stops at 1e-3 x target when no tolerance is given (kcreep_error_control
+# level_solver_tolerance): fewer iterations (circle at 1e-2: measured 17 against 29 at
+# 1e-3 on its finest level), the same coefficients to a small part of the target
+# (measured at target 1e-2: C23 moved by 4.4e-6; allowed 1e-3 x target = 1e-5),
+# and no 'inaccurate' flag
+given = kc.run(nml("semi_a=1, semi_b=1", solver="target_error=0.01, method='iterative', tolerance=1e-11"),
+               folder, "loose_given")[3][0]
+kc.check(r["iterations"] < given["iterations"] and r["verdict"] == "ok",
+         f"levels without a tolerance: {r['iterations']} GMRES iterations on the finest level against "
+         f"{given['iterations']} with tolerance 1e-11, verdict {r['verdict']}")
+for c in COEFFS:
+    kc.check(abs(r[c] / given[c] - 1) <= 1e-3 * 0.01, f"{c}: {r[c]:.8f} against {given[c]:.8f} at tolerance 1e-11")
+
 # --- 5. bad input
 code, out, err, t = kc.run(nml("semi_a=1, semi_b=1", solver="target_error=-1"), folder, "bad", expect_ok=False)
 kc.check(code == 2 and "target_error" in err and "allowed" in err, f"target_error = -1: exit 2, named ({err.strip()})")

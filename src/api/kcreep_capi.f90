@@ -160,7 +160,10 @@ contains
       return
     end if
     h%problem%solve%method = from_c(method, 32)
-    if (tolerance > 0) h%problem%solve%tolerance = tolerance
+    if (tolerance > 0) then
+      h%problem%solve%tolerance = tolerance
+      h%problem%solve%tolerance_given = .true.
+    end if
   end function c_set_solver
 
   !> Richardson extrapolation over levels (2 or 3) refined by ratio; levels 0 turns it off.

@@ -69,7 +69,9 @@ contains
   end function verdict_code
 
   !> The verdict column and the warnings that explain it.
-  subroutine judge(scheme, requested, patch, traction, f, diag, flags, verdict_text, warnings)
+  !> chosen_tolerance: the GMRES tolerance kcreep chose itself (the caller gave
+  !> none); a residual within 10 times it is what was asked for, not flagged.
+  subroutine judge(scheme, requested, patch, traction, f, diag, flags, verdict_text, warnings, chosen_tolerance)
     type(scheme_t), intent(in) :: scheme
     logical, intent(in) :: requested(n_load_cases)
     type(patch_t), intent(in) :: patch
@@ -79,13 +81,16 @@ contains
     integer, intent(out) :: flags
     character(len=:), allocatable, intent(out) :: verdict_text
     character(len=message_length), allocatable, intent(inout) :: warnings(:)
-    real(real64) :: coherence
+    real(real64), intent(in), optional :: chosen_tolerance
+    real(real64) :: coherence, residual_limit
     integer :: n
     character(len=:), allocatable :: verdict
 
     n = patch%n
     flags = verdict_ok
     verdict = ''
+    residual_limit = iterative_residual_limit
+    if (present(chosen_tolerance)) residual_limit = max(residual_limit, 10 * chosen_tolerance)
     if (requested(1)) then
       coherence = traction_coherence(traction(1:n, 1))
       if (coherence < coherence_limit) then
@@ -126,7 +131,7 @@ contains
         call flag('inaccurate', 'backward error '//rtoa(diag%backward_error)// &
                   ' after refinement: the solve did not reach round-off')
       end if
-    else if (.not. diag%backward_error <= iterative_residual_limit) then
+    else if (.not. diag%backward_error <= residual_limit) then
       ! GMRES has no factorisation to estimate rcond from; its residual is what it reached
       call flag('inaccurate', 'GMRES stopped at relative residual '//rtoa(diag%backward_error)// &
                 ': coefficients may be off beyond the 1e-8 level (lower &solver tolerance)')

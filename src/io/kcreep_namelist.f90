@@ -346,6 +346,7 @@ contains
     if (extrapolate_levels == unset_int) extrapolate_levels = 3
     if (refine_ratio == unset_int) refine_ratio = 2
     if (len_trim(refine) == 0) refine = 'auto'
+    cfg%solve%tolerance_given = tolerance /= unset
     if (tolerance == unset) tolerance = cfg%solve%tolerance
     if (max_iterations == unset_int) max_iterations = cfg%solve%max_iterations
     if (restart == unset_int) restart = cfg%solve%restart

@@ -22,7 +22,7 @@ module kcreep_error_run
   use kcreep_status, only: status_t
   use kcreep_strings, only: itoa, rtoa
   use kcreep_patch, only: patch_t, ellipse_patch, place_like
-  use kcreep_problem, only: problem_t, result_t, add_warning, append_prefixed, add_uncertain
+  use kcreep_problem, only: problem_t, result_t, add_warning, append_prefixed, add_uncertain, level_tolerance
   use kcreep_run, only: run_case, solve_cache_t
   use kcreep_extrapolation, only: refined_patch
   use kcreep_verdict, only: message_length
@@ -158,6 +158,7 @@ contains
     allocate (fnorm(3, 3, 0), harmonic4(0), warnings(0))
     t = 0
     level_problem = problem
+    call level_tolerance(level_problem)
     budget = ellipse_budget(problem)
     associate (a => problem%patch%semi_a, b => problem%patch%semi_b)
       levels = ellipse_base_levels(a, b, budget)
@@ -253,6 +254,7 @@ contains
     allocate (fnorm(3, 3, 0), warnings(0))
     t = 0
     level_problem = problem
+    call level_tolerance(level_problem)
     budget = merge(problem%cell_budget, real(max_level_cells, real64), problem%cell_budget > 0)
     used = 0
     do k = 1, size(mask_factors)

@@ -37,7 +37,7 @@ module kcreep_gap_levels
   use kcreep_strings, only: itoa, rtoa
   use kcreep_patch, only: patch_t
   use kcreep_gap, only: gap_t, gap_resampled, gap_from_polynomial
-  use kcreep_problem, only: problem_t, result_t, append_prefixed
+  use kcreep_problem, only: problem_t, result_t, append_prefixed, level_tolerance
   use kcreep_normal_stage, only: normal_patch, store_normal
   use kcreep_normal_solve, only: normal_result_t
   use kcreep_check, only: check_problem
@@ -171,6 +171,7 @@ contains
     character(len=message_length) :: line
     real(real64) :: box(4), diameter, t(4), budget
     integer :: refinement, k
+    type(problem_t) :: level_problem
 
     ! the contact area on the given grid: its size and where it is
     call normal_patch(problem, first, nres, status)
@@ -181,6 +182,8 @@ contains
     allocate (done(0), cnorm(3, 3, 0), area(0), warnings(0))
     t = 0
     budget = merge(problem%cell_budget, real(max_gap_level_cells, real64), problem%cell_budget > 0)
+    level_problem = problem
+    call level_tolerance(level_problem)
     do refinement = 0, max_refinements
       want = gap_base_levels * 2**refinement
       if (refinement > 0) then
@@ -198,7 +201,7 @@ contains
         if (any(done == want(k))) cycle
         call level_gap(problem, box, diameter / want(k), gap, status)
         if (status%failed()) return
-        call run_gap_level(problem, gap, want(k), result, cnorm, area, warnings, t, status)
+        call run_gap_level(level_problem, gap, want(k), result, cnorm, area, warnings, t, status)
         if (status%failed()) return
         done = [done, want(k)]
       end do

@@ -13,13 +13,13 @@ module kcreep_problem
   use kcreep_solver_options, only: solver_options_t
   use kcreep_verdict, only: verdict_ok, verdict_uncertain, message_length
   use kcreep_strings, only: rtoa
-  use kcreep_error_control, only: uncertain_flag, coefficient_targets
+  use kcreep_error_control, only: uncertain_flag, coefficient_targets, level_solver_tolerance
   use kcreep_gap, only: gap_t, polynomial_gap_t
   use kcreep_normal_solve, only: normal_options_t
   use kcreep_equivalent_ellipse, only: equivalent_ellipse_t
   implicit none
   private
-  public :: problem_t, result_t, default_problem, normal_problem_t, add_warning, append_prefixed, add_uncertain
+  public :: problem_t, result_t, default_problem, normal_problem_t, add_warning, append_prefixed, add_uncertain, level_tolerance
 
   !> The normal contact problem that finds the patch: when active, the patch
   !> is the set of cells with positive pressure on the gap's grid (cropped
@@ -118,6 +118,15 @@ module kcreep_problem
   end type result_t
 
 contains
+
+  !> A level of error control: GMRES stops at the target's residual
+  !> (level_solver_tolerance) unless the caller gave a tolerance.
+  pure subroutine level_tolerance(level_problem)
+    type(problem_t), intent(inout) :: level_problem
+    if (level_problem%solve%tolerance_given) return
+    level_problem%solve%tolerance = max(level_problem%solve%tolerance, &
+                                        level_solver_tolerance(level_problem%target_error))
+  end subroutine level_tolerance
 
   !> A problem with every setting at kcreep's default (no patch yet): the
   !> namelist reader and the C and Python bindings start from this.

@@ -11,6 +11,10 @@ module kcreep_solver_options
   type :: solver_options_t
     character(len=:), allocatable :: method      !< 'dense', 'iterative' or 'auto'
     real(real64) :: tolerance = 1e-11_real64     !< iterative: relative residual ||b - A x|| / ||b||
+    !> The caller set tolerance. When not, the levels of error control stop
+    !> GMRES at a residual chosen from the target (kcreep_error_control
+    !> level_solver_tolerance) and the verdict judges the residual against it.
+    logical :: tolerance_given = .false.
     integer :: max_iterations = 1000             !< iterative: total GMRES iterations per load case
     integer :: restart = 50                      !< iterative: GMRES restart length
     !> iterative: 'circulant' (running sum along the rows and the FFT inverse
