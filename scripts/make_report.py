@@ -381,7 +381,7 @@ def texts(values):
         lines.append("- Against grids of up to 1024 cells across (docs/accuracy.md section 6) the accurate mode's "
                      "errors at 296 cells across are 0.003-0.006 %, but the staircase's level-to-level noise keeps "
                      "its estimate above 1e-4 until about 600 cells across: `&solver cell_budget = 5e5` reaches "
-                     "`ok` there, in about 50 s on one core.")
+                     "`ok` there, in about 40 s on one core.")
     ext = [r for r in rows if r["scheme"].endswith("+extrapolate")]
     if ext:
         best = min(ext, key=lambda r: max(r["err"]))
