@@ -19,11 +19,12 @@
 module kcreep_error_control
   use, intrinsic :: iso_fortran_env, only: real64
   use, intrinsic :: ieee_arithmetic, only: ieee_value, ieee_quiet_nan
+  use kcreep_strings, only: rtoa
   implicit none
   private
   public :: default_target_error, c23_target_factor, min_estimate_cells
   public :: coefficient_targets, ellipse_level_grid, next_level, level_cell_budget, student_t95
-  public :: min_cell_budget, max_cell_budget, level_solver_tolerance
+  public :: cell_budget_allowed, cell_budget_range, level_solver_tolerance
   public :: first_order_fit, level_estimate, ellipse_level_estimate, smooth_level_estimate, basis_fit
   public :: single_grid_estimate, ellipse_fit_min, ellipse_fit_width
   public :: split_grid_estimate, within_target, uncertain_flag
@@ -88,6 +89,18 @@ contains
     integer, intent(in) :: finest
     cells = max(finest + 4, 4 * nint(1.15_real64 * finest / 4))
   end function next_level
+
+  !> A cell budget the caller may give: 0 (the defaults) or within the range.
+  pure logical function cell_budget_allowed(cells)
+    real(real64), intent(in) :: cells
+    cell_budget_allowed = cells == 0 .or. (cells >= min_cell_budget .and. cells <= max_cell_budget)
+  end function cell_budget_allowed
+
+  !> What cell_budget_allowed allows, for error messages.
+  pure function cell_budget_range() result(text)
+    character(len=:), allocatable :: text
+    text = '(allowed: 0, the defaults, or '//rtoa(min_cell_budget)//' to '//rtoa(max_cell_budget)//' patch cells)'
+  end function cell_budget_range
 
   !> GMRES's relative residual on the levels of error control when the caller
   !> gave no tolerance: the levels need their coefficients to a small part of

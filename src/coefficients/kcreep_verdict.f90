@@ -7,6 +7,7 @@ module kcreep_verdict
   use kcreep_patch, only: patch_t
   use kcreep_assembly, only: scheme_t, n_load_cases
   use kcreep_dense, only: dense_diagnostics_t
+  use kcreep_solver_options, only: solver_options_t
   use kcreep_creep_matrix, only: traction_coherence
   implicit none
   private
@@ -69,19 +70,20 @@ contains
   end function verdict_code
 
   !> The verdict column and the warnings that explain it.
-  !> chosen_tolerance: the GMRES tolerance kcreep chose itself (the caller gave
-  !> none); a residual within 10 times it is what was asked for, not flagged.
-  subroutine judge(scheme, requested, patch, traction, f, diag, flags, verdict_text, warnings, chosen_tolerance)
+  !> solve: the solver options of the solve; when kcreep chose the GMRES
+  !> tolerance itself (the caller gave none), a residual within 10 times it is
+  !> what was asked for and not flagged.
+  subroutine judge(scheme, requested, patch, traction, f, diag, solve, flags, verdict_text, warnings)
     type(scheme_t), intent(in) :: scheme
     logical, intent(in) :: requested(n_load_cases)
     type(patch_t), intent(in) :: patch
     real(real64), intent(in) :: traction(:, :)
     real(real64), intent(in) :: f(3, 3)
     type(dense_diagnostics_t), intent(in) :: diag
+    type(solver_options_t), intent(in) :: solve
     integer, intent(out) :: flags
     character(len=:), allocatable, intent(out) :: verdict_text
     character(len=message_length), allocatable, intent(inout) :: warnings(:)
-    real(real64), intent(in), optional :: chosen_tolerance
     real(real64) :: coherence, residual_limit
     integer :: n
     character(len=:), allocatable :: verdict
@@ -90,7 +92,7 @@ contains
     flags = verdict_ok
     verdict = ''
     residual_limit = iterative_residual_limit
-    if (present(chosen_tolerance)) residual_limit = max(residual_limit, 10 * chosen_tolerance)
+    if (.not. solve%tolerance_given) residual_limit = max(residual_limit, 10 * solve%tolerance)
     if (requested(1)) then
       coherence = traction_coherence(traction(1:n, 1))
       if (coherence < coherence_limit) then

@@ -20,7 +20,7 @@ module kcreep_namelist
   use kcreep_table_interpolation, only: table_ratio_range
   use kcreep_dense, only: refine_modes
   use kcreep_problem, only: problem_t
-  use kcreep_error_control, only: default_target_error, min_cell_budget, max_cell_budget
+  use kcreep_error_control, only: default_target_error, cell_budget_allowed, cell_budget_range
   use kcreep_check, only: collocation_aspect_limit
   use kcreep_problem, only: problem_t, normal_problem_t
   use kcreep_gap, only: gap_t, polynomial_gap_t, gap_from_polynomial, auto_grid
@@ -754,10 +754,8 @@ contains
         '&solver spin_shift = '//rtoa(cfg%scheme%spin_shift)//' (allowed: -1 <= spin_shift <= 1 cell)')
     if (.not. (cfg%target_error >= 0 .and. cfg%target_error < 1)) call fail(status, exit_bad_input, where// &
         '&solver target_error = '//rtoa(cfg%target_error)//' (allowed: 0 <= target_error < 1; 0: the grid as given)')
-    if (.not. (cfg%cell_budget == 0 .or. (cfg%cell_budget >= min_cell_budget .and. &
-                                          cfg%cell_budget <= max_cell_budget))) call fail(status, exit_bad_input, &
-        where//'&solver cell_budget = '//rtoa(cfg%cell_budget)//' (allowed: 0, the defaults, or '// &
-        rtoa(min_cell_budget)//' to '//rtoa(max_cell_budget)//' patch cells)')
+    if (.not. cell_budget_allowed(cfg%cell_budget)) call fail(status, exit_bad_input, &
+        where//'&solver cell_budget = '//rtoa(cfg%cell_budget)//' '//cell_budget_range())
     if (cfg%extrapolate .and. (cfg%extrapolate_levels < 2 .or. cfg%extrapolate_levels > 3)) &
       call fail(status, exit_bad_input, where//'&solver extrapolate_levels = '//itoa(cfg%extrapolate_levels)// &
                 ' (allowed: 2 or 3)')

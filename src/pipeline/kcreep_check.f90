@@ -10,7 +10,7 @@ module kcreep_check
   use kcreep_solver_options, only: validate_solver_options
   use kcreep_dense, only: refine_modes
   use kcreep_problem, only: problem_t
-  use kcreep_error_control, only: min_cell_budget, max_cell_budget
+  use kcreep_error_control, only: cell_budget_allowed, cell_budget_range
   implicit none
   private
   public :: check_problem, collocation_aspect_limit
@@ -52,10 +52,8 @@ contains
     else if (.not. (problem%target_error >= 0 .and. problem%target_error < 1)) then
       call fail(status, exit_bad_input, 'target_error = '//rtoa(problem%target_error)// &
                 ' (allowed: 0 <= target_error < 1; 0: the grid as given)')
-    else if (.not. (problem%cell_budget == 0 .or. (problem%cell_budget >= min_cell_budget .and. &
-                                                   problem%cell_budget <= max_cell_budget))) then
-      call fail(status, exit_bad_input, 'cell_budget = '//rtoa(problem%cell_budget)//' (allowed: 0, the '// &
-                'defaults, or '//rtoa(min_cell_budget)//' to '//rtoa(max_cell_budget)//' patch cells)')
+    else if (.not. cell_budget_allowed(problem%cell_budget)) then
+      call fail(status, exit_bad_input, 'cell_budget = '//rtoa(problem%cell_budget)//' '//cell_budget_range())
     else if (problem%extrapolate .and. (problem%refine_ratio < 2 .or. problem%refine_ratio > 4)) then
       call fail(status, exit_bad_input, 'refine_ratio = '//itoa(problem%refine_ratio)//' (allowed: 2 to 4)')
     end if

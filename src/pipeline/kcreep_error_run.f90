@@ -22,7 +22,8 @@ module kcreep_error_run
   use kcreep_status, only: status_t
   use kcreep_strings, only: itoa, rtoa
   use kcreep_patch, only: patch_t, ellipse_patch, place_like
-  use kcreep_problem, only: problem_t, result_t, add_warning, append_prefixed, add_uncertain, level_tolerance
+  use kcreep_problem, only: problem_t, result_t, add_warning, append_prefixed, add_uncertain, level_tolerance, &
+                           cell_budget_or
   use kcreep_run, only: run_case, solve_cache_t
   use kcreep_extrapolation, only: refined_patch
   use kcreep_verdict, only: message_length
@@ -159,7 +160,7 @@ contains
     t = 0
     level_problem = problem
     call level_tolerance(level_problem)
-    budget = ellipse_budget(problem)
+    budget = cell_budget_or(problem, level_cell_budget(problem%target_error))
     associate (a => problem%patch%semi_a, b => problem%patch%semi_b)
       levels = ellipse_base_levels(a, b, budget)
       k = 1
@@ -193,13 +194,6 @@ contains
     result%warnings = warnings
   end subroutine run_ellipse_levels
 
-  !> The most patch cells of an ellipse's levels: &solver cell_budget, else the target's.
-  pure real(real64) function ellipse_budget(problem) result(budget)
-    type(problem_t), intent(in) :: problem
-    budget = level_cell_budget(problem%target_error)
-    if (problem%cell_budget > 0) budget = problem%cell_budget
-  end function ellipse_budget
-
   !> An ellipse's base levels; a long one's scaled down so that the finest keeps to the budget.
   pure function ellipse_base_levels(a, b, budget) result(levels)
     real(real64), intent(in) :: a, b, budget
@@ -215,12 +209,12 @@ contains
     type(problem_t), intent(in) :: problem
     type(patch_t), intent(out) :: finest
     type(status_t), intent(inout) :: status
-    integer :: cells, mx, my, k
+    integer :: cells, mx, my, used
     real(real64) :: budget
     finest = problem%patch
     if (.not. (problem%target_error > 0 .and. problem%refine_grid) .or. problem%normal%active) return
     if (problem%patch%kind == 'ellipse') then
-      budget = ellipse_budget(problem)
+      budget = cell_budget_or(problem, level_cell_budget(problem%target_error))
       associate (a => problem%patch%semi_a, b => problem%patch%semi_b)
         cells = maxval(ellipse_base_levels(a, b, budget))
         do
@@ -232,13 +226,22 @@ contains
         call ellipse_patch(a, b, mx, my, finest, status)
       end associate
     else
-      budget = merge(problem%cell_budget, real(max_level_cells, real64), problem%cell_budget > 0)
-      do k = size(mask_factors), 1, -1
-        if (problem%patch%n * mask_factors(k)**2 <= budget .or. k <= 3) exit
-      end do
-      if (mask_factors(k) > 1) call refined_patch(problem%patch, mask_factors(k), finest, status)
+      used = mask_splits_used(problem%patch%n, cell_budget_or(problem, real(max_level_cells, real64)))
+      if (mask_factors(used) > 1) call refined_patch(problem%patch, mask_factors(used), finest, status)
     end if
   end subroutine controlled_finest_patch
+
+  !> How many of mask_factors a mask of n cells is split by: the first three
+  !> always, a finer one while the split patch keeps to the budget.
+  pure integer function mask_splits_used(n, budget) result(used)
+    integer, intent(in) :: n
+    real(real64), intent(in) :: budget
+    used = 3
+    do while (used < size(mask_factors))
+      if (n * mask_factors(used + 1)**2 > budget) exit
+      used = used + 1
+    end do
+  end function mask_splits_used
 
   !> Mask levels: every cell split into k x k subcells.
   subroutine run_mask_levels(problem, result, status)
@@ -249,23 +252,20 @@ contains
     real(real64), allocatable :: fnorm(:, :, :)
     character(len=message_length), allocatable :: warnings(:)
     integer :: k, used
-    real(real64) :: t(4), budget
+    real(real64) :: t(4)
 
     allocate (fnorm(3, 3, 0), warnings(0))
     t = 0
     level_problem = problem
     call level_tolerance(level_problem)
-    budget = merge(problem%cell_budget, real(max_level_cells, real64), problem%cell_budget > 0)
-    used = 0
-    do k = 1, size(mask_factors)
-      if (problem%patch%n * mask_factors(k)**2 > budget .and. used >= 3) exit
+    used = mask_splits_used(problem%patch%n, cell_budget_or(problem, real(max_level_cells, real64)))
+    do k = 1, used
       if (mask_factors(k) > 1) then
         call refined_patch(problem%patch, mask_factors(k), level_problem%patch, status)
         if (status%failed()) return
       end if
       call run_level(level_problem, mask_factors(k), result, fnorm, warnings, t, status)
       if (status%failed()) return
-      used = k
     end do
     call fit_levels(1.0_real64 / mask_factors(1:used), fnorm, result, smooth=.true.)
     call finish_result(result, t)

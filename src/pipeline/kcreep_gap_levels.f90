@@ -37,7 +37,7 @@ module kcreep_gap_levels
   use kcreep_strings, only: itoa, rtoa
   use kcreep_patch, only: patch_t
   use kcreep_gap, only: gap_t, gap_resampled, gap_from_polynomial
-  use kcreep_problem, only: problem_t, result_t, append_prefixed, level_tolerance
+  use kcreep_problem, only: problem_t, result_t, append_prefixed, level_tolerance, cell_budget_or
   use kcreep_normal_stage, only: normal_patch, store_normal
   use kcreep_normal_solve, only: normal_result_t
   use kcreep_check, only: check_problem
@@ -181,7 +181,7 @@ contains
 
     allocate (done(0), cnorm(3, 3, 0), area(0), warnings(0))
     t = 0
-    budget = merge(problem%cell_budget, real(max_gap_level_cells, real64), problem%cell_budget > 0)
+    budget = cell_budget_or(problem, real(max_gap_level_cells, real64))
     level_problem = problem
     call level_tolerance(level_problem)
     do refinement = 0, max_refinements

@@ -19,7 +19,8 @@ module kcreep_problem
   use kcreep_equivalent_ellipse, only: equivalent_ellipse_t
   implicit none
   private
-  public :: problem_t, result_t, default_problem, normal_problem_t, add_warning, append_prefixed, add_uncertain, level_tolerance
+  public :: problem_t, result_t, default_problem, normal_problem_t, add_warning, append_prefixed, add_uncertain, level_tolerance, &
+            cell_budget_or
 
   !> The normal contact problem that finds the patch: when active, the patch
   !> is the set of cells with positive pressure on the gap's grid (cropped
@@ -127,6 +128,14 @@ contains
     level_problem%solve%tolerance = max(level_problem%solve%tolerance, &
                                         level_solver_tolerance(level_problem%target_error))
   end subroutine level_tolerance
+
+  !> The most patch cells of a level under error control: the caller's
+  !> cell_budget when given, else default_cells (the kind of patch's own).
+  pure real(real64) function cell_budget_or(problem, default_cells) result(cells)
+    type(problem_t), intent(in) :: problem
+    real(real64), intent(in) :: default_cells
+    cells = merge(problem%cell_budget, default_cells, problem%cell_budget > 0)
+  end function cell_budget_or
 
   !> A problem with every setting at kcreep's default (no patch yet): the
   !> namelist reader and the C and Python bindings start from this.

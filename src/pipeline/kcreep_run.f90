@@ -117,13 +117,8 @@ contains
       result%t_operator = diag%t_operator
       result%t_preconditioner = diag%t_preconditioner
       result%t_orthogonalise = diag%t_orthogonalise
-      if (problem%solve%tolerance_given) then
-        call judge(problem%scheme, problem%requested, patch, result%traction, result%f, diag, &
-                   result%verdict_flags, result%verdict, result%warnings)
-      else
-        call judge(problem%scheme, problem%requested, patch, result%traction, result%f, diag, &
-                   result%verdict_flags, result%verdict, result%warnings, chosen_tolerance=problem%solve%tolerance)
-      end if
+      call judge(problem%scheme, problem%requested, patch, result%traction, result%f, diag, problem%solve, &
+                 result%verdict_flags, result%verdict, result%warnings)
     end associate
     call system_clock(t1)
     result%t_total = real(t1 - t0, real64) / rate
