@@ -104,14 +104,16 @@ contains
 
   !> GMRES's relative residual on the levels of error control when the caller
   !> gave no tolerance: the levels need their coefficients to a small part of
-  !> the target only. Measured on the unit circle at 296 x 296 cells: residual
-  !> 1e-6 moves the coefficients by 3e-7 (relative), 1e-7 by less than 1e-8,
-  !> with 21 and 24 iterations instead of 37 at the default 1e-11; a whole
-  !> run at target 1e-2 (residual 1e-5) moved C23 by 4.4e-6: about half of
-  !> 1e-3 x target, far inside any estimate.
+  !> the target only, and to a small part of the staircase's level-to-level
+  !> noise (about 0.5 % / N, 5e-5 at 100 cells across). Measured on the unit
+  !> circle (f11, f22, f23 against residual 1e-11): a residual r moves them by
+  !> up to about r (1e-4: C23 by 9.5e-5 at target 1e-2; 1e-5: 3e-6; 1e-6:
+  !> 7e-7 at 296 and 448 cells across), with 21-23 iterations at 1e-6 instead
+  !> of 24-27 at 1e-7 and 37-41 at 1e-11. Hence a hundredth of the target,
+  !> and never above 1e-5.
   pure real(real64) function level_solver_tolerance(target) result(tolerance)
     real(real64), intent(in) :: target
-    tolerance = 1e-3_real64 * target
+    tolerance = min(1e-2_real64 * target, 1e-5_real64)
   end function level_solver_tolerance
 
   !> The most patch cells a level kcreep chooses may have for this target.

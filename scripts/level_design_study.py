@@ -1,0 +1,137 @@
+#!/usr/bin/env python3
+"""Could the accurate mode (target_error = 1e-4) reach its target with fewer
+or cheaper levels? (docs/accuracy.md section 6.3)
+
+    /usr/bin/python3 scripts/level_design_study.py
+
+Uses the stored levels of six ellipses (docs/data/*levels.dat, 56 to 1024
+cells across; see scripts/level_noise_study.py) and asks two questions:
+
+1. Honesty of two estimators over every design "the base levels 56-296 plus
+   one or two finer levels J" the data allow. The reference of a design is
+   the fit f0 + K h + L h^2 + B harmonic4 through the stored levels from 256
+   cells across *without* the design's own J (at least 6 levels left, the
+   finest at least 1.3 J). Estimators:
+   - kcreep's (kcreep_error_control.ellipse_level_estimate): the finest 8
+     levels, f0 + K h + B harmonic4, t95 x SE + 0.1 |f0 - f(finest)|;
+   - a weighted fit with the h^2 term, f0 + K h + L h^2 + B harmonic4,
+     weights N^2 (the noise falls as 1/N, section 6.1), t95 x SE only,
+     through the levels from a first level N1 = 56, 84, 112 or 148.
+2. Cost: the cheapest design (one to three levels beyond 296) whose kcreep
+   estimate meets the target, against the design of steps of about 15 %
+   (340, 384, 448, ...) that kcreep runs. Cost model: one level of N_cells
+   patch cells takes 13.7 s x (N_cells / 282,792)^1.15 (one thread, measured
+   at 148-600 cells across on the unit circle before the threaded transforms).
+
+Needs numpy (Debian python3-numpy; /usr/bin/python3).
+"""
+import itertools
+import math
+import os
+import sys
+
+if __name__ == "__main__" and any(a in ("-h", "--help") for a in sys.argv[1:]):
+    print(__doc__)
+    sys.exit(0)
+import numpy as np  # noqa: E402
+
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+import level_noise_study as study  # noqa: E402
+
+BASE = [56, 64, 72, 84, 96, 112, 128, 148, 172, 196, 224, 256, 296]
+COEFFS = ("c11", "c22", "c23")
+TARGETS = {"c11": 1e-4, "c22": 1e-4, "c23": 3e-4}
+STEPS = [340, 384, 448, 512, 576, 640, 768]
+
+
+def student_t95(dof):
+    """As kcreep_error_control.student_t95."""
+    table = [12.706, 4.303, 3.182, 2.776, 2.571, 2.447, 2.365, 2.306, 2.262, 2.228]
+    return table[dof - 1] if dof <= len(table) else 1.96 + 2.5 / dof
+
+
+def fit(levels, ns, coeff, quadratic, weighted):
+    """f0, its standard error, the degrees of freedom and f at the finest level."""
+    h = np.array([1.0 / n for n in ns])
+    f = np.array([levels[n][coeff] for n in ns])
+    columns = [np.ones_like(h), h] + ([h * h] if quadratic else []) + [np.array([levels[n]["harmonic4"] for n in ns])]
+    a = np.array(columns).T
+    sw = 1.0 / h if weighted else np.ones_like(h)
+    aw, fw = a * sw[:, None], f * sw
+    coef = np.linalg.lstsq(aw, fw, rcond=None)[0]
+    dof = len(ns) - a.shape[1]
+    residual = fw - aw @ coef
+    s2 = residual @ residual / dof
+    se = math.sqrt(s2 * np.linalg.inv(aw.T @ aw)[0, 0])
+    return coef[0], se, dof, f[np.argmin(h)]
+
+
+def kcreep_estimate(levels, ns, coeff):
+    f0, se, dof, finest = fit(levels, ns[-8:], coeff, quadratic=False, weighted=False)
+    return f0, (student_t95(dof) * se + 0.1 * abs(f0 - finest)) / abs(f0)
+
+
+def quadratic_estimate(first):
+    def estimate(levels, ns, coeff):
+        f0, se, dof, _ = fit(levels, [n for n in ns if n >= first], coeff, quadratic=True, weighted=True)
+        return f0, student_t95(dof) * se / abs(f0)
+    return estimate
+
+
+def cost(ratio, ns):
+    return sum(13.7 * (math.pi / 4 * n * n * max(ratio, 1 / ratio) / 282792) ** 1.15 for n in ns)
+
+
+def honesty(estimators):
+    print("| estimator | designs x coefficients | bounded | error / estimate: median, 95 %, worst |")
+    print("|---|---|---|---|")
+    for name, estimate in estimators:
+        ratios = []
+        for ratio, nu in study.CASES:
+            levels = study.levels_of(ratio, nu)
+            fine = [n for n in sorted(levels) if n >= 340]
+            for k in (1, 2):
+                for jumps in itertools.combinations(fine, k):
+                    rest = [n for n in sorted(levels) if n >= 256 and n not in jumps]
+                    if len(rest) < 6 or max(rest) < 1.3 * max(jumps):
+                        continue
+                    for coeff in COEFFS:
+                        reference = fit(levels, rest, coeff, quadratic=True, weighted=False)[0]
+                        f0, estimate_value = estimate(levels, BASE + list(jumps), coeff)
+                        ratios.append(abs(f0 / reference - 1) / estimate_value)
+        q = np.quantile(ratios, [0.5, 0.95, 1.0])
+        bounded = sum(r <= 1 for r in ratios)
+        print(f"| {name} | {len(ratios)} | {bounded} | {q[0]:.2f}, {q[1]:.2f}, {q[2]:.2f} |")
+
+
+def cheapest():
+    print("\n| a/b | nu | kcreep's steps: levels beyond 296, cost | cheapest design meeting the target, cost |")
+    print("|---|---|---|---|")
+    for ratio, nu in study.CASES:
+        levels = study.levels_of(ratio, nu)
+
+        def meets(ns):
+            return all(kcreep_estimate(levels, ns, c)[1] <= TARGETS[c] for c in COEFFS)
+        steps = [n for n in STEPS if n in levels]
+        ns = list(BASE)
+        for n in [None] + steps:
+            if n:
+                ns.append(n)
+            if meets(ns):
+                break
+        stepped = f"{ns[13:] or 'none'}, {cost(ratio, ns):.0f} s" if meets(ns) else "not within the stored levels"
+        fine = [n for n in sorted(levels) if n >= 340]
+        best = min(((cost(ratio, BASE + list(j)), j) for k in (0, 1, 2, 3) for j in itertools.combinations(fine, k)
+                    if meets(BASE + list(j))), default=None)
+        best_text = f"{list(best[1]) or 'none'}, {best[0]:.0f} s" if best else "none"
+        print(f"| {ratio:g} | {nu:g} | {stepped} | {best_text} |")
+
+
+def main():
+    honesty([("kcreep's (finest 8, straight line, order margin)", kcreep_estimate)] +
+            [(f"weighted, with h^2, from {first}", quadratic_estimate(first)) for first in (56, 84, 112, 148)])
+    cheapest()
+
+
+if __name__ == "__main__":
+    main()
