@@ -66,7 +66,9 @@ contains
     end if
     if (.not. allocated(prec%u)) allocate (prec%u(2 * n, size(r, 2)))
     associate (u => prec%u(:, 1:size(r, 2)))
-      ! (u(k+1) - u(k)) / dx = r(k)  =>  u(k) = u(k+1) - dx r(k), from the leading edge back
+      ! (u(k+1) - u(k)) / dx = r(k)  =>  u(k) = u(k+1) - dx r(k), from the leading edge back;
+      ! each (vector, component) is its own sequence
+      !$omp parallel do collapse(2) private(k) schedule(static)
       do v = 1, size(r, 2)
         do c = 0, 1
           do k = n, 1, -1
@@ -78,6 +80,7 @@ contains
           end do
         end do
       end do
+      !$omp end parallel do
       call apply_fft_operator(prec%inverse_displacement, u, z)
     end associate
   end subroutine apply_circulant_preconditioner
