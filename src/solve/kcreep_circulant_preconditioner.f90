@@ -6,9 +6,9 @@
 !>   D^-1 exactly, a running sum along each run of patch cells in a grid row,
 !>        from the leading edge (largest x), where the displacement just
 !>        ahead of the run is taken as zero;
-!>   A^-1 as a circulant: the displacement kernel on the padded periodic FFT
-!>        grid, inverted frequency by frequency (kcreep_fft_operator,
-!>        create_inverse_displacement).
+!>   A^-1 as a circulant: the displacement kernel on a periodic FFT grid
+!>        5/4 of the patch's bounding grid each way, inverted frequency by
+!>        frequency (kcreep_fft_operator, create_inverse_displacement).
 !> The running sum carries the leading-edge condition that makes the system
 !> one-sided; the circulant carries the smooth far coupling of 1/r. Neither
 !> depends on the length of the rows, so the work per step is two FFT

@@ -21,6 +21,15 @@ module kcreep_fft_operator
 
   include 'fftw3.f03'
 
+  !> The circulant preconditioner's periodic grid spans at least 5/4 of the
+  !> patch's bounding grid each way (the operator's spans 2, which its exact
+  !> convolution needs; an approximate inverse does not): 39 % of the cells
+  !> for the same GMRES iterations nearly. Measured on the unit circle,
+  !> tolerance 1e-7, span 5/4 (2): 21 (21) iterations at 148 cells across,
+  !> 25 (24) at 296, 28 (28) at 600; span 1, no gap between the periodic
+  !> images: 22, 26, 39.
+  real(real64), parameter :: inverse_span = 1.25_real64
+
   !> A real grid and its half spectrum, FFTW-allocated (so SIMD-aligned alike).
   type :: fft_slot_t
     type(c_ptr) :: p_real = c_null_ptr, p_spec = c_null_ptr
@@ -76,7 +85,8 @@ contains
     type(fft_operator_t), intent(out) :: op
     logical, intent(in), optional :: pruned
 
-    call plan_fft_grid(patch, max_vectors, op)
+    ! (2 mx - 1) x (2 my - 1) at least: the circular convolution is the linear one on the patch
+    call plan_fft_grid(patch, max_vectors, 2 * patch%mx - 1, 2 * patch%my - 1, op)
     if (present(pruned)) op%pruned = pruned
     call kernel_spectrum(table%xx, op%kxx)
     call kernel_spectrum(table%xy, op%kxy)
@@ -109,9 +119,10 @@ contains
   !> the same size) on OpenMP threads, each with a single-threaded plan
   !> through FFTW's new-array execute, so every slot is transformed the same
   !> way whatever the number of threads and the results do not depend on it.
-  subroutine plan_fft_grid(patch, max_vectors, op)
+  subroutine plan_fft_grid(patch, max_vectors, nx_min, ny_min, op)
     type(patch_t), intent(in) :: patch
     integer, intent(in) :: max_vectors
+    integer, intent(in) :: nx_min, ny_min   !< the periodic grid's least size
     type(fft_operator_t), intent(out) :: op
     complex(c_double_complex), pointer :: in_place(:, :)   ! slot 1's spectrum again (in-place plans)
     integer :: s, nh
@@ -121,9 +132,9 @@ contains
     op%iy = patch%iy
     op%mx = patch%mx
     op%my = patch%my
-    op%nx = fast_size(2 * patch%mx - 1)
+    op%nx = fast_size(max(nx_min, patch%mx))
     if (mod(op%nx, 2) /= 0) op%nx = fast_size(op%nx + 1)   ! even: a simple half spectrum
-    op%ny = fast_size(2 * patch%my - 1)
+    op%ny = fast_size(max(ny_min, patch%my))
     nh = op%nx / 2 + 1
     ! single-threaded plans, even if an earlier caller asked FFTW for threads
     if (fftw_init_threads() /= 0) call fftw_plan_with_nthreads(1_c_int)
@@ -161,8 +172,8 @@ contains
   end subroutine plan_fft_grid
 
   !> The circulant approximation of the inverse of the displacement operator
-  !> (cell-centre displacement from uniform cell tractions) on the padded
-  !> periodic grid: the kernel wrapped to its nearest periodic image, Fourier
+  !> (cell-centre displacement from uniform cell tractions) on a periodic
+  !> grid inverse_span times the patch's bounding grid: the kernel wrapped to its nearest periodic image, Fourier
   !> transformed (real and even, so a real symmetric 2 x 2 symbol per
   !> frequency) and inverted frequency by frequency. Applied with
   !> apply_fft_operator like the system operator itself.
@@ -177,7 +188,7 @@ contains
     real(real64) :: det, scale
     integer :: i, j, hx, hy
 
-    call plan_fft_grid(patch, max_vectors, op)
+    call plan_fft_grid(patch, max_vectors, ceiling(inverse_span * patch%mx), ceiling(inverse_span * patch%my), op)
     ! the kernel at offsets 0..nx/2, 0..ny/2; the other quadrants by symmetry
     ! (xx, yy even in both offsets, xy odd in each)
     hx = op%nx / 2

@@ -262,7 +262,8 @@ contains
 
   !> Krylov basis + a few work vectors, 4 padded grids per case, and the
   !> preconditioner: circulant, 4 more padded grids per case and its three
-  !> half spectra (complex); strip, the LU of each grid row's own block per
+  !> half spectra (complex; counted at the operator's grid size, though its
+  !> own grid has about 0.4 of the cells: an upper bound); strip, the LU of each grid row's own block per
   !> component in single precision, 2 x 4 L^2 bytes for a row of L patch
   !> cells (rows of the same pattern share theirs; not counted, so this is an
   !> upper bound).
