@@ -6,9 +6,9 @@
 !>   D^-1 exactly, a running sum along each run of patch cells in a grid row,
 !>        from the leading edge (largest x), where the displacement just
 !>        ahead of the run is taken as zero;
-!>   A^-1 as a circulant: the displacement kernel on the padded periodic FFT
-!>        grid, inverted frequency by frequency (kcreep_fft_operator,
-!>        create_inverse_displacement).
+!>   A^-1 as a circulant: the displacement kernel on a periodic FFT grid
+!>        5/4 of the patch's bounding grid each way, inverted frequency by
+!>        frequency (kcreep_fft_operator, create_inverse_displacement).
 !> The running sum carries the leading-edge condition that makes the system
 !> one-sided; the circulant carries the smooth far coupling of 1/r. Neither
 !> depends on the length of the rows, so the work per step is two FFT
@@ -66,7 +66,9 @@ contains
     end if
     if (.not. allocated(prec%u)) allocate (prec%u(2 * n, size(r, 2)))
     associate (u => prec%u(:, 1:size(r, 2)))
-      ! (u(k+1) - u(k)) / dx = r(k)  =>  u(k) = u(k+1) - dx r(k), from the leading edge back
+      ! (u(k+1) - u(k)) / dx = r(k)  =>  u(k) = u(k+1) - dx r(k), from the leading edge back;
+      ! each (vector, component) is its own sequence
+      !$omp parallel do collapse(2) private(k) schedule(static)
       do v = 1, size(r, 2)
         do c = 0, 1
           do k = n, 1, -1
@@ -78,6 +80,7 @@ contains
           end do
         end do
       end do
+      !$omp end parallel do
       call apply_fft_operator(prec%inverse_displacement, u, z)
     end associate
   end subroutine apply_circulant_preconditioner

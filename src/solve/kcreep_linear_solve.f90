@@ -262,7 +262,8 @@ contains
 
   !> Krylov basis + a few work vectors, 4 padded grids per case, and the
   !> preconditioner: circulant, 4 more padded grids per case and its three
-  !> half spectra (complex); strip, the LU of each grid row's own block per
+  !> half spectra (complex; counted at the operator's grid size, though its
+  !> own grid has about 0.4 of the cells: an upper bound); strip, the LU of each grid row's own block per
   !> component in single precision, 2 x 4 L^2 bytes for a row of L patch
   !> cells (rows of the same pattern share theirs; not counted, so this is an
   !> upper bound).
@@ -583,19 +584,22 @@ contains
       deallocate (self%full, self%zfull)
       allocate (self%full(2 * self%n, nv), self%zfull(2 * self%n, nv))
     end if
-    associate (full => self%full(:, 1:nv), zfull => self%zfull(:, 1:nv))
-      full = 0
-      do c = 1, nv
-        m = self%subs(self%sub_of(columns(c)))%m
-        call expand_from(self%subs(self%sub_of(columns(c))), self%n, x(1:m, c), full(:, c))
-      end do
-      call self%apply_full(full, zfull)
-      y = 0
-      do c = 1, nv
-        m = self%subs(self%sub_of(columns(c)))%m
-        call restrict_to(self%subs(self%sub_of(columns(c))), self%n, zfull(:, c), y(1:m, c))
-      end do
-    end associate
+    ! columns on threads: each is its own copy, so the result does not depend on them
+    !$omp parallel do private(m) schedule(static)
+    do c = 1, nv
+      self%full(:, c) = 0
+      m = self%subs(self%sub_of(columns(c)))%m
+      call expand_from(self%subs(self%sub_of(columns(c))), self%n, x(1:m, c), self%full(:, c))
+    end do
+    !$omp end parallel do
+    call self%apply_full(self%full(:, 1:nv), self%zfull(:, 1:nv))
+    !$omp parallel do private(m) schedule(static)
+    do c = 1, nv
+      y(:, c) = 0
+      m = self%subs(self%sub_of(columns(c)))%m
+      call restrict_to(self%subs(self%sub_of(columns(c))), self%n, self%zfull(:, c), y(1:m, c))
+    end do
+    !$omp end parallel do
   end subroutine apply_expanded
 
   subroutine apply_fft_full(self, full, z)
