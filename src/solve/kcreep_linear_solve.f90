@@ -85,9 +85,13 @@ module kcreep_linear_solve
 
   !> Rates for the 'auto' choice, from scripts/bench.sh on the 2-core
   !> development machine (shared, so rough): the split dense LU ran at about
-  !> 3e10 flop/s end to end, and one lockstep GMRES step for the three load
-  !> cases cost about 1e-8 s per (padded FFT grid cell x log2 of the grid
-  !> size) for the operator, as much again for the circulant preconditioner.
+  !> 3e10 flop/s end to end. One lockstep GMRES step for the three load cases
+  !> (operator, circulant preconditioner, Gram-Schmidt) costs 6e-9 s on two
+  !> threads and 9e-9 s on one per (padded FFT grid cell x log2 of the grid
+  !> size) (the unit circle at 296 and 600 cells across, docs/performance.md
+  !> "The iterative path on two cores"); the rate used is twice that, for
+  !> the FFT path's fixed costs (plans, threads). The choice falls near
+  !> 40 x 40 cells, where either path takes a fraction of a second.
   real(real64), parameter :: dense_rate = 3e10_real64
   real(real64), parameter :: iterative_step_cost = 2e-8_real64
   !> GMRES iterations assumed by the estimate (circulant preconditioner:
