@@ -44,14 +44,16 @@ module kcreep_error_control
   !> The share of an ellipse's extrapolation (f0 - f(finest level)) counted
   !> as the uncertainty of its order (ellipse_level_estimate).
   real(real64), parameter :: order_margin = 0.1_real64
-  !> Patch cells of the finest level kcreep may choose at target_error = 1e-3;
-  !> scaled by (1e-3 / target)**(1/4) for other targets (level_cell_budget):
-  !> 71,000 at 1e-4. A run-time budget: a level of 40,000 cells takes about
-  !> 2 s on the iterative path on the 2-core development machine, and a run
-  !> whose finest level has N cells costs about 4 such levels (the levels
-  !> below it add up to about 3 N). Measured CPU (one thread) at target 1e-4
-  !> without the budget: the unit circle 27 s to reach 392 cells across.
+  !> Patch cells of the finest level kcreep may choose at target_error = 1e-3
+  !> (level_cell_budget). A run-time budget: on the iterative path on two
+  !> threads of the 2-core development machine a level of 40,000 cells takes
+  !> about 0.8 s, and a run whose finest level has N cells costs about 4 such
+  !> levels (the levels below it add up to about 3 N). Looser targets scale it
+  !> by (1e-3 / target)**(1/4); tighter ones by 4 for each factor 10, so that
+  !> the accurate mode (1e-4, 160,000 cells) takes 6 to 10 s over a/b = 0.1
+  !> to 10 (docs/accuracy.md section 6).
   real(real64), parameter :: cells_at_default_target = 40000
+  real(real64), parameter :: tight_target_budget_growth = 4
   !> The range of a cell budget the caller gives (&solver cell_budget): below
   !> the minimum no ellipse reaches its base levels (32 cells across is 800
   !> cells); the maximum, 10 million patch cells, needs about 3 GB on the
@@ -119,7 +121,11 @@ contains
   !> The most patch cells a level kcreep chooses may have for this target.
   pure real(real64) function level_cell_budget(target) result(cells)
     real(real64), intent(in) :: target
-    cells = cells_at_default_target * (default_target_error / target)**0.25_real64
+    if (target >= default_target_error) then
+      cells = cells_at_default_target * (default_target_error / target)**0.25_real64
+    else
+      cells = cells_at_default_target * tight_target_budget_growth**log10(default_target_error / target)
+    end if
   end function level_cell_budget
 
   !> Two-sided 95 % factor of Student's t distribution for dof degrees of freedom.
