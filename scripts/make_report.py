@@ -379,9 +379,9 @@ def texts(values):
                         + (": at this level the reference's u, not kcreep, limits what can be shown"
                            if all(e <= ref1[c][1] / ref1[c][0] for e, c in zip(a["err"], COEF)) else "") + "."))
         lines.append("- Against grids of up to 1024 cells across (docs/accuracy.md section 6) the accurate mode's "
-                     "errors at 296 cells across are 0.003-0.006 %, but the staircase's level-to-level noise keeps "
-                     "its estimate above 1e-4 until about 600 cells across: `&solver cell_budget = 5e5` reaches "
-                     "`ok` there, in about 40 s on one core.")
+                     "errors on the circle at 392 cells across are 0.007-0.011 %, but the staircase's level-to-level "
+                     "noise keeps its estimate above 1e-4 until about 600 cells across: `&solver cell_budget = 5e5` "
+                     "reaches `ok` there, in about 16 s on two cores.")
     ext = [r for r in rows if r["scheme"].endswith("+extrapolate")]
     if ext:
         best = min(ext, key=lambda r: max(r["err"]))
