@@ -16,7 +16,7 @@ module kcreep_fft_operator
   use kcreep_influence, only: influence_t, cell_displacement
   implicit none
   private
-  public :: fft_operator_t, create_fft_operator, create_inverse_displacement, destroy_fft_operator, &
+  public :: fft_operator_t, create_fft_operator, create_inverse_displacement, destroy_fft_operator, inverse_span, &
             apply_fft_operator
 
   include 'fftw3.f03'

@@ -20,7 +20,8 @@ module kcreep_linear_solve
   use kcreep_dense, only: dense_diagnostics_t, backward_error, relative_residual, &
                           refine_threshold, solve_lapack_expert
   use kcreep_split, only: subsystem_t, plan_subsystems, assemble_subsystem, restrict_to, expand_from
-  use kcreep_fft_operator, only: fft_operator_t, create_fft_operator, destroy_fft_operator, apply_fft_operator
+  use kcreep_fft_operator, only: fft_operator_t, create_fft_operator, destroy_fft_operator, apply_fft_operator, &
+                                 inverse_span
   use kcreep_preconditioner, only: strip_preconditioner_t, build_strip_preconditioner, apply_strip_preconditioner
   use kcreep_circulant_preconditioner, only: circulant_preconditioner_t, build_circulant_preconditioner, &
                                             apply_circulant_preconditioner, destroy_circulant_preconditioner
@@ -264,10 +265,10 @@ contains
     end if
   end subroutine check_iterative_memory
 
-  !> Krylov basis + a few work vectors, 4 padded grids per case, and the
-  !> preconditioner: circulant, 4 more padded grids per case and its three
-  !> half spectra (complex; counted at the operator's grid size, though its
-  !> own grid has about 0.4 of the cells: an upper bound); strip, the LU of each grid row's own block per
+  !> Krylov basis (restart + 1 vectors per case) with the preconditioned
+  !> vectors (restart more) and a few work vectors, 4 padded grids per case,
+  !> and the preconditioner: circulant, 4 grids per case and its three half
+  !> spectra on its own grid (inverse_span of the patch's each way); strip, the LU of each grid row's own block per
   !> component in single precision, 2 x 4 L^2 bytes for a row of L patch
   !> cells (rows of the same pattern share theirs; not counted, so this is an
   !> upper bound).
@@ -277,18 +278,19 @@ contains
     type(solver_options_t), intent(in) :: opts
     type(patch_t), intent(in) :: patch
     integer, intent(in) :: n_cases
-    real(real64) :: preconditioner, grid
+    real(real64) :: preconditioner, grid, inverse_grid
     integer :: iy
     grid = 4 * real(patch%mx, real64) * patch%my     ! padded FFT grid cells
+    inverse_grid = (inverse_span * (patch%mx + 1)) * (inverse_span * (patch%my + 1))   ! the circulant preconditioner's
     if (trim(opts%preconditioner) == 'strip') then
       preconditioner = 0
       do iy = 1, patch%my
         preconditioner = preconditioner + 2 * 4 * real(count(patch%inside(:, iy)), real64)**2
       end do
     else
-      preconditioner = 8 * (4 * n_cases * grid + 3 * grid)
+      preconditioner = 8 * (4 * n_cases * inverse_grid + 3 * inverse_grid)
     end if
-    bytes = 8 * (2 * real(patch%n, real64) * ((opts%restart + 6) * n_cases) + 4 * n_cases * grid) + preconditioner
+    bytes = 8 * (2 * real(patch%n, real64) * ((2 * opts%restart + 6) * n_cases) + 4 * n_cases * grid) + preconditioner
   end function iterative_bytes
 
   !> Peak bytes of solve_load_cases for this case, for the method it will take
