@@ -204,7 +204,7 @@ kc.check(peak.returncode == 0 and int(fields[0][1]) >= rss - 20e6,
 kc.check(int(fields[1][1]) < int(fields[0][1]) / 3,
          f"cell_budget 5000: estimate {fields[1][1]} B well below the default budget's {fields[0][1]} B")
 # a run whose GMRES fills its whole Krylov basis (restart 50, tolerance 1e-15: 51
-# iterations on the 300 x 300 circle; measured estimate 440 MB, peak RSS 295 MB):
+# iterations on the 300 x 300 circle; measured estimate 270 MB, peak RSS 213 MB):
 # the estimate counts every vector the basis may hold, not the iterations of a typical run
 write(os.path.join(sub, "full_basis.nml"), "&patch semi_a=1, semi_b=1, mx=300, my=300 /\n"
       "&solver method='iterative', target_error=0, tolerance=1e-15, max_iterations=60 /\n&output table_file='' /\n")

@@ -58,7 +58,7 @@ contains
     real(real64), intent(in) :: tol
     integer, intent(in) :: restart, max_iterations
     type(gmres_result_t), intent(out) :: result
-    real(real64), allocatable :: v(:, :, :), zs(:, :, :), h(:, :, :), g(:, :), cs(:, :), sn(:, :), y(:)
+    real(real64), allocatable :: v(:, :, :), h(:, :, :), g(:, :), cs(:, :), sn(:, :), y(:)
     real(real64), allocatable :: r(:, :), bnorm(:), work(:, :), z(:, :)
     integer, allocatable :: cols(:), jend(:)
     logical, allocatable :: active(:), in_cycle(:)
@@ -69,7 +69,7 @@ contains
     nn = size(b, 1)
     nv = size(b, 2)
     m = restart
-    allocate (v(nn, m + 1, nv), zs(nn, m, nv), h(m + 1, m, nv), g(m + 1, nv), cs(m, nv), sn(m, nv), y(m))
+    allocate (v(nn, m + 1, nv), h(m + 1, m, nv), g(m + 1, nv), cs(m, nv), sn(m, nv), y(m))
     allocate (r(nn, nv), bnorm(nv), jend(nv), active(nv), in_cycle(nv))
     allocate (work(nn, nv), z(nn, nv))   ! once, for the widest block
     allocate (result%iterations(nv), result%relative_residual(nv), result%converged(nv))
@@ -119,7 +119,6 @@ contains
         call system_clock(c2)
         do i = 1, na
           c = cols(i)
-          zs(:, j, c) = z(:, i)
           ! classical Gram-Schmidt: one pass over the basis each way;
           ! a second pass only when the first cancelled much of the vector
           ! (Kahan's "twice is enough" test), where one pass loses orthogonality
@@ -160,16 +159,29 @@ contains
         result%t_orthogonalise = result%t_orthogonalise + real(c3 - c2, real64) / rate
       end do
 
-      ! x += Z y for each column that took steps
+      ! x += M^-1 (V y) for each column that took steps: the preconditioner is
+      ! a fixed linear map, so one more apply per cycle replaces keeping every
+      ! preconditioned vector (half the basis memory)
       cols = pack([(c, c=1, nv)], jend > 0)
-      do i = 1, size(cols)
+      na = size(cols)
+      do i = 1, na
         c = cols(i)
         j = jend(c)
         do col = j, 1, -1
           y(col) = (g(col, c) - dot_product(h(col, col + 1:j, c), y(col + 1:j))) / h(col, col, c)
         end do
-        call add_combination(zs(:, 1:j, c), y(1:j), x(:, c))
+        work(:, i) = 0
+        call add_combination(v(:, 1:j, c), y(1:j), work(:, i))
       end do
+      if (na > 0) then
+        call system_clock(c0, rate)
+        call precond%apply(work(:, 1:na), z(:, 1:na), cols)
+        call system_clock(c1)
+        result%t_preconditioner = result%t_preconditioner + real(c1 - c0, real64) / rate
+        do i = 1, na
+          x(:, cols(i)) = x(:, cols(i)) + z(:, i)
+        end do
+      end if
       call residual(cols)
     end do
 

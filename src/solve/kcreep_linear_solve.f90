@@ -265,8 +265,8 @@ contains
     end if
   end subroutine check_iterative_memory
 
-  !> Krylov basis (restart + 1 vectors per case) with the preconditioned
-  !> vectors (restart more) and a few work vectors, 4 padded grids per case,
+  !> Krylov basis (restart + 1 vectors per case) and a few work vectors, 4
+  !> padded grids per case,
   !> and the preconditioner: circulant, 4 grids per case and its three half
   !> spectra on its own grid (inverse_span of the patch's each way); strip, the LU of each grid row's own block per
   !> component in single precision, 2 x 4 L^2 bytes for a row of L patch
@@ -290,7 +290,7 @@ contains
     else
       preconditioner = 8 * (4 * n_cases * inverse_grid + 3 * inverse_grid)
     end if
-    bytes = 8 * (2 * real(patch%n, real64) * ((2 * opts%restart + 6) * n_cases) + 4 * n_cases * grid) + preconditioner
+    bytes = 8 * (2 * real(patch%n, real64) * ((opts%restart + 6) * n_cases) + 4 * n_cases * grid) + preconditioner
   end function iterative_bytes
 
   !> Peak bytes of solve_load_cases for this case, for the method it will take
