@@ -381,7 +381,7 @@ def texts(values):
         lines.append("- Against grids of up to 1024 cells across (docs/accuracy.md section 6) the accurate mode's "
                      "errors on the circle at 392 cells across are 0.007-0.011 %, but the staircase's level-to-level "
                      "noise keeps its estimate above 1e-4 until about 600 cells across: `&solver cell_budget = 5e5` "
-                     "reaches `ok` there, in about 16 s on two cores.")
+                     "reaches `ok` there, in about 17 s on two cores.")
     ext = [r for r in rows if r["scheme"].endswith("+extrapolate")]
     if ext:
         best = min(ext, key=lambda r: max(r["err"]))

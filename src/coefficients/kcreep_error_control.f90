@@ -50,7 +50,7 @@ module kcreep_error_control
   !> about 0.8 s, and a run whose finest level has N cells costs about 4 such
   !> levels (the levels below it add up to about 3 N). Looser targets scale it
   !> by (1e-3 / target)**(1/4); tighter ones by 4 for each factor 10, so that
-  !> the accurate mode (1e-4, 160,000 cells) takes 5 to 8 s over a/b = 0.1
+  !> the accurate mode (1e-4, 160,000 cells) takes 4.4 to 6.9 s over a/b = 0.1
   !> to 10 (docs/accuracy.md section 6).
   real(real64), parameter :: cells_at_default_target = 40000
   real(real64), parameter :: tight_target_budget_growth = 4
