@@ -4,6 +4,7 @@
 !> One line per measurement: "<routine> <n> <seconds> <gflops>".
 program blas_bench
   use, intrinsic :: iso_fortran_env, only: real64, int64, output_unit, error_unit
+  use kcreep_bench_statistics, only: median
   implicit none
   interface
     subroutine dgemm(ta, tb, m, n, k, alpha, a, lda, b, ldb, beta, c, ldc)
@@ -94,22 +95,5 @@ contains
     write (output_unit, '(a, 1x, i0, 1x, f10.4, 1x, f8.2)') name, n, seconds, flops / seconds / 1e9_real64
   end subroutine report
 
-  pure real(real64) function median(x)
-    real(real64), intent(in) :: x(:)
-    real(real64) :: s(size(x)), t
-    integer :: i, j
-    s = x
-    do i = 2, size(s)
-      t = s(i)
-      j = i - 1
-      do while (j >= 1)
-        if (s(j) <= t) exit
-        s(j + 1) = s(j)
-        j = j - 1
-      end do
-      s(j + 1) = t
-    end do
-    median = s((size(s) + 1) / 2)
-  end function median
 
 end program blas_bench

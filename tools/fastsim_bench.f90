@@ -8,6 +8,7 @@ program fastsim_bench
   use kcreep_pressure_models, only: hertz_pressure
   use kcreep_equivalent_ellipse, only: ellipse_flexibilities
   use kcreep_kalker_table, only: kalker_coefficients
+  use kcreep_bench_statistics, only: sorted
   implicit none
   integer, parameter :: repeats = 21
   integer :: n, points, ix, iy, k, r, rule
@@ -50,7 +51,7 @@ program fastsim_bench
       call system_clock(t1)
       times(r) = real(t1 - t0, real64) / rate
     end do
-    call sort(times)
+    times = sorted(times)
     write (output_unit, '(a, i0, a, i0, a, i0, 2a, f9.5, a, f9.5, a, es10.3, a, es12.5)') 'grid ', n, ' x ', n, &
       ', ', points, ' points, rule ', merge('weighted', 'separate', rule == flexibility_weighted)// &
       ': best ', times(1), ' s, median ', times((repeats + 1) / 2), ' s, per cell and point ', &
@@ -59,20 +60,5 @@ program fastsim_bench
 
 contains
 
-  subroutine sort(v)
-    real(real64), intent(inout) :: v(:)
-    integer :: i, j
-    real(real64) :: t
-    do i = 2, size(v)
-      t = v(i)
-      j = i - 1
-      do while (j >= 1)
-        if (v(j) <= t) exit
-        v(j + 1) = v(j)
-        j = j - 1
-      end do
-      v(j + 1) = t
-    end do
-  end subroutine sort
 
 end program fastsim_bench

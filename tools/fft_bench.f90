@@ -6,6 +6,7 @@
 !>   kcreep_fft_bench n [repeats]      (threads: OMP_NUM_THREADS)
 program fft_bench
   use, intrinsic :: iso_fortran_env, only: real64, int64
+  use kcreep_bench_statistics, only: median
   use kcreep_status, only: status_t
   use kcreep_patch, only: patch_t, ellipse_patch
   use kcreep_assembly, only: scheme_t, operator_table_t, build_operator_table
@@ -56,7 +57,7 @@ contains
     integer, intent(in) :: which
     real(real64) :: times(repeats)
     integer(int64) :: t0, t1, rate
-    integer :: r, i, j
+    integer :: r
     do r = 1, repeats
       call system_clock(t0, rate)
       select case (which)
@@ -70,17 +71,7 @@ contains
       call system_clock(t1)
       times(r) = real(t1 - t0, real64) / rate
     end do
-    do i = 2, repeats   ! insertion sort
-      t = times(i)
-      j = i - 1
-      do while (j >= 1)
-        if (times(j) <= t) exit
-        times(j + 1) = times(j)
-        j = j - 1
-      end do
-      times(j + 1) = t
-    end do
-    t = times((repeats + 1) / 2)
+    t = median(times)
   end function median_time
 
 end program fft_bench

@@ -16,6 +16,7 @@ program table_bench
   use, intrinsic :: iso_fortran_env, only: real64, int64, output_unit
   use kcreep, only: problem_t, result_t, default_problem, ellipse_patch, kcreep_solve, status_t
   use kcreep_table_interpolation, only: table_coefficients
+  use kcreep_bench_statistics, only: median
   implicit none
   integer, parameter :: repeats = 21
   integer :: calls, m, k, r, q
@@ -111,22 +112,5 @@ contains
       1e6_real64 * median(t), ' us per call'
   end subroutine report
 
-  function median(x) result(v)
-    real(real64), intent(in) :: x(:)
-    real(real64) :: v, y(size(x)), s
-    integer :: i, j
-    y = x
-    do i = 2, size(y)          ! insertion sort (small arrays; the uncertainties once)
-      s = y(i)
-      j = i - 1
-      do while (j >= 1)
-        if (y(j) <= s) exit
-        y(j + 1) = y(j)
-        j = j - 1
-      end do
-      y(j + 1) = s
-    end do
-    v = y((size(y) + 1) / 2)
-  end function median
 
 end program table_bench
