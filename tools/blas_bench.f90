@@ -4,7 +4,7 @@
 !> One line per measurement: "<routine> <n> <seconds> <gflops>".
 program blas_bench
   use, intrinsic :: iso_fortran_env, only: real64, int64, output_unit, error_unit
-  use kcreep_bench_statistics, only: median
+  use kcreep_bench_support, only: median
   implicit none
   interface
     subroutine dgemm(ta, tb, m, n, k, alpha, a, lda, b, ldb, beta, c, ldc)

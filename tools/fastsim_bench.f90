@@ -8,25 +8,18 @@ program fastsim_bench
   use kcreep_pressure_models, only: hertz_pressure
   use kcreep_equivalent_ellipse, only: ellipse_flexibilities
   use kcreep_kalker_table, only: kalker_coefficients
-  use kcreep_bench_statistics, only: sorted
+  use kcreep_bench_support, only: integer_argument, sorted
   implicit none
   integer, parameter :: repeats = 21
   integer :: n, points, ix, iy, k, r, rule
-  character(len=32) :: arg
   logical, allocatable :: inside(:, :)
   real(real64), allocatable :: pn(:, :)
   real(real64) :: dx, x0, flex(3), creep(3), times(repeats), checksum, s
   integer(int64) :: t0, t1, rate
   type(fastsim_result_t) :: res
 
-  n = 100
-  points = 100
-  if (command_argument_count() >= 1) then
-    call get_command_argument(1, arg); read (arg, *) n
-  end if
-  if (command_argument_count() >= 2) then
-    call get_command_argument(2, arg); read (arg, *) points
-  end if
+  n = integer_argument(1, default=100)
+  points = integer_argument(2, default=100)
   dx = 2.0_real64 / n
   x0 = -1 + dx / 2
   allocate (inside(n, n))

@@ -6,7 +6,7 @@
 !>   kcreep_fft_bench n [repeats]      (threads: OMP_NUM_THREADS)
 program fft_bench
   use, intrinsic :: iso_fortran_env, only: real64, int64
-  use kcreep_bench_statistics, only: median
+  use kcreep_bench_support, only: integer_argument, median
   use kcreep_status, only: status_t
   use kcreep_patch, only: patch_t, ellipse_patch
   use kcreep_assembly, only: scheme_t, operator_table_t, build_operator_table
@@ -21,16 +21,10 @@ program fft_bench
   type(fft_operator_t) :: pruned, whole
   type(circulant_preconditioner_t) :: prec
   real(real64), allocatable :: x(:, :), y(:, :), y_whole(:, :)
-  character(len=32) :: arg
   integer :: n, repeats
 
-  call get_command_argument(1, arg)
-  read (arg, *) n
-  repeats = 11
-  if (command_argument_count() >= 2) then
-    call get_command_argument(2, arg)
-    read (arg, *) repeats
-  end if
+  n = integer_argument(1)
+  repeats = integer_argument(2, default=11)
   call ellipse_patch(1.0_real64, 1.0_real64, n, n, patch, st)
   scheme%name = 'backward'
   call build_operator_table(patch, scheme, 0.25_real64, 1.0_real64, table)

@@ -10,6 +10,7 @@ program normal_bench
   use kcreep_hertz, only: hertz_t, hertz_from_force
   use kcreep_gap, only: gap_t, polynomial_gap_t, gap_from_polynomial
   use kcreep_normal_solve, only: normal_options_t, normal_result_t, solve_normal
+  use kcreep_bench_support, only: integer_argument
   implicit none
   type(polynomial_gap_t) :: poly
   type(gap_t) :: gap
@@ -17,18 +18,12 @@ program normal_bench
   type(normal_options_t) :: opt
   type(normal_result_t) :: res
   type(hertz_t) :: hz
-  character(len=32) :: arg
   integer :: n, repeats, r
   integer(int64) :: t0, t1, rate
   real(real64) :: dx, best
 
-  call get_command_argument(1, arg)
-  read (arg, *) n
-  repeats = 1
-  if (command_argument_count() >= 2) then
-    call get_command_argument(2, arg)
-    read (arg, *) repeats
-  end if
+  n = integer_argument(1)
+  repeats = integer_argument(2, default=1)
   poly%rx = 1
   poly%ry = 1
   hz = hertz_from_force(0.5_real64, 0.5_real64, 1.0_real64, 1.0_real64)

@@ -16,7 +16,7 @@ program table_bench
   use, intrinsic :: iso_fortran_env, only: real64, int64, output_unit
   use kcreep, only: problem_t, result_t, default_problem, ellipse_patch, kcreep_solve, status_t
   use kcreep_table_interpolation, only: table_coefficients
-  use kcreep_bench_statistics, only: median
+  use kcreep_bench_support, only: integer_argument, median
   implicit none
   integer, parameter :: repeats = 21
   integer :: calls, m, k, r, q
@@ -28,14 +28,8 @@ program table_bench
   type(result_t) :: result
   type(status_t) :: status
 
-  calls = 100000
-  m = 20
-  if (command_argument_count() >= 1) then
-    call get_command_argument(1, arg); read (arg, *) calls
-  end if
-  if (command_argument_count() >= 2) then
-    call get_command_argument(2, arg); read (arg, *) m
-  end if
+  calls = integer_argument(1, default=100000)
+  m = integer_argument(2, default=20)
   allocate (ratio(calls), nu(calls), rel(4, min(calls, 2000)))
   ! a fixed quasi-random spread (golden-ratio sequences) over the table
   do k = 1, calls

@@ -266,9 +266,9 @@ contains
   end subroutine check_iterative_memory
 
   !> Krylov basis (restart + 1 vectors per case) and a few work vectors, 4
-  !> padded grids per case,
-  !> and the preconditioner: circulant, 4 grids per case and its three half
-  !> spectra on its own grid (inverse_span of the patch's each way); strip, the LU of each grid row's own block per
+  !> padded grids per case, and the preconditioner: circulant, 4 grids per
+  !> case and its three half spectra on its own grid (inverse_span of the
+  !> patch's each way); strip, the LU of each grid row's own block per
   !> component in single precision, 2 x 4 L^2 bytes for a row of L patch
   !> cells (rows of the same pattern share theirs; not counted, so this is an
   !> upper bound).
@@ -281,7 +281,7 @@ contains
     real(real64) :: preconditioner, grid, inverse_grid
     integer :: iy
     grid = 4 * real(patch%mx, real64) * patch%my     ! padded FFT grid cells
-    inverse_grid = (inverse_span * (patch%mx + 1)) * (inverse_span * (patch%my + 1))   ! the circulant preconditioner's
+    inverse_grid = (inverse_span * (patch%mx + 1)) * (inverse_span * (patch%my + 1))   ! the preconditioner's grid
     if (trim(opts%preconditioner) == 'strip') then
       preconditioner = 0
       do iy = 1, patch%my
