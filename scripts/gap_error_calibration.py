@@ -38,8 +38,9 @@ HERE = os.path.dirname(os.path.abspath(__file__))
 ROOT = os.path.dirname(HERE)
 sys.path.insert(0, os.path.join(ROOT, "python"))
 from kcreep import contact_inp  # noqa: E402  (standard library only)
+sys.path.insert(0, HERE)
+from kcreep_levels import student_t95  # noqa: E402  (standard library only)
 
-T95 = {1: 12.706, 2: 4.303, 3: 3.182, 4: 2.776, 5: 2.571, 6: 2.447, 7: 2.365, 8: 2.306, 9: 2.262, 10: 2.228}
 KEYS = ("c11", "c22", "c23")
 
 
@@ -103,7 +104,7 @@ def fit(h, f):
     r = f - a @ c
     hm = h.mean()
     se = math.sqrt((r @ r) / (m - 2) * (1 / m + hm ** 2 / ((h - hm) ** 2).sum()))
-    return c[0], T95.get(m - 2, 1.96 + 2.5 / (m - 2)) * se, math.sqrt(r @ r / m)
+    return c[0], student_t95(m - 2) * se, math.sqrt(r @ r / m)
 
 
 def keys_weights(t):
@@ -190,7 +191,6 @@ def level_reference(runner, name, make_gap, diameter, extent, common, levels):
 def nonelliptic_cases(runner, samples, quick):
     rows = []
     # the worn wheel on rail: the profiles of scripts/wheel_rail_gap.py, exactly
-    sys.path.insert(0, HERE)
     import importlib
     wr = importlib.import_module("wheel_rail_gap")
     dmin = min(wr.lateral(wr.Y1 + k * 1e-3) for k in range(-20000, 20001))

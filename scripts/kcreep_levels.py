@@ -32,6 +32,12 @@ COEFFS = ("c11", "c22", "c23", "c33", "c32")
 POWERS = {"c11": 2, "c22": 2, "c23": 3, "c33": 4, "c32": 3}
 
 
+def student_t95(dof):
+    """Two-sided 95 % Student factor, as kcreep_error_control.student_t95 (dof >= 1)."""
+    table = (12.706, 4.303, 3.182, 2.776, 2.571, 2.447, 2.365, 2.306, 2.262, 2.228)
+    return table[dof - 1] if dof <= len(table) else 1.96 + 2.5 / dof
+
+
 def square_grid(ratio, cells):
     """(mx, my) with near-square cells and `cells` cells across the shorter axis."""
     if ratio >= 1:

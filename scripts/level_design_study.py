@@ -37,17 +37,12 @@ import numpy as np  # noqa: E402
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 import level_noise_study as study  # noqa: E402
+from kcreep_levels import student_t95  # noqa: E402
 
 BASE = [56, 64, 72, 84, 96, 112, 128, 148, 172, 196, 224, 256, 296]
 COEFFS = ("c11", "c22", "c23")
 TARGETS = {"c11": 1e-4, "c22": 1e-4, "c23": 3e-4}
 STEPS = [340, 384, 448, 512, 576, 640, 768]
-
-
-def student_t95(dof):
-    """As kcreep_error_control.student_t95."""
-    table = [12.706, 4.303, 3.182, 2.776, 2.571, 2.447, 2.365, 2.306, 2.262, 2.228]
-    return table[dof - 1] if dof <= len(table) else 1.96 + 2.5 / dof
 
 
 def fit(levels, ns, coeff, quadratic, weighted):
