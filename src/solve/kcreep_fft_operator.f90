@@ -251,6 +251,11 @@ contains
               sx = mirror_sign
             end if
             w%grid(i, j) = sx * sy * values(di, dj)
+            ! an odd component at the Nyquist offset of an even grid is its own
+            ! mirror image: zero, so that the wrapped kernel is exactly odd and
+            ! the preconditioner keeps the parities of a y-symmetric patch
+            ! (kcreep_linear_solve pairs load cases on that)
+            if (mirror_sign < 0 .and. (2 * (i - 1) == op%nx .or. 2 * (j - 1) == op%ny)) w%grid(i, j) = 0
           end do
         end do
         call fftw_execute_dft_r2c(op%forward, w%grid, w%spec)

@@ -19,7 +19,8 @@ module kcreep_linear_solve
   use kcreep_assembly, only: operator_table_t, scheme_t, rigid_creepage, n_load_cases
   use kcreep_dense, only: dense_diagnostics_t, backward_error, relative_residual, &
                           refine_threshold, solve_lapack_expert
-  use kcreep_split, only: subsystem_t, plan_subsystems, assemble_subsystem, restrict_to, expand_from
+  use kcreep_split, only: subsystem_t, plan_subsystems, assemble_subsystem, restrict_to, restrict_projected, &
+                          expand_from, shares_transforms
   use kcreep_fft_operator, only: fft_operator_t, create_fft_operator, destroy_fft_operator, apply_fft_operator, &
                                  inverse_span
   use kcreep_preconditioner, only: strip_preconditioner_t, build_strip_preconditioner, apply_strip_preconditioner
@@ -577,36 +578,78 @@ contains
 
   end subroutine solve_iterative
 
+  !> The block through the full-grid operator. Columns of the two parity
+  !> classes of a y-symmetric patch (kcreep_split shares_transforms) go in
+  !> pairs through one full vector: the operator keeps each class's
+  !> parities, so the result comes apart by projection, and the three load
+  !> cases cost the transforms of two (xi with eta, phi alone).
   subroutine apply_expanded(self, x, y, columns)
     class(expanded_block_t), intent(inout) :: self
     real(real64), intent(in) :: x(:, :)
     real(real64), intent(out) :: y(:, :)
     integer, intent(in) :: columns(:)
-    integer :: c, m, nv
+    integer :: c, m, nv, nf, f
+    integer :: vector_of(size(x, 2))   !< full vector of each column
+    logical :: shared(size(x, 2))      !< its vector holds another column too
     nv = size(x, 2)
+    call pair_columns(self%subs, self%sub_of(columns), vector_of, shared)
+    nf = maxval(vector_of)
     if (.not. allocated(self%full)) then
-      allocate (self%full(2 * self%n, nv), self%zfull(2 * self%n, nv))
-    else if (size(self%full, 2) < nv) then
+      allocate (self%full(2 * self%n, nf), self%zfull(2 * self%n, nf))
+    else if (size(self%full, 2) < nf) then
       deallocate (self%full, self%zfull)
-      allocate (self%full(2 * self%n, nv), self%zfull(2 * self%n, nv))
+      allocate (self%full(2 * self%n, nf), self%zfull(2 * self%n, nf))
     end if
-    ! columns on threads: each is its own copy, so the result does not depend on them
-    !$omp parallel do private(m) schedule(static)
-    do c = 1, nv
-      self%full(:, c) = 0
-      m = self%subs(self%sub_of(columns(c)))%m
-      call expand_from(self%subs(self%sub_of(columns(c))), self%n, x(1:m, c), self%full(:, c))
+    ! vectors on threads: each is its own copy, so the result does not depend on them
+    !$omp parallel do private(c, m) schedule(static)
+    do f = 1, nf
+      self%full(:, f) = 0
+      do c = 1, nv
+        if (vector_of(c) /= f) cycle
+        m = self%subs(self%sub_of(columns(c)))%m
+        call expand_from(self%subs(self%sub_of(columns(c))), self%n, x(1:m, c), self%full(:, f))
+      end do
     end do
     !$omp end parallel do
-    call self%apply_full(self%full(:, 1:nv), self%zfull(:, 1:nv))
+    call self%apply_full(self%full(:, 1:nf), self%zfull(:, 1:nf))
     !$omp parallel do private(m) schedule(static)
     do c = 1, nv
       y(:, c) = 0
       m = self%subs(self%sub_of(columns(c)))%m
-      call restrict_to(self%subs(self%sub_of(columns(c))), self%n, self%zfull(:, c), y(1:m, c))
+      if (shared(c)) then
+        call restrict_projected(self%subs(self%sub_of(columns(c))), self%n, self%zfull(:, vector_of(c)), y(1:m, c))
+      else
+        call restrict_to(self%subs(self%sub_of(columns(c))), self%n, self%zfull(:, vector_of(c)), y(1:m, c))
+      end if
     end do
     !$omp end parallel do
   end subroutine apply_expanded
+
+  !> Full vectors for the columns of a block (subsystem subs(sub(c)) for
+  !> column c): each column shares one with the next unpaired column of the
+  !> other parity class (in column order); the rest have one each.
+  pure subroutine pair_columns(subs, sub, vector_of, shared)
+    type(subsystem_t), intent(in) :: subs(:)
+    integer, intent(in) :: sub(:)
+    integer, intent(out) :: vector_of(:)
+    logical, intent(out) :: shared(:)
+    integer :: c, d, nf
+    vector_of = 0
+    shared = .false.
+    nf = 0
+    do c = 1, size(sub)
+      if (vector_of(c) > 0) cycle
+      nf = nf + 1
+      vector_of(c) = nf
+      do d = c + 1, size(sub)
+        if (vector_of(d) == 0 .and. shares_transforms(subs(sub(c)), subs(sub(d)))) then
+          vector_of(d) = nf
+          shared([c, d]) = .true.
+          exit
+        end if
+      end do
+    end do
+  end subroutine pair_columns
 
   subroutine apply_fft_full(self, full, z)
     class(fft_block_t), intent(inout) :: self

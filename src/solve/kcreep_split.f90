@@ -19,7 +19,8 @@ module kcreep_split
   use kcreep_assembly, only: operator_table_t, n_load_cases
   implicit none
   private
-  public :: subsystem_t, plan_subsystems, assemble_subsystem, restrict_to, expand_from
+  public :: subsystem_t, plan_subsystems, assemble_subsystem, restrict_to, restrict_projected, expand_from
+  public :: shares_transforms
 
   integer, parameter :: all_cells = 0, even = 1, odd = -1
 
@@ -33,6 +34,12 @@ module kcreep_split
     integer, allocatable :: cell(:)            !< representative cell
     integer, allocatable :: partner(:)         !< its mirror, 0 when none (or itself)
     real(real64), allocatable :: sign(:)       !< +1 even, -1 odd
+    !> The parities of the displacement its tractions give under the mirror:
+    !> +1 (ux even, uy odd: 'px even, py odd', 'px even'), -1 (ux odd, uy
+    !> even: 'px odd, py even', 'px odd', 'py even'), 0 no mirror used. The
+    !> operator keeps them, so fields of classes +1 and -1 added on one grid
+    !> come apart again by parity (shares_transforms).
+    integer :: parity_class = 0
   end type subsystem_t
 
 contains
@@ -82,6 +89,8 @@ contains
       integer, parameter :: none(0) = [integer ::]
       s%label = label
       s%serves = serves
+      ! px even or py odd: class +1; px odd or py even: class -1 (parity_class)
+      if (parities(1) /= all_cells) s%parity_class = merge(1, -1, (comps(1) == 0) .eqv. (parities(1) == even))
       allocate (cell_of(patch%mx, patch%my))
       cell_of = 0
       do k = 1, patch%n
@@ -197,6 +206,33 @@ contains
     real(real64), intent(out) :: part(:)
     part = full(s%comp * n + s%cell)
   end subroutine restrict_to
+
+  !> The subsystem's entries of a full vector that holds, besides this
+  !> subsystem's field, one of the other parity class: each entry is
+  !> projected on the subsystem's parity, (value + sign x mirror value) / 2.
+  !> On a middle row (no partner) a field of the other class is zero.
+  pure subroutine restrict_projected(s, n, full, part)
+    type(subsystem_t), intent(in) :: s
+    integer, intent(in) :: n
+    real(real64), intent(in) :: full(:)
+    real(real64), intent(out) :: part(:)
+    integer :: u
+    do u = 1, s%m
+      if (s%partner(u) > 0) then
+        part(u) = (full(s%comp(u) * n + s%cell(u)) + s%sign(u) * full(s%comp(u) * n + s%partner(u))) / 2
+      else
+        part(u) = full(s%comp(u) * n + s%cell(u))
+      end if
+    end do
+  end subroutine restrict_projected
+
+  !> Whether the fields of two subsystems can share one full-grid vector
+  !> through a parity-preserving operator (the system operator, the
+  !> circulant preconditioner): one of each parity class.
+  elemental logical function shares_transforms(s, t)
+    type(subsystem_t), intent(in) :: s, t
+    shares_transforms = s%parity_class * t%parity_class == -1
+  end function shares_transforms
 
   !> Add the full traction a subsystem solution stands for to full.
   pure subroutine expand_from(s, n, part, full)
