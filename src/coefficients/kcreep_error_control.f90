@@ -49,11 +49,13 @@ module kcreep_error_control
   !> threads of the 2-core development machine a level of 40,000 cells takes
   !> about 0.8 s, and a run whose finest level has N cells costs about 4 such
   !> levels (the levels below it add up to about 3 N). Looser targets scale it
-  !> by (1e-3 / target)**(1/4); tighter ones by 4 for each factor 10, so that
-  !> the accurate mode (1e-4, 160,000 cells) takes 4.4 to 6.9 s over a/b = 0.1
-  !> to 10 (docs/accuracy.md section 6).
+  !> by (1e-3 / target)**(1/4); tighter ones by 8 for each factor 10, so that
+  !> the accurate mode (1e-4, 320,000 cells) stops within 10 s over a/b = 0.1
+  !> to 10: 2.2 to 8.8 s on the two cores (docs/accuracy.md section 6), with
+  !> the load cases paired on the transforms and each level started from the
+  !> last one's tractions (docs/performance.md).
   real(real64), parameter :: cells_at_default_target = 40000
-  real(real64), parameter :: tight_target_budget_growth = 4
+  real(real64), parameter :: tight_target_budget_growth = 8
   !> The range of a cell budget the caller gives (&solver cell_budget): below
   !> the minimum no ellipse reaches its base levels (32 cells across is 800
   !> cells); the maximum, 10 million patch cells, needs about 3 GB on the

@@ -31,6 +31,7 @@ module kcreep_error_run
   use kcreep_error_control
   use kcreep_staircase_normalisation, only: ellipse_normalised, staircase_harmonic4
   use kcreep_gap_levels, only: run_gap_patch
+  use kcreep_grid_transfer, only: transferred_traction
   implicit none
   private
   public :: run_controlled, controlled_finest_patch, max_level_cells, base_levels, mask_factors
@@ -169,7 +170,13 @@ contains
         call ellipse_patch(a, b, mx, my, level_problem%patch, status)
         if (status%failed()) return
         call place_like(level_problem%patch, problem%patch)
-        call run_level(level_problem, levels(k), result, fnorm, warnings, t, status)
+        if (k == 1) then
+          call run_level(level_problem, levels(k), result, fnorm, warnings, t, status)
+        else
+          ! the last level's tractions carried over: GMRES starts closer (fewer iterations)
+          call run_level(level_problem, levels(k), result, fnorm, warnings, t, status, &
+                         guess=transferred_traction(result%patch, result%traction, level_problem%patch))
+        end if
         if (status%failed()) return
         harmonic4 = [harmonic4, staircase_harmonic4(level_problem%patch)]
         if (k == size(levels) .and. k >= ellipse_fit_min) then
@@ -272,8 +279,9 @@ contains
     result%warnings = warnings
   end subroutine run_mask_levels
 
-  !> One level: solve, keep its normalised f and its warnings; the result is the level's.
-  subroutine run_level(level_problem, label, result, fnorm, warnings, t, status)
+  !> One level: solve, keep its normalised f and its warnings; the result is
+  !> the level's. guess: tractions to start the iterative solver from.
+  subroutine run_level(level_problem, label, result, fnorm, warnings, t, status, guess)
     type(problem_t), intent(in) :: level_problem
     integer, intent(in) :: label
     type(result_t), intent(inout) :: result
@@ -281,9 +289,10 @@ contains
     character(len=message_length), allocatable, intent(inout) :: warnings(:)
     real(real64), intent(inout) :: t(4)
     type(status_t), intent(inout) :: status
+    real(real64), intent(in), optional :: guess(:, :)
     real(real64), allocatable :: f(:, :, :)
 
-    call run_case(level_problem, result, status)
+    call run_case(level_problem, result, status, guess=guess)
     if (status%failed()) return
     t = t + [result%t_assemble, result%t_factor, result%t_solve, result%t_total]
     allocate (f(3, 3, size(fnorm, 3) + 1))

@@ -36,12 +36,15 @@ module kcreep_run
 
 contains
 
-  !> Solve problem on its own grid (no extrapolation).
-  subroutine run_case(problem, result, status, cache)
+  !> Solve problem on its own grid (no extrapolation). guess: tractions
+  !> (2n, 3) on the patch to start the iterative solver from (a coarser
+  !> level's, carried over); without it a cache's last solution, or zero.
+  subroutine run_case(problem, result, status, cache, guess)
     type(problem_t), intent(in) :: problem
     type(result_t), intent(out) :: result
     type(status_t), intent(inout) :: status
     type(solve_cache_t), intent(inout), optional, target :: cache
+    real(real64), intent(in), optional :: guess(:, :)
     type(operator_table_t), target :: own_table
     type(operator_table_t), pointer :: table
     type(dense_diagnostics_t) :: diag
@@ -79,7 +82,7 @@ contains
         if (.not. status%failed()) call keep_solution(cache, patch, result%traction)
       else
         call solve_load_cases(problem%solve, problem%scheme, problem%nu, patch, table, problem%requested, &
-                              problem%refine, result%traction, diag, status)
+                              problem%refine, result%traction, diag, status, initial=guess)
       end if
       if (status%failed()) return
 
