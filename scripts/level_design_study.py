@@ -22,6 +22,14 @@ cells across; see scripts/level_noise_study.py) and asks two questions:
    (340, 384, 448, ...) that kcreep runs. Cost model: one level of N_cells
    patch cells takes 13.7 s x (N_cells / 282,792)^1.15 (one thread, measured
    at 148-600 cells across on the unit circle before the threaded transforms).
+3. Smaller order margins, along kcreep's own level sequence (56, 64, ...
+   as far as the stored levels go, the fit through the finest 8 each time),
+   against the fit f0 + K h + L h^2 + B harmonic4 through all stored levels
+   from 224 cells across: kcreep's margin (a tenth of the extrapolation),
+   that margin scaled by 56 / N_first of the window (the straight line's
+   miss is about L h_first h_last, which falls with h_first), and a
+   curvature margin 2 |L| h_first h_last with L from a weighted fit of
+   f0 + K h + L h^2 + B harmonic4 through all levels of the run.
 
 Needs numpy (Debian python3-numpy; /usr/bin/python3).
 """
@@ -122,10 +130,61 @@ def cheapest():
         print(f"| {ratio:g} | {nu:g} | {stepped} | {best_text} |")
 
 
+SEQUENCE = [56, 64, 72, 84, 96, 112, 128, 148, 172, 196, 224, 256, 296, 340, 384, 448, 512, 576, 640, 768]
+
+
+def window_estimate(margin):
+    """The finest-8 straight line with t95 x SE plus margin(levels, ns, coeff, f0, finest)."""
+    def estimate(levels, ns, coeff):
+        f0, se, dof, finest = fit(levels, ns[-8:], coeff, quadratic=False, weighted=False)
+        return f0, (student_t95(dof) * se + margin(levels, ns, coeff, f0, finest)) / abs(f0)
+    return estimate
+
+
+def curvature(levels, ns, coeff):
+    """L of the weighted fit f0 + K h + L h^2 + B harmonic4 through the levels ns."""
+    h = np.array([1.0 / n for n in ns])
+    a = np.array([np.ones_like(h), h, h * h, [levels[n]["harmonic4"] for n in ns]]).T
+    f = np.array([levels[n][coeff] for n in ns])
+    return np.linalg.lstsq(a / h[:, None], f / h, rcond=None)[0][2]
+
+
+def scaled_margins():
+    margins = [
+        ("kcreep's: 0.1 abs(f0 - f(finest))", lambda lv, ns, c, f0, fin: 0.1 * abs(f0 - fin)),
+        ("scaled: 0.1 (56 / N_first) abs(f0 - f(finest))", lambda lv, ns, c, f0, fin: 0.1 * 56 / ns[-8] * abs(f0 - fin)),
+        ("curvature: 2 abs(L) h_first h_last", lambda lv, ns, c, f0, fin: 2 * abs(curvature(lv, ns, c)) / (ns[-8] * ns[-1])),
+    ]
+    print("\n| order margin | runs x coefficients | bounded | first level meeting 1e-4, per ellipse |")
+    print("|---|---|---|---|")
+    for name, margin in margins:
+        estimate = window_estimate(margin)
+        bounded = total = 0
+        stops = []
+        for ratio, nu in study.CASES:
+            levels = study.levels_of(ratio, nu)
+            run = [n for n in SEQUENCE if n in levels]
+            reference = {c: fit(levels, [n for n in sorted(levels) if n >= 224], c, quadratic=True, weighted=False)[0]
+                         for c in COEFFS}
+            stop = None
+            for k in range(8, len(run) + 1):
+                meets = True
+                for c in COEFFS:
+                    f0, value = estimate(levels, run[:k], c)
+                    total += 1
+                    bounded += abs(f0 / reference[c] - 1) <= value
+                    meets = meets and value <= TARGETS[c]
+                if meets and stop is None:
+                    stop = run[k - 1]
+            stops.append(f"{ratio:g}: {stop or '-'}")
+        print(f"| {name} | {total} | {bounded} | {', '.join(stops)} |")
+
+
 def main():
     honesty([("kcreep's (finest 8, straight line, order margin)", kcreep_estimate)] +
             [(f"weighted, with h^2, from {first}", quadratic_estimate(first)) for first in (56, 84, 112, 148)])
     cheapest()
+    scaled_margins()
 
 
 if __name__ == "__main__":

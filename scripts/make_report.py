@@ -379,9 +379,10 @@ def texts(values):
                         + (": at this level the reference's u, not kcreep, limits what can be shown"
                            if all(e <= ref1[c][1] / ref1[c][0] for e, c in zip(a["err"], COEF)) else "") + "."))
         lines.append("- Against grids of up to 1024 cells across (docs/accuracy.md section 6) the accurate mode's "
-                     "errors on the circle at 392 cells across are 0.007-0.011 %, but the staircase's level-to-level "
-                     "noise keeps its estimate above 1e-4 until about 600 cells across: `&solver cell_budget = 5e5` "
-                     "reaches `ok` there, in about 17 s on two cores.")
+                     "errors on the circle at 600 cells across are 0.001 % against estimates of 0.008-0.014 %: "
+                     "the refined table's own u cannot show errors that small. Its default cell budget, 320,000 "
+                     "cells, reaches 600 cells across on the circle; ellipses long in y and a/b = 10 stop "
+                     "`uncertain` at the budget (docs/accuracy.md section 6).")
     ext = [r for r in rows if r["scheme"].endswith("+extrapolate")]
     if ext:
         best = min(ext, key=lambda r: max(r["err"]))
