@@ -17,7 +17,9 @@ accurate mode, levels to about 300 cells across) and the verdict is shown;
 --cell-budget sets &solver cell_budget (the finest level's cells) with it.
 
 The reference comes from grids much finer than either uses (--levels, cells
-across the shorter axis, as far as a/b x N^2 <= --max-cells), each referred
+across the shorter axis, as far as the grid's mx x my <= --max-cells; --grid box
+puts them, for a/b < 1, on N x N grids with cells long in y, as kcreep's own
+levels for tight targets), each referred
 to the ellipse by the staircase's second moments (kcreep_levels.refer_to_ellipse)
 and fitted by f0 + K h + B harmonic4; its uncertainty u is the larger of the
 fit's 95 % interval (Student's t) and the change of f0 when an h^2 term is
@@ -85,6 +87,10 @@ def main():
     ap.add_argument("--cache", default=CACHE, help="the reference levels file (read and appended to)")
     ap.add_argument("--target", type=float, default=0.0, help="&solver target_error of the solved run (0: its default)")
     ap.add_argument("--cell-budget", type=float, default=0.0, help="&solver cell_budget of the solved run")
+    ap.add_argument("--grid", choices=("near-square", "box"), default="near-square",
+                    help="the reference levels' cells: near-square, or for a/b < 1 N x N over the bounding box "
+                         "(cells long in y, as kcreep's levels for tight targets); keep each in its own --cache")
+    ap.add_argument("--tolerance", type=float, default=0.0, help="&solver tolerance of the reference levels (0: kcreep's)")
     ap.add_argument("--markdown", action="store_true")
     ap.add_argument("--out", default="")
     args = ap.parse_args()
@@ -100,8 +106,10 @@ def main():
     for ratio, nu in cases:
         have = cache.setdefault((ratio, nu), {})
         for n in levels:
-            if n not in have and max(ratio, 1 / ratio) * n * n <= args.max_cells:
-                have[n] = K.ellipse_level(ratio, nu, n)
+            mx, my = K.square_grid(ratio, n, args.grid)
+            if n not in have and mx * my <= args.max_cells:
+                extra = K.TARGET_ZERO + (f", tolerance = {args.tolerance!r}" if args.tolerance > 0 else "")
+                have[n] = K.ellipse_level(ratio, nu, n, grid=args.grid, extra_solver=extra)
                 append_cache(args.cache, ratio, nu, n, have[n])
         ref = reference({n: v for n, v in have.items() if n in levels}, ratio, nu)
         a, b = math.sqrt(ratio), 1 / math.sqrt(ratio)
@@ -132,7 +140,7 @@ def main():
         lines.append(f"{name}: the stated error bounded the error in {b} of {n} coefficients ({bu} allowing the "
                      f"reference's u).")
         print(lines[-1])
-    lines.append(f"Reference levels {args.levels} cells across (a/b x N^2 <= {args.max_cells:g}).")
+    lines.append(f"Reference levels {args.levels} cells across, {args.grid} cells (grid cells <= {args.max_cells:g}).")
     if args.out:
         with open(args.out, "w") as f:
             f.write("\n".join(lines) + "\n")

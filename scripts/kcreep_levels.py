@@ -38,10 +38,15 @@ def student_t95(dof):
     return table[dof - 1] if dof <= len(table) else 1.96 + 2.5 / dof
 
 
-def square_grid(ratio, cells):
-    """(mx, my) with near-square cells and `cells` cells across the shorter axis."""
+def square_grid(ratio, cells, grid="near-square"):
+    """(mx, my) with `cells` cells across the shorter axis: near-square cells,
+    or with grid = 'box' on an ellipse long in y (ratio < 1) cells x cells,
+    the cells long in y (as kcreep's levels for tight targets,
+    kcreep_error_control.ellipse_cells_long_in_y)."""
     if ratio >= 1:
         return int(round(cells * ratio)), cells
+    if grid == "box":
+        return cells, cells
     return cells, int(round(cells / ratio))
 
 
@@ -71,10 +76,12 @@ def run_kcreep(nml_text, name="case", kcreep=None, folder=None):
     return rows, wall, proc.stderr
 
 
-def ellipse_level(ratio, nu, cells, scheme="backward", method="iterative", extra_solver=TARGET_ZERO, kcreep=None):
-    """Area-normalised coefficients of one grid: dict with c11 ... c32, mx, my, n, time, iterations."""
+def ellipse_level(ratio, nu, cells, scheme="backward", method="iterative", extra_solver=TARGET_ZERO, kcreep=None,
+                  grid="near-square"):
+    """Area-normalised coefficients of one grid (square_grid's grid): dict with c11 ... c32, mx, my, n, time,
+    iterations."""
     a, b = math.sqrt(ratio), 1 / math.sqrt(ratio)
-    mx, my = square_grid(ratio, cells)
+    mx, my = square_grid(ratio, cells, grid)
     nml = (f"&patch shape = 'ellipse', semi_a = {a!r}, semi_b = {b!r}, mx = {mx}, my = {my} /\n"
            f"&material nu = {nu!r} /\n"
            f"&solver scheme = '{scheme}', method = '{method}' {extra_solver} /\n"

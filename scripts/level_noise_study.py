@@ -70,7 +70,21 @@ def model(coef, n, harmonic4, quadratic):
 def main():
     ap = argparse.ArgumentParser()
     ap.add_argument("--no-figure", action="store_true")
+    ap.add_argument("--slopes", action="store_true",
+                    help="only the first-order slope K / f0 (per 1/N, N cells across the shorter axis) of each "
+                         "coefficient, from the fit through all levels (docs/accuracy.md section 6.4)")
     args = ap.parse_args()
+    if args.slopes:
+        print("| a/b | nu | K / f0: C11, C22, C23 | per 1/(cells across a): C11, C22, C23 |")
+        print("|---|---|---|---|")
+        for ratio, nu in CASES:
+            levels = levels_of(ratio, nu)
+            ns = sorted(levels)
+            k = [fit(levels, ns, c, quadratic=True) for c in ("c11", "c22", "c23")]
+            across_a = max(ratio, 1.0)   # cells across a = N a/b when b is the shorter axis
+            print(f"| {ratio:g} | {nu:g} | {', '.join(f'{c[1] / c[0]:+.3f}' for c in k)} | "
+                  f"{', '.join(f'{c[1] / c[0] * across_a:+.3f}' for c in k)} |")
+        return
     residuals = {}
     print("| a/b | nu | coefficient | levels (N) | L / f0 | rms noise, N in 56-100 / 100-200 / 200-400 / 400+ | "
           "straight line 112-296 misses f0 by |")

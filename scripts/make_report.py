@@ -381,7 +381,7 @@ def texts(values):
         lines.append("- Against grids of up to 1024 cells across (docs/accuracy.md section 6) the accurate mode's "
                      "errors on the circle at 600 cells across are 0.001 % against estimates of 0.008-0.014 %: "
                      "the refined table's own u cannot show errors that small. Its default cell budget, 320,000 "
-                     "cells, reaches 600 cells across on the circle; ellipses long in y and a/b = 10 stop "
+                     "cells, reaches 600 cells across on the circle; ellipses long in x (a/b = 5, 10) stop "
                      "`uncertain` at the budget (docs/accuracy.md section 6).")
     ext = [r for r in rows if r["scheme"].endswith("+extrapolate")]
     if ext:

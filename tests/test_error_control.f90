@@ -26,6 +26,14 @@ program test_error_control
   call t%check(mx == 48 .and. my == 240, 'a/b = 0.2: 48 x 240')
   call ellipse_level_grid(1.0_real64, 1.0_real64, 48, mx, my)
   call t%check(mx == 48 .and. my == 48, 'circle: 48 x 48')
+  call ellipse_level_grid(1.0_real64, 4.0_real64, 48, mx, my, long_in_y=.true.)
+  call t%check(mx == 48 .and. my == 48, 'long in y, cells long in y: 48 x 48 (cells 4 times as long in y)')
+  call ellipse_level_grid(4.0_real64, 1.0_real64, 48, mx, my, long_in_y=.true.)
+  call t%check(mx == 192 .and. my == 48, 'long in x: near-square cells whatever long_in_y says')
+  call t%check(ellipse_cells_long_in_y(1e-4_real64, 'backward') .and. &
+               .not. ellipse_cells_long_in_y(1e-3_real64, 'backward') .and. &
+               .not. ellipse_cells_long_in_y(1e-4_real64, 'collocation'), &
+               'cells long in y: tighter targets than the default, backward scheme only')
   call t%check(next_level(48) == 56 .and. next_level(64) == 72 .and. next_level(96) == 112, &
                'next levels of 48, 64, 96: 56, 72, 112')
   call t%check(next_level(8) == 12, 'next level grows by at least 4 cells')

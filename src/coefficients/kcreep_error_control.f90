@@ -23,7 +23,7 @@ module kcreep_error_control
   implicit none
   private
   public :: default_target_error, c23_target_factor, min_estimate_cells
-  public :: coefficient_targets, ellipse_level_grid, next_level, level_cell_budget, student_t95
+  public :: coefficient_targets, ellipse_level_grid, ellipse_cells_long_in_y, next_level, level_cell_budget, student_t95
   public :: cell_budget_allowed, cell_budget_range, level_solver_tolerance
   public :: first_order_fit, level_estimate, ellipse_level_estimate, smooth_level_estimate, basis_fit
   public :: single_grid_estimate, ellipse_fit_min, ellipse_fit_width
@@ -72,20 +72,47 @@ contains
     t = [target, target, c23_target_factor * target]
   end function coefficient_targets
 
-  !> Grid of near-square cells over [-a, a] x [-b, b] with `cells` cells across
-  !> the shorter axis (dx/dy within a rounding step of 1).
-  pure subroutine ellipse_level_grid(semi_a, semi_b, cells, mx, my)
+  !> Grid over [-a, a] x [-b, b] with `cells` cells across the shorter axis:
+  !> near-square cells (dx/dy within a rounding step of 1), or, with
+  !> long_in_y on an ellipse long in y (a < b), cells x cells, each cell b/a
+  !> times as long in y as in x (ellipse_cells_long_in_y says when).
+  pure subroutine ellipse_level_grid(semi_a, semi_b, cells, mx, my, long_in_y)
     real(real64), intent(in) :: semi_a, semi_b
     integer, intent(in) :: cells
     integer, intent(out) :: mx, my
+    logical, intent(in), optional :: long_in_y
+    logical :: stretch
+    stretch = .false.
+    if (present(long_in_y)) stretch = long_in_y
     if (semi_a >= semi_b) then
       my = cells
       mx = max(cells, nint(cells * semi_a / semi_b))
+    else if (stretch) then
+      mx = cells
+      my = cells
     else
       mx = cells
       my = max(cells, nint(cells * semi_b / semi_a))
     end if
   end subroutine ellipse_level_grid
+
+  !> Whether kcreep's levels of an ellipse long in y use cells long in y
+  !> (ellipse_level_grid): for targets tighter than the default, backward
+  !> scheme. The discretisation error's first-order term follows the cell
+  !> length in the rolling direction relative to a (the leading edge), not
+  !> the cell width across it: the levels' slope K / f0 of C11 is 0.28-0.30
+  !> per 1/(cells across a) at a/b = 0.25, 0.5 and 1 alike (docs/accuracy.md
+  !> section 6.4). On an ellipse long in y, near-square cells spend b/a
+  !> times the cells on the width; cells x cells over the bounding box give
+  !> the same estimates with a/b times the cells (a/b = 0.5: ok at 452 x 452
+  !> in 4 s, where near-square cells stopped uncertain at 520 x 1040 after
+  !> 11 s). The default target keeps near-square cells, on which its
+  !> calibration was made, and collocation is never put on long cells.
+  pure logical function ellipse_cells_long_in_y(target, scheme_name)
+    real(real64), intent(in) :: target
+    character(len=*), intent(in) :: scheme_name
+    ellipse_cells_long_in_y = target < default_target_error .and. scheme_name == 'backward'
+  end function ellipse_cells_long_in_y
 
   !> The next finer level after `finest` cells across: about 15 % finer, a
   !> multiple of 4 (48, 56, 64, 72, 84, 96, 112, 128, 148, 172, ...).

@@ -3,7 +3,9 @@
 !> estimates, or the estimate of a single given grid.
 !>
 !> target > 0 on an ellipse without a given grid: kcreep chooses near-square
-!>   grids, levels 56, 64, 72, 84, 96 cells across the shorter axis, then one
+!>   grids (for targets tighter than the default, an ellipse long in y gets
+!>   cells long in y: ellipse_cells_long_in_y), levels 56, 64, 72, 84, 96
+!>   cells across the shorter axis, then one
 !>   level about 15 % finer at a time (112, 128, 148, ...) while an estimate is
 !>   above its target, each level referred to the ellipse by its staircase's
 !>   second moments (kcreep_staircase_normalisation), each fit (with the
@@ -156,17 +158,19 @@ contains
     character(len=message_length) :: line
     integer :: k, mx, my, finest, first
     real(real64) :: t(4), budget
+    logical :: long_in_y
 
     allocate (fnorm(3, 3, 0), harmonic4(0), warnings(0))
     t = 0
     level_problem = problem
     call level_tolerance(level_problem)
     budget = cell_budget_or(problem, level_cell_budget(problem%target_error))
+    long_in_y = ellipse_cells_long_in_y(problem%target_error, problem%scheme%name)
     associate (a => problem%patch%semi_a, b => problem%patch%semi_b)
-      levels = ellipse_base_levels(a, b, budget)
+      levels = ellipse_base_levels(a, b, budget, long_in_y)
       k = 1
       do
-        call ellipse_level_grid(a, b, levels(k), mx, my)
+        call ellipse_level_grid(a, b, levels(k), mx, my, long_in_y)
         call ellipse_patch(a, b, mx, my, level_problem%patch, status)
         if (status%failed()) return
         call place_like(level_problem%patch, problem%patch)
@@ -184,7 +188,7 @@ contains
           call fit_levels(1.0_real64 / levels(first:k), fnorm(:, :, first:k), result, shape=harmonic4(first:k))
           if (within_target(result%err, coefficient_targets(problem%target_error))) exit
           finest = next_level(levels(k))
-          call ellipse_level_grid(a, b, finest, mx, my)
+          call ellipse_level_grid(a, b, finest, mx, my, long_in_y)
           if (ellipse_fill * mx * my > budget) then
             line = 'error control: the next level, '//itoa(mx)//' x '//itoa(my)//', would exceed the budget of '// &
                    itoa(nint(budget))//' patch cells at target_error '//rtoa(problem%target_error)// &
@@ -202,10 +206,11 @@ contains
   end subroutine run_ellipse_levels
 
   !> An ellipse's base levels; a long one's scaled down so that the finest keeps to the budget.
-  pure function ellipse_base_levels(a, b, budget) result(levels)
+  pure function ellipse_base_levels(a, b, budget, long_in_y) result(levels)
     real(real64), intent(in) :: a, b, budget
+    logical, intent(in) :: long_in_y
     integer :: levels(size(base_levels)), mx, my
-    call ellipse_level_grid(a, b, base_levels(size(base_levels)), mx, my)
+    call ellipse_level_grid(a, b, base_levels(size(base_levels)), mx, my, long_in_y)
     levels = max(min_base_cells, nint(base_levels * min(1.0_real64, sqrt(budget / (ellipse_fill * mx * my)))))
   end function ellipse_base_levels
 
@@ -218,18 +223,20 @@ contains
     type(status_t), intent(inout) :: status
     integer :: cells, mx, my, used
     real(real64) :: budget
+    logical :: long_in_y
     finest = problem%patch
     if (.not. (problem%target_error > 0 .and. problem%refine_grid) .or. problem%normal%active) return
     if (problem%patch%kind == 'ellipse') then
       budget = cell_budget_or(problem, level_cell_budget(problem%target_error))
+      long_in_y = ellipse_cells_long_in_y(problem%target_error, problem%scheme%name)
       associate (a => problem%patch%semi_a, b => problem%patch%semi_b)
-        cells = maxval(ellipse_base_levels(a, b, budget))
+        cells = maxval(ellipse_base_levels(a, b, budget, long_in_y))
         do
-          call ellipse_level_grid(a, b, next_level(cells), mx, my)
+          call ellipse_level_grid(a, b, next_level(cells), mx, my, long_in_y)
           if (ellipse_fill * mx * my > budget) exit
           cells = next_level(cells)
         end do
-        call ellipse_level_grid(a, b, cells, mx, my)
+        call ellipse_level_grid(a, b, cells, mx, my, long_in_y)
         call ellipse_patch(a, b, mx, my, finest, status)
       end associate
     else
