@@ -28,6 +28,8 @@ program test_error_control
   call t%check(mx == 48 .and. my == 48, 'circle: 48 x 48')
   call ellipse_level_grid(1.0_real64, 4.0_real64, 48, mx, my, long_in_y=.true.)
   call t%check(mx == 48 .and. my == 48, 'long in y, cells long in y: 48 x 48 (cells 4 times as long in y)')
+  call ellipse_level_grid(1.0_real64, 20.0_real64, 48, mx, my, long_in_y=.true.)
+  call t%check(mx == 48 .and. my == 96, 'a/b = 0.05, cells long in y: at most 10 times as long (48 x 96)')
   call ellipse_level_grid(4.0_real64, 1.0_real64, 48, mx, my, long_in_y=.true.)
   call t%check(mx == 192 .and. my == 48, 'long in x: near-square cells whatever long_in_y says')
   call t%check(ellipse_cells_long_in_y(1e-4_real64, 'backward') .and. &

@@ -41,6 +41,12 @@ module kcreep_error_control
   !> An ellipse's levels: the fewest in a fit (ellipse_level_estimate, 3
   !> coefficients), and the finest this many in one fit (Student's factor 2.57).
   integer, parameter :: ellipse_fit_min = 5, ellipse_fit_width = 8
+  !> Cells long in y (ellipse_level_grid) are at most this many times as long
+  !> as wide: the estimate was checked on a/b = 0.1 to 0.5 with cells up to
+  !> 10 times as long (27 of 27 bounded, docs/accuracy.md section 6.4); at
+  !> a/b = 0.02 on cells 50 times as long it missed C23 (0.025 % against an
+  !> estimate of 0.017 %).
+  real(real64), parameter :: max_cell_aspect = 10
   !> The share of an ellipse's extrapolation (f0 - f(finest level)) counted
   !> as the uncertainty of its order (ellipse_level_estimate).
   real(real64), parameter :: order_margin = 0.1_real64
@@ -75,7 +81,8 @@ contains
   !> Grid over [-a, a] x [-b, b] with `cells` cells across the shorter axis:
   !> near-square cells (dx/dy within a rounding step of 1), or, with
   !> long_in_y on an ellipse long in y (a < b), cells x cells, each cell b/a
-  !> times as long in y as in x (ellipse_cells_long_in_y says when).
+  !> times as long in y as in x, at most max_cell_aspect times
+  !> (ellipse_cells_long_in_y says when).
   pure subroutine ellipse_level_grid(semi_a, semi_b, cells, mx, my, long_in_y)
     real(real64), intent(in) :: semi_a, semi_b
     integer, intent(in) :: cells
@@ -88,8 +95,9 @@ contains
       my = cells
       mx = max(cells, nint(cells * semi_a / semi_b))
     else if (stretch) then
+      ! at most max_cell_aspect: the longest cells the estimate was checked on
       mx = cells
-      my = cells
+      my = max(cells, nint(cells * semi_b / (semi_a * max_cell_aspect)))
     else
       mx = cells
       my = max(cells, nint(cells * semi_b / semi_a))
