@@ -15,7 +15,8 @@ each level is referred to the ellipse by its staircase's second moments
 per coefficient, the fit f0 + K h + B harmonic4 through the levels of
 either grid and through the mean of the two, with t95 x its standard error
 of f0 (the part of kcreep's estimate that limits ellipses long in x) and
-the rms scatter about the fit. Needs numpy (/usr/bin/python3).
+the rms scatter about the fit. --also-y adds the grid shifted by dy/2 (one
+more row) and the grid shifted both ways. Needs numpy (/usr/bin/python3).
 """
 import argparse
 import math
@@ -36,15 +37,16 @@ from kcreep_levels import student_t95  # noqa: E402
 POWERS = {"c11": 2, "c22": 2, "c23": 3}
 
 
-def level(ratio, nu, cells, shifted, slopes, folder):
-    """One grid's coefficients referred to the ellipse, and its harmonic."""
+def level(ratio, nu, cells, shifted, slopes, folder, y_shifted=False):
+    """One grid's coefficients referred to the ellipse, and its harmonic
+    (shifted: by dx/2 with one more column; y_shifted: by dy/2 with one more row)."""
     a, b = math.sqrt(ratio), 1 / math.sqrt(ratio)
-    my = cells
-    mx0 = int(round(2 * a / (2 * b / my)))
-    dx, dy = 2 * a / mx0, 2 * b / my
+    my = cells + (1 if y_shifted else 0)
+    mx0 = int(round(2 * a / (2 * b / cells)))
+    dx, dy = 2 * a / mx0, 2 * b / cells
     mx = mx0 + (1 if shifted else 0)
     x0 = -a + dx / 2 - (dx / 2 if shifted else 0)
-    y0 = -b + dy / 2
+    y0 = -b + dy / 2 - (dy / 2 if y_shifted else 0)
     x, y = np.meshgrid(x0 + dx * np.arange(mx), y0 + dy * np.arange(my))
     inside = (x / a) ** 2 + (y / b) ** 2 <= 1
     with open(os.path.join(folder, "level.mask"), "w") as f:
@@ -84,19 +86,26 @@ def main():
     ap.add_argument("--ratio", type=float, default=5.0)
     ap.add_argument("--nu", type=float, default=0.25)
     ap.add_argument("--levels", default="112,128,148,172,196,224,256,296")
+    ap.add_argument("--also-y", action="store_true",
+                    help="also the grid shifted by dy/2 (one more row): the y pair and the mean of all four grids")
     args = ap.parse_args()
     cells = [int(n) for n in args.levels.split(",")]
     slopes = K.table_slopes(args.ratio, args.nu)
     folder = tempfile.mkdtemp(prefix="kcreep-offset-")
-    levels = {n: [level(args.ratio, args.nu, n, s, slopes, folder) for s in (False, True)] for n in cells}
+    grids = ((False, False), (True, False)) + (((False, True), (True, True)) if args.also_y else ())
+    levels = {n: [level(args.ratio, args.nu, n, sx, slopes, folder, sy) for sx, sy in grids] for n in cells}
     print(f"a/b = {args.ratio:g}, nu = {args.nu:g}, levels {args.levels}")
     print("| coefficient | grids | f0 | t95 x SE of f0 | rms scatter |")
     print("|---|---|---|---|---|")
     for c in ("c11", "c22", "c23"):
-        for name, pick in (("kcreep's", lambda p: (p[0][c], p[0]["harmonic4"])),
-                           ("shifted by dx/2", lambda p: (p[1][c], p[1]["harmonic4"])),
-                           ("mean of the two", lambda p: ((p[0][c] + p[1][c]) / 2,
-                                                          (p[0]["harmonic4"] + p[1]["harmonic4"]) / 2))):
+        picks = [("kcreep's", lambda p: (p[0][c], p[0]["harmonic4"])),
+                 ("shifted by dx/2", lambda p: (p[1][c], p[1]["harmonic4"])),
+                 ("mean of the two", lambda p: ((p[0][c] + p[1][c]) / 2, (p[0]["harmonic4"] + p[1]["harmonic4"]) / 2))]
+        if args.also_y:
+            picks += [("mean with the dy/2 grid", lambda p: ((p[0][c] + p[2][c]) / 2,
+                                                           (p[0]["harmonic4"] + p[2]["harmonic4"]) / 2)),
+                      ("mean of all four", lambda p: (sum(q[c] for q in p) / 4, sum(q["harmonic4"] for q in p) / 4))]
+        for name, pick in picks:
             values = np.array([pick(levels[n])[0] for n in cells])
             harmonic = np.array([pick(levels[n])[1] for n in cells])
             f0, se, rms = fit(cells, values, harmonic)
