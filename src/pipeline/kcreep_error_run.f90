@@ -157,6 +157,7 @@ contains
     character(len=message_length), allocatable :: warnings(:)
     character(len=message_length) :: line
     integer :: k, mx, my, finest, first
+    real(real64), allocatable :: guess(:, :)     !< the last level's tractions on this level's cells
     real(real64) :: t(4), budget
     logical :: long_in_y
 
@@ -174,13 +175,10 @@ contains
         call ellipse_patch(a, b, mx, my, level_problem%patch, status)
         if (status%failed()) return
         call place_like(level_problem%patch, problem%patch)
-        if (k == 1) then
-          call run_level(level_problem, levels(k), result, fnorm, warnings, t, status)
-        else
-          ! the last level's tractions carried over: GMRES starts closer (fewer iterations)
-          call run_level(level_problem, levels(k), result, fnorm, warnings, t, status, &
-                         guess=transferred_traction(result%patch, result%traction, level_problem%patch))
-        end if
+        ! the last level's tractions carried over: GMRES starts closer (fewer
+        ! iterations); unallocated on the first level, where it counts as absent
+        if (k > 1) guess = transferred_traction(result%patch, result%traction, level_problem%patch)
+        call run_level(level_problem, levels(k), result, fnorm, warnings, t, status, guess)
         if (status%failed()) return
         harmonic4 = [harmonic4, staircase_harmonic4(level_problem%patch)]
         if (k == size(levels) .and. k >= ellipse_fit_min) then

@@ -36,9 +36,10 @@ module kcreep_run
 
 contains
 
-  !> Solve problem on its own grid (no extrapolation). guess: tractions
-  !> (2n, 3) on the patch to start the iterative solver from (a coarser
-  !> level's, carried over); without it a cache's last solution, or zero.
+  !> Solve problem on its own grid (no extrapolation). guess (used without a
+  !> cache): tractions (2n, 3) on the patch to start the iterative solver
+  !> from, a coarser level's carried over; with a cache the start is its last
+  !> solution on the same grid; else zero.
   subroutine run_case(problem, result, status, cache, guess)
     type(problem_t), intent(in) :: problem
     type(result_t), intent(out) :: result
