@@ -10,16 +10,14 @@
 #   REPEATS=3 RATIOS=0.1,0.25,0.5,1,2,4,10 CELL_BUDGET=1.6e5  the defaults but for CELL_BUDGET (unset)
 # Every timing runs under flock /tmp/kcreep-bench.lock (one benchmark at a time).
 #   scripts/bench_accurate_mode.sh --help     this text (nothing is run)
-usage() { awk 'NR > 1 && /^#/ { sub(/^# ?/, ""); print; next } NR > 1 { exit }' "${BASH_SOURCE[0]}"; }
-for arg in "$@"; do case $arg in -h | --help) usage; exit 0 ;; esac; done
-set -euo pipefail
+#   KCREEP_BUILD_DIR=dir                       NEW_KCREEP's default folder (default build/)
+source "$(dirname "${BASH_SOURCE[0]}")/prebuild_lib.sh"   # --help, set -euo pipefail, build_dir, median
 if (($# < 1)); then
   echo "bench_accurate_mode.sh: error: give the kcreep binary to compare with (OLD_KCREEP)" >&2
   exit 2
 fi
-here=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
 old=$(realpath "$1")
-new=$(realpath "${2:-$here/build/kcreep}")
+new=$(realpath "${2:-$build_dir/kcreep}")
 for exe in "$old" "$new"; do
   [[ -x $exe ]] || { echo "bench_accurate_mode.sh: error: $exe is not an executable kcreep" >&2; exit 2; }
 done
@@ -28,8 +26,6 @@ IFS=, read -r -a ratios <<< "${RATIOS:-0.1,0.25,0.5,1,2,4,10}"
 budget=${CELL_BUDGET:+, cell_budget = $CELL_BUDGET}
 work=$(mktemp -d)
 trap 'rm -rf "$work"' EXIT
-
-median() { sort -g | awk '{ v[NR] = $1 } END { print (NR % 2) ? v[(NR + 1) / 2] : (v[NR / 2] + v[NR / 2 + 1]) / 2 }'; }
 
 # one run: "wall finest_grid verdict"
 run_one() {

@@ -31,8 +31,6 @@ cases=(
 repeats=3
 if [[ -n "${QUICK:-}" ]]; then cases=("${cases[@]:0:2}"); repeats=1; fi
 
-median() { sort -g | awk '{ v[NR] = $1 } END { print (NR % 2) ? v[(NR + 1) / 2] : (v[NR / 2] + v[NR / 2 + 1]) / 2 }'; }
-
 # one run: prints "iterations solve_seconds wall_seconds"
 run_one() {
   local nml=$1 out

@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
 # Shared start of the scripts that build kcreep before they run it
-# (bench.sh, bench_normal.sh, bench_preconditioner.sh, normal_figures.sh);
+# (bench.sh, bench_normal.sh, bench_preconditioner.sh, normal_figures.sh)
+# or time given builds of it (bench_accurate_mode.sh);
 # they source it first thing, it is not run on its own.
 #   in such a script:  source "$(dirname "${BASH_SOURCE[0]}")/prebuild_lib.sh"
 #   scripts/prebuild_lib.sh --help                this text
@@ -9,7 +10,8 @@
 # "set -euo pipefail", sets "here" (the repository) and "build_dir"
 # (KCREEP_BUILD_DIR, default build/ of the repository) and provides
 # build_kcreep [cmake --build options]: configure build_dir as a Release
-# build and build it, quietly.
+# build and build it, quietly; and median: the median of the numbers on
+# standard input, one a line (the benchmarks' statistic).
 # (Its name does not start with "build": copies of the tree made by the
 # tests leave build* out.)
 
@@ -31,3 +33,5 @@ build_kcreep() {
   cmake -S "$here" -B "$build_dir" -DCMAKE_BUILD_TYPE=Release >/dev/null
   cmake --build "$build_dir" "$@" >/dev/null
 }
+
+median() { sort -g | awk '{ v[NR] = $1 } END { print (NR % 2) ? v[(NR + 1) / 2] : (v[NR / 2] + v[NR / 2 + 1]) / 2 }'; }
