@@ -46,6 +46,7 @@ import numpy as np  # noqa: E402
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 import level_noise_study as study  # noqa: E402
 from kcreep_levels import student_t95  # noqa: E402
+from level_fit import fit_levels, kcreep_estimate  # noqa: E402
 
 BASE = [56, 64, 72, 84, 96, 112, 128, 148, 172, 196, 224, 256, 296]
 COEFFS = ("c11", "c22", "c23")
@@ -55,23 +56,8 @@ STEPS = [340, 384, 448, 512, 576, 640, 768]
 
 def fit(levels, ns, coeff, quadratic, weighted):
     """f0, its standard error, the degrees of freedom and f at the finest level."""
-    h = np.array([1.0 / n for n in ns])
-    f = np.array([levels[n][coeff] for n in ns])
-    columns = [np.ones_like(h), h] + ([h * h] if quadratic else []) + [np.array([levels[n]["harmonic4"] for n in ns])]
-    a = np.array(columns).T
-    sw = 1.0 / h if weighted else np.ones_like(h)
-    aw, fw = a * sw[:, None], f * sw
-    coef = np.linalg.lstsq(aw, fw, rcond=None)[0]
-    dof = len(ns) - a.shape[1]
-    residual = fw - aw @ coef
-    s2 = residual @ residual / dof
-    se = math.sqrt(s2 * np.linalg.inv(aw.T @ aw)[0, 0])
-    return coef[0], se, dof, f[np.argmin(h)]
-
-
-def kcreep_estimate(levels, ns, coeff):
-    f0, se, dof, finest = fit(levels, ns[-8:], coeff, quadratic=False, weighted=False)
-    return f0, (student_t95(dof) * se + 0.1 * abs(f0 - finest)) / abs(f0)
+    coef, se, dof, _ = fit_levels(levels, ns, coeff, quadratic=quadratic, weighted=weighted)
+    return coef[0], se, dof, levels[max(ns)][coeff]
 
 
 def quadratic_estimate(first):
@@ -143,10 +129,7 @@ def window_estimate(margin):
 
 def curvature(levels, ns, coeff):
     """L of the weighted fit f0 + K h + L h^2 + B harmonic4 through the levels ns."""
-    h = np.array([1.0 / n for n in ns])
-    a = np.array([np.ones_like(h), h, h * h, [levels[n]["harmonic4"] for n in ns]]).T
-    f = np.array([levels[n][coeff] for n in ns])
-    return np.linalg.lstsq(a / h[:, None], f / h, rcond=None)[0][2]
+    return fit_levels(levels, ns, coeff, quadratic=True, weighted=True)[0][2]
 
 
 def scaled_margins():

@@ -33,6 +33,7 @@ import numpy as np  # noqa: E402
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 import kcreep_levels as K  # noqa: E402
+from level_fit import fit_levels  # noqa: E402
 
 ROOT = os.path.join(os.path.dirname(os.path.abspath(__file__)), "..")
 DATA = os.path.join(ROOT, "docs", "data")
@@ -56,10 +57,7 @@ def levels_of(ratio, nu):
 
 def fit(levels, ns, coeff, quadratic):
     """Coefficients (f0, K, [L,] B) of the least-squares fit through the levels ns."""
-    h = np.array([1.0 / n for n in ns])
-    columns = [np.ones_like(h), h] + ([h * h] if quadratic else []) + [np.array([levels[n]["harmonic4"] for n in ns])]
-    a = np.array(columns).T
-    return np.linalg.lstsq(a, np.array([levels[n][coeff] for n in ns]), rcond=None)[0]
+    return fit_levels(levels, ns, coeff, quadratic=quadratic)[0]
 
 
 def model(coef, n, harmonic4, quadratic):

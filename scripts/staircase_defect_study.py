@@ -42,6 +42,7 @@ import numpy as np  # noqa: E402
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 import kcreep_levels as K  # noqa: E402
+from level_fit import fit_levels, kcreep_estimate  # noqa: E402
 
 ROOT = os.path.join(os.path.dirname(os.path.abspath(__file__)), "..")
 DATA = os.path.join(ROOT, "docs", "data", "staircase_defect_levels.dat")
@@ -95,34 +96,16 @@ def end_defects(ratio, mx, my):
 
 
 def load(ratio):
-    """Levels N -> {'f': [C11 C22 C23] referred to the ellipse, 'h4': harmonic4, defect sums}."""
+    """Levels N -> {c11, c22, c23 referred to the ellipse, harmonic4, the defect sums}."""
     merged = dict(K.read_level_file(DATA).get((ratio, NU), {}))
     if ratio == 5.0:
         merged.update(K.read_level_file(LONG).get((ratio, NU), {}))
     slopes = K.table_slopes(ratio, NU)
     levels = {}
     for n in sorted(merged):
-        e = K.refer_to_ellipse(ratio, NU, merged[n], slopes)
-        levels[n] = {"f": np.array([e[c] for c in COEFFS]), "h4": e["harmonic4"]}
+        levels[n] = K.refer_to_ellipse(ratio, NU, merged[n], slopes)
         levels[n].update(end_defects(ratio, merged[n]["mx"], merged[n]["my"]))
     return levels
-
-
-def fit(levels, ns, coeff, extra=(), quadratic=False):
-    """Least squares f0 + K h [+ L h^2] + B harmonic4 + extra columns through levels ns:
-    (coefficients, residuals, standard error of f0, degrees of freedom)."""
-    h = np.array([1.0 / n for n in ns])
-    columns = [np.ones_like(h), h] + ([h * h] if quadratic else []) + [np.array([levels[n]["h4"] for n in ns])]
-    columns += [np.array([col(levels[n]) for n in ns]) for col in extra]
-    a = np.column_stack(columns)
-    y = np.array([levels[n]["f"][coeff] for n in ns])
-    c, *_ = np.linalg.lstsq(a, y, rcond=None)
-    res = y - a @ c
-    dof = len(ns) - a.shape[1]
-    if dof <= 0 or np.linalg.matrix_rank(a) < a.shape[1]:   # a pair the same on a circle (R_p and Q_p)
-        return c, res, float("nan"), dof
-    se = math.sqrt(np.linalg.inv(a.T @ a)[0, 0] * np.sum(res ** 2) / dof)
-    return c, res, se, dof
 
 
 def column(name):
@@ -142,17 +125,17 @@ def scatter_table(data):
     for ratio in RATIOS:
         levels = data[ratio]
         ns = [n for n in levels if 56 <= n <= 120]
-        for k, name in enumerate(COEFFS):
-            c, res, _, _ = fit(levels, ns, k, quadratic=True)
+        for name in COEFFS:
+            c, _, _, res = fit_levels(levels, ns, name, quadratic=True)
             base = np.sqrt(np.mean(res ** 2)) / c[0]
-            c2, res2, _, _ = fit(levels, ns, k, [column(p) for p in PAIR], quadratic=True)
+            c2, _, _, res2 = fit_levels(levels, ns, name, quadratic=True, extra=[column(p) for p in PAIR])
             pair = np.sqrt(np.mean(res2 ** 2)) / c2[0]
-            c3, res3, _, _ = fit(levels, ns, k, [column(f"H{m}") for m in HARMONICS], quadratic=True)
+            c3, _, _, res3 = fit_levels(levels, ns, name, quadratic=True, extra=[column(f"H{m}") for m in HARMONICS])
             harmonics = np.sqrt(np.mean(res3 ** 2)) / c3[0]
-            best = min((np.sqrt(np.mean(fitted[1] ** 2)), p, q)
+            best = min((np.sqrt(np.mean(fitted[3] ** 2)), p, q)
                        for p, q in itertools.combinations(names, 2)
-                       for fitted in [fit(levels, ns, k, [column(p), column(q)], quadratic=True)]
-                       if fitted[2] == fitted[2])
+                       for fitted in [fit_levels(levels, ns, name, quadratic=True, extra=[column(p), column(q)])]
+                       if fitted[1] == fitted[1])
             print(f"| {ratio:g} | {name.upper()} | {100 * base:.4f} | {100 * harmonics:.4f} "
                   f"| {100 * pair:.4f} ({c2[5] / c2[4]:.2f}) "
                   f"| {best[1]}, {best[2]} | {100 * best[0] / c[0]:.4f} |")
@@ -165,31 +148,27 @@ def out_of_sample(data):
     fine = [n for n in levels if 80 <= n <= 120]
     print("| coefficient | fine levels as they are | less the coarse levels' pair | pair coefficients / f0, coarse; fine |")
     print("|---|---|---|---|")
-    for k, name in enumerate(COEFFS):
-        c, _, _, _ = fit(levels, coarse, k, [column(p) for p in PAIR], quadratic=True)
-        cf, _, _, _ = fit(levels, fine, k, [column(p) for p in PAIR], quadratic=True)
-        c0, res0, _, _ = fit(levels, fine, k, quadratic=True)
-        corrected = {n: dict(levels[n], f=levels[n]["f"] - np.eye(3)[k] * (c[4] * levels[n][PAIR[0]]
-                                                                          + c[5] * levels[n][PAIR[1]]))
+    for name in COEFFS:
+        c = fit_levels(levels, coarse, name, quadratic=True, extra=[column(p) for p in PAIR])[0]
+        cf = fit_levels(levels, fine, name, quadratic=True, extra=[column(p) for p in PAIR])[0]
+        c0, _, _, res0 = fit_levels(levels, fine, name, quadratic=True)
+        corrected = {n: dict(levels[n], **{name: levels[n][name] - c[4] * levels[n][PAIR[0]] - c[5] * levels[n][PAIR[1]]})
                      for n in fine}
-        c1, res1, _, _ = fit(corrected, fine, k, quadratic=True)
+        c1, _, _, res1 = fit_levels(corrected, fine, name, quadratic=True)
         print(f"| {name.upper()} | {100 * np.sqrt(np.mean(res0 ** 2)) / c0[0]:.4f} "
               f"| {100 * np.sqrt(np.mean(res1 ** 2)) / c1[0]:.4f} "
               f"| {c[4] / c[0]:.2f}, {c[5] / c[0]:.2f}; {cf[4] / cf[0]:.2f}, {cf[5] / cf[0]:.2f} |")
 
 
-def estimates(levels, ratio, k):
+def estimates(levels, ratio, coeff):
     """[(finest N, kcreep's estimate, its error, with the combination: estimate, error)] against the reference."""
-    ref = fit(levels, REFERENCE[ratio], k)[0][0]
+    ref = fit_levels(levels, REFERENCE[ratio], coeff)[0][0]
     rows = []
     for end in range(8, len(LADDER) + 1):
-        ns = LADDER[end - 8:end]
-        finest = levels[ns[-1]]["f"][k]
-        c, _, se, dof = fit(levels, ns, k)
-        old = (K.student_t95(dof) * se + 0.1 * abs(c[0] - finest)) / abs(c[0])
-        c2, _, se2, dof2 = fit(levels, ns, k, [combination])
-        new = (K.student_t95(dof2) * se2 + 0.1 * abs(c2[0] - (finest - c2[3] * combination(levels[ns[-1]])))) / abs(c2[0])
-        rows.append((ns[-1], old, abs(c[0] / ref - 1), new, abs(c2[0] / ref - 1)))
+        ns = LADDER[:end]
+        f0, old = kcreep_estimate(levels, ns, coeff)
+        f0_with, new = kcreep_estimate(levels, ns, coeff, extra=[combination])
+        rows.append((ns[-1], old, abs(f0 / ref - 1), new, abs(f0_with / ref - 1)))
     return ref, rows
 
 
@@ -198,9 +177,9 @@ def estimate_table(data):
     print("| a/b | coefficient | finest level | kcreep's: estimate | error | with the combination: estimate | error |")
     print("|---|---|---|---|---|---|---|")
     for ratio in (5.0, 10.0):
-        for k, name in enumerate(COEFFS):
-            ref, rows = estimates(data[ratio], ratio, k)
-            moved = fit(data[ratio], REFERENCE[ratio], k, [combination])[0][0] / ref - 1
+        for name in COEFFS:
+            ref, rows = estimates(data[ratio], ratio, name)
+            moved = fit_levels(data[ratio], REFERENCE[ratio], name, extra=[combination])[0][0] / ref - 1
             print(f"| {ratio:g} | {name.upper()} | reference {ref:.6f} (with the column in its own fit: "
                   f"{100 * moved:+.5f} %) | | | | |")
             for n, old, err_old, new, err_new in rows:
@@ -217,8 +196,8 @@ def figure(data):
     fig, (left, right) = plt.subplots(1, 2, figsize=(11, 4.2))
     levels = data[10.0]
     ns = [n for n in levels if 56 <= n <= 120]
-    c, res, _, _ = fit(levels, ns, 1, quadratic=True)
-    c2, res2, _, _ = fit(levels, ns, 1, [column(p) for p in PAIR], quadratic=True)
+    c, _, _, res = fit_levels(levels, ns, "c22", quadratic=True)
+    c2, _, _, res2 = fit_levels(levels, ns, "c22", quadratic=True, extra=[column(p) for p in PAIR])
     left.plot(ns, 100 * res / c[0], "o-", ms=3, label="f0 + K h + L h² + B harmonic4")
     left.plot(ns, 100 * res2 / c2[0], "s-", ms=3, label="... + row and column end defects (R₁, Q₋½)")
     left.set_xlabel("cells across b (a/b = 10, 10 N x N cells)")
@@ -226,7 +205,7 @@ def figure(data):
     left.set_title("The levels' scatter, a/b = 10, nu = 0.25")
     left.legend(fontsize=8)
     for ratio, style in ((5.0, "o"), (10.0, "s")):
-        _, rows = estimates(data[ratio], ratio, 1)
+        _, rows = estimates(data[ratio], ratio, "c22")
         n = [r[0] for r in rows]
         right.semilogy(n, [100 * r[1] for r in rows], style + "-", color="C0", ms=4,
                        label=f"kcreep's estimate, a/b = {ratio:g}")
