@@ -11,7 +11,8 @@
 !>   second moments (kcreep_staircase_normalisation), each fit (with the
 !>   staircase's four-fold harmonic, ellipse_level_estimate) through the finest
 !>   8 levels, as long as the next level stays within the cell budget of the
-!>   target (level_cell_budget).
+!>   target (level_cell_budget). From a/b = 3 on, each level's grid is the
+!>   quietest near the wanted one (kcreep_staircase_defects, quiet_grids).
 !> target > 0 on a mask: every cell is split into k x k subcells, k = 1, 2, 3, 4
 !>   (the staircase is the patch the user gave; it is not smoothed).
 !> a given grid (ellipse with mx, my; CONTACT's grid) or target = 0: the grid
@@ -33,6 +34,7 @@ module kcreep_error_run
   use kcreep_error_control
   use kcreep_staircase_normalisation, only: ellipse_normalised, staircase_harmonic4
   use kcreep_gap_levels, only: run_gap_patch
+  use kcreep_staircase_defects, only: quiet_ellipse_grid
   use kcreep_grid_transfer, only: transferred_traction
   implicit none
   private
@@ -42,6 +44,11 @@ module kcreep_error_run
   integer, parameter :: base_levels(5) = [56, 64, 72, 84, 96]
   !> The base levels of a long ellipse are scaled down to its cell budget, to no fewer than this.
   integer, parameter :: min_base_cells = 32
+  !> Ellipses from this a/b on take the quietest grid near each level
+  !> (quiet_grids): their rows are long and the row ends' scatter held the
+  !> accurate mode up at a/b = 5 to 10; at a/b = 2.5 to 3.5 it made no
+  !> difference, on the circle it doubled the estimates (docs/accuracy.md 6.5).
+  real(real64), parameter :: quiet_grid_min_ratio = 3
   !> The share of an ellipse's bounding grid inside it (pi/4), for its patch cells.
   real(real64), parameter :: ellipse_fill = 0.79_real64
   !> Patch cells of the finest split of a mask or of a single grid's
@@ -151,7 +158,8 @@ contains
     type(result_t), intent(out) :: result
     type(status_t), intent(inout) :: status
     type(problem_t) :: level_problem
-    integer, allocatable :: levels(:)
+    integer, allocatable :: levels(:)              !< cells across wanted (the ladder)
+    integer, allocatable :: cells(:)               !< cells across used (the quietest grid near the wanted one)
     real(real64), allocatable :: fnorm(:, :, :)    !< (3, 3, level) f referred to the patch (kcreep_staircase_normalisation)
     real(real64), allocatable :: harmonic4(:)      !< (level) the staircase's four-fold harmonic
     character(len=message_length), allocatable :: warnings(:)
@@ -161,7 +169,7 @@ contains
     real(real64) :: t(4), budget
     logical :: long_in_y
 
-    allocate (fnorm(3, 3, 0), harmonic4(0), warnings(0))
+    allocate (fnorm(3, 3, 0), harmonic4(0), warnings(0), cells(0))
     t = 0
     level_problem = problem
     call level_tolerance(level_problem)
@@ -172,25 +180,27 @@ contains
       k = 1
       do
         call ellipse_level_grid(a, b, levels(k), mx, my, long_in_y)
+        if (quiet_grids(a, b, problem%scheme%name)) call quiet_ellipse_grid(a, b, levels(k), my, mx)
+        cells = [cells, my]
         call ellipse_patch(a, b, mx, my, level_problem%patch, status)
         if (status%failed()) return
         call place_like(level_problem%patch, problem%patch)
         ! the last level's tractions carried over: GMRES starts closer (fewer
         ! iterations); unallocated on the first level, where it counts as absent
         if (k > 1) guess = transferred_traction(result%patch, result%traction, level_problem%patch)
-        call run_level(level_problem, levels(k), result, fnorm, warnings, t, status, guess)
+        call run_level(level_problem, my, result, fnorm, warnings, t, status, guess)
         if (status%failed()) return
         harmonic4 = [harmonic4, staircase_harmonic4(level_problem%patch)]
         if (k == size(levels) .and. k >= ellipse_fit_min) then
           first = max(1, k - ellipse_fit_width + 1)
-          call fit_levels(1.0_real64 / levels(first:k), fnorm(:, :, first:k), result, shape=harmonic4(first:k))
+          call fit_levels(1.0_real64 / cells(first:k), fnorm(:, :, first:k), result, shape=harmonic4(first:k))
           if (within_target(result%err, coefficient_targets(problem%target_error))) exit
           finest = next_level(levels(k))
           call ellipse_level_grid(a, b, finest, mx, my, long_in_y)
           if (ellipse_fill * mx * my > budget) then
             line = 'error control: the next level, '//itoa(mx)//' x '//itoa(my)//', would exceed the budget of '// &
                    itoa(nint(budget))//' patch cells at target_error '//rtoa(problem%target_error)// &
-                   ', stopped at '//itoa(levels(k))//' cells across (&solver cell_budget raises it)'
+                   ', stopped at '//itoa(cells(k))//' cells across (&solver cell_budget raises it)'
             warnings = [warnings, line]
             exit
           end if
@@ -202,6 +212,15 @@ contains
     call finish_result(result, t)
     result%warnings = warnings
   end subroutine run_ellipse_levels
+
+  !> Whether an ellipse's levels use the quietest grid near each wanted one
+  !> (kcreep_staircase_defects): the backward scheme on near-square cells,
+  !> a/b from quiet_grid_min_ratio (docs/accuracy.md section 6.5).
+  pure logical function quiet_grids(a, b, scheme_name)
+    real(real64), intent(in) :: a, b
+    character(len=*), intent(in) :: scheme_name
+    quiet_grids = a >= quiet_grid_min_ratio * b .and. scheme_name == 'backward'
+  end function quiet_grids
 
   !> An ellipse's base levels; a long one's scaled down so that the finest keeps to the budget.
   pure function ellipse_base_levels(a, b, budget, long_in_y) result(levels)
