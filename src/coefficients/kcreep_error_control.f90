@@ -20,6 +20,7 @@ module kcreep_error_control
   use, intrinsic :: iso_fortran_env, only: real64
   use, intrinsic :: ieee_arithmetic, only: ieee_value, ieee_quiet_nan
   use kcreep_strings, only: rtoa
+  use kcreep_patch, only: near_square_cells
   implicit none
   private
   public :: default_target_error, c23_target_factor, min_estimate_cells
@@ -93,14 +94,14 @@ contains
     if (present(long_in_y)) stretch = long_in_y
     if (semi_a >= semi_b) then
       my = cells
-      mx = max(cells, nint(cells * semi_a / semi_b))
+      mx = near_square_cells(cells, semi_a / semi_b)
     else if (stretch) then
       ! at most max_cell_aspect: the longest cells the estimate was checked on
       mx = cells
-      my = max(cells, nint(cells * semi_b / (semi_a * max_cell_aspect)))
+      my = near_square_cells(cells, semi_b / (semi_a * max_cell_aspect))
     else
       mx = cells
-      my = max(cells, nint(cells * semi_b / semi_a))
+      my = near_square_cells(cells, semi_b / semi_a)
     end if
   end subroutine ellipse_level_grid
 

@@ -14,7 +14,7 @@ module kcreep_patch
   use kcreep_limits, only: check_grid_size
   implicit none
   private
-  public :: patch_t, ellipse_patch, mask_patch, place_like
+  public :: patch_t, ellipse_patch, mask_patch, place_like, near_square_cells
 
   type :: patch_t
     character(len=:), allocatable :: kind     !< 'ellipse', 'mask' or 'contact'
@@ -60,6 +60,14 @@ contains
     end do
     call index_cells(patch, 'ellipse', status)
   end subroutine ellipse_patch
+
+  !> Cells along an axis `ratio` times as long as the one with `cells` cells,
+  !> for cells about as long as wide (never fewer than `cells`).
+  pure integer function near_square_cells(cells, ratio) result(along)
+    integer, intent(in) :: cells
+    real(real64), intent(in) :: ratio
+    along = max(cells, nint(cells * ratio))
+  end function near_square_cells
 
   !> Move an ellipse patch regenerated on another grid so that its centre is
   !> where source's is (source may have been moved, e.g. to put a spin centre

@@ -20,6 +20,7 @@
 !> cells than the wanted one.
 module kcreep_staircase_defects
   use, intrinsic :: iso_fortran_env, only: real64
+  use kcreep_patch, only: near_square_cells
   implicit none
   private
   public :: end_defect, quiet_ellipse_grid
@@ -67,71 +68,62 @@ contains
   !> The quietest grid (cells across the shorter axis b, mx columns) near
   !> wanted_cells across on the ellipse with a >= b (near-square cells: mx
   !> about wanted_cells a / b), with no more grid cells than the wanted one.
+  !> The end defect's smooth part is a least-squares line offset + slope / n
+  !> through every candidate grid from trend_span wanted_cells to
+  !> wanted_cells / trend_span; the chosen grid lies in the narrower window
+  !> from quiet_cells_window wanted_cells, so each defect is summed once.
   pure subroutine quiet_ellipse_grid(semi_a, semi_b, wanted_cells, cells, mx)
     real(real64), intent(in) :: semi_a, semi_b
     integer, intent(in) :: wanted_cells
     integer, intent(out) :: cells, mx
-    real(real64) :: slope, offset, distance, best
-    integer :: n, k, wanted_grid
+    real(real64), allocatable :: defect(:)
+    integer, allocatable :: rows(:), columns(:)
+    real(real64) :: ratio, slope, offset, distance, best
+    integer :: n, k, g, wanted_grid
 
-    call trend(semi_a / semi_b, wanted_cells, slope, offset)
-    wanted_grid = near_square_columns(semi_a / semi_b, wanted_cells) * wanted_cells
-    cells = wanted_cells
-    mx = near_square_columns(semi_a / semi_b, wanted_cells)
-    best = huge(1.0_real64)
-    do n = max(1, ceiling(quiet_cells_window * wanted_cells)), wanted_cells
-      do k = -column_change(semi_a / semi_b, n), column_change(semi_a / semi_b, n)
-        associate (columns => near_square_columns(semi_a / semi_b, n) + k)
-          if (columns * n > wanted_grid) cycle
-          distance = abs(end_defect(columns, n) - (offset + slope / n))
-          if (distance < best) then
-            best = distance
-            cells = n
-            mx = columns
-          end if
-        end associate
+    ratio = semi_a / semi_b
+    allocate (defect(0), rows(0), columns(0))
+    do n = max(1, floor(trend_span * wanted_cells)), ceiling(wanted_cells / trend_span)
+      do k = -column_change(ratio, n), column_change(ratio, n)
+        rows = [rows, n]
+        columns = [columns, near_square_cells(n, ratio) + k]
+        defect = [defect, end_defect(columns(size(columns)), n)]
       end do
+    end do
+    call line_in_inverse(rows, defect, slope, offset)
+
+    wanted_grid = near_square_cells(wanted_cells, ratio) * wanted_cells
+    cells = wanted_cells
+    mx = near_square_cells(wanted_cells, ratio)
+    best = huge(1.0_real64)
+    do g = 1, size(rows)
+      if (rows(g) < ceiling(quiet_cells_window * wanted_cells) .or. rows(g) > wanted_cells) cycle
+      if (columns(g) * rows(g) > wanted_grid) cycle
+      distance = abs(defect(g) - (offset + slope / rows(g)))
+      if (distance < best) then
+        best = distance
+        cells = rows(g)
+        mx = columns(g)
+      end if
     end do
   end subroutine quiet_ellipse_grid
 
-  !> The end defect's smooth part near wanted_cells: offset + slope / cells,
-  !> a least-squares line through every candidate grid from trend_span
-  !> wanted_cells to wanted_cells / trend_span.
-  pure subroutine trend(ratio, wanted_cells, slope, offset)
-    real(real64), intent(in) :: ratio
-    integer, intent(in) :: wanted_cells
+  !> Least-squares line d = offset + slope / n.
+  pure subroutine line_in_inverse(n, d, slope, offset)
+    integer, intent(in) :: n(:)
+    real(real64), intent(in) :: d(:)
     real(real64), intent(out) :: slope, offset
-    real(real64) :: h, d, count, sum_h, sum_d, sum_hh, sum_hd
-    integer :: n, k
-    count = 0; sum_h = 0; sum_d = 0; sum_hh = 0; sum_hd = 0
-    do n = max(1, floor(trend_span * wanted_cells)), ceiling(wanted_cells / trend_span)
-      do k = -column_change(ratio, n), column_change(ratio, n)
-        h = 1.0_real64 / n
-        d = end_defect(near_square_columns(ratio, n) + k, n)
-        count = count + 1
-        sum_h = sum_h + h
-        sum_d = sum_d + d
-        sum_hh = sum_hh + h * h
-        sum_hd = sum_hd + h * d
-      end do
-    end do
-    slope = (count * sum_hd - sum_h * sum_d) / (count * sum_hh - sum_h**2)
-    offset = (sum_d - slope * sum_h) / count
-  end subroutine trend
-
-  !> Columns of near-square cells with `cells` rows on an ellipse a/b = ratio >= 1
-  !> (as kcreep_error_control ellipse_level_grid).
-  pure integer function near_square_columns(ratio, cells) result(mx)
-    real(real64), intent(in) :: ratio
-    integer, intent(in) :: cells
-    mx = max(cells, nint(cells * ratio))
-  end function near_square_columns
+    real(real64) :: h(size(n))
+    h = 1.0_real64 / n
+    slope = (size(h) * sum(h * d) - sum(h) * sum(d)) / (size(h) * sum(h * h) - sum(h)**2)
+    offset = (sum(d) - slope * sum(h)) / size(h)
+  end subroutine line_in_inverse
 
   !> How many columns a candidate may add or drop.
   pure integer function column_change(ratio, cells) result(change)
     real(real64), intent(in) :: ratio
     integer, intent(in) :: cells
-    change = min(max_column_change, int(quiet_aspect_change * near_square_columns(ratio, cells)))
+    change = min(max_column_change, int(quiet_aspect_change * near_square_cells(cells, ratio)))
   end function column_change
 
   !> Centre of cell i of m across [-1, 1].
