@@ -87,8 +87,6 @@ contains
     integer, intent(in) :: m
     type(status_t) :: st
     type(patch_t) :: patch
-    type(scheme_t) :: scheme
-    type(operator_table_t) :: table
     type(fft_operator_t) :: op
     type(circulant_preconditioner_t) :: prec
     real(real64), allocatable :: x(:, :), y1(:, :), y2(:, :), z1(:, :), z2(:, :)
@@ -101,10 +99,7 @@ contains
       return
     end if
     call ellipse_patch(1.0_real64, 1.0_real64, m, m, patch, st)
-    scheme%name = 'backward'
-    call build_operator_table(patch, scheme, 0.25_real64, 1.0_real64, table)
-    call create_fft_operator(patch, table, 3, op)
-    call build_circulant_preconditioner(patch, 0.25_real64, 3, prec)
+    call backward_operators(patch, 0.25_real64, op, prec)
     allocate (x(2 * patch%n, 3), y1(2 * patch%n, 3), y2(2 * patch%n, 3), z1(2 * patch%n, 3), z2(2 * patch%n, 3))
     call random_number(x)
     !$ call omp_set_num_threads(1)
@@ -125,8 +120,6 @@ contains
     integer, intent(in) :: mx, my
     type(status_t) :: st
     type(patch_t) :: patch
-    type(scheme_t) :: scheme
-    type(operator_table_t) :: table
     type(fft_operator_t) :: op
     type(circulant_preconditioner_t) :: prec
     real(real64), allocatable :: x(:, :), y(:, :), z(:, :)
@@ -146,10 +139,7 @@ contains
     do k = 1, n
       mirror(k) = cell_of(patch%ix(k), my + 1 - patch%iy(k))
     end do
-    scheme%name = 'backward'
-    call build_operator_table(patch, scheme, 0.3_real64, 1.0_real64, table)
-    call create_fft_operator(patch, table, 3, op)
-    call build_circulant_preconditioner(patch, 0.3_real64, 3, prec)
+    call backward_operators(patch, 0.3_real64, op, prec)
     ! columns: class +1 field, class -1 field, their sum
     allocate (x(2 * n, 3), y(2 * n, 3), z(2 * n, 3))
     call random_number(x)
@@ -184,4 +174,18 @@ contains
     call t%check(worst <= 1e-12_real64, what//': each parity class comes back by projection')
   end subroutine check_split
 
+  !> The backward scheme's FFT operator and circulant preconditioner on a
+  !> patch, three load cases (G = 1).
+  subroutine backward_operators(patch, nu, op, prec)
+    type(patch_t), intent(in) :: patch
+    real(real64), intent(in) :: nu
+    type(fft_operator_t), intent(out) :: op
+    type(circulant_preconditioner_t), intent(out) :: prec
+    type(scheme_t) :: scheme
+    type(operator_table_t) :: table
+    scheme%name = 'backward'
+    call build_operator_table(patch, scheme, nu, 1.0_real64, table)
+    call create_fft_operator(patch, table, 3, op)
+    call build_circulant_preconditioner(patch, nu, 3, prec)
+  end subroutine backward_operators
 end program test_fft_operator
