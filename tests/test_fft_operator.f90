@@ -19,12 +19,16 @@
 !>     (px odd, py even) likewise, so the result for the sum of one field of
 !>     each class, projected on a class, is that class's own result. The
 !>     projection's difference is rounding: allowed 1e-12 of the largest
-!>     entry, measured below 1e-15 (printed).
+!>     entry, measured below 1e-15 (printed). Also at nu = 0, where the
+!>     iterative path keeps px and py together (plan_subsystems with
+!>     decouple = .false.: the two classes, so xi pairs with eta) instead
+!>     of the three decoupled systems the dense path factorises.
 program test_fft_operator
   use, intrinsic :: iso_fortran_env, only: real64
   use kcreep_status, only: status_t
   use kcreep_patch, only: patch_t, ellipse_patch
-  use kcreep_assembly, only: scheme_t, operator_table_t, build_operator_table, apply_operator
+  use kcreep_assembly, only: scheme_t, operator_table_t, build_operator_table, apply_operator, n_load_cases
+  use kcreep_split, only: subsystem_t, plan_subsystems
   use kcreep_fft_operator, only: fft_operator_t, create_fft_operator, apply_fft_operator, destroy_fft_operator
   use kcreep_circulant_preconditioner, only: circulant_preconditioner_t, build_circulant_preconditioner, &
                                             apply_circulant_preconditioner, destroy_circulant_preconditioner
@@ -38,9 +42,11 @@ program test_fft_operator
   call check_patch(1.5_real64, 0.6_real64, 37, 15, 'collocation')
   call check_patch(0.4_real64, 1.2_real64, 11, 32, 'backward')
   call check_threads(60)
-  call check_parity(1.0_real64, 1.0_real64, 48, 48)
-  call check_parity(1.3_real64, 0.7_real64, 41, 27)
-  call check_parity(0.5_real64, 2.0_real64, 30, 121)
+  call check_parity(1.0_real64, 1.0_real64, 48, 48, 0.3_real64)
+  call check_parity(1.3_real64, 0.7_real64, 41, 27, 0.3_real64)
+  call check_parity(0.5_real64, 2.0_real64, 30, 121, 0.3_real64)
+  call check_parity(1.3_real64, 0.7_real64, 41, 27, 0.0_real64)
+  call check_coupled_plan()
   call t%finish()
 
 contains
@@ -115,8 +121,8 @@ contains
     call destroy_circulant_preconditioner(prec)
   end subroutine check_threads
 
-  subroutine check_parity(a, b, mx, my)
-    real(real64), intent(in) :: a, b
+  subroutine check_parity(a, b, mx, my, nu)
+    real(real64), intent(in) :: a, b, nu
     integer, intent(in) :: mx, my
     type(status_t) :: st
     type(patch_t) :: patch
@@ -128,7 +134,7 @@ contains
     character(len=64) :: label
     integer :: k, n
 
-    write (label, '(i0, a, i0)') mx, ' x ', my
+    write (label, '(i0, a, i0, a, f3.1)') mx, ' x ', my, ', nu = ', nu
     call ellipse_patch(a, b, mx, my, patch, st)
     n = patch%n
     allocate (cell_of(mx, my), mirror(n))
@@ -139,7 +145,7 @@ contains
     do k = 1, n
       mirror(k) = cell_of(patch%ix(k), my + 1 - patch%iy(k))
     end do
-    call backward_operators(patch, 0.3_real64, op, prec)
+    call backward_operators(patch, nu, op, prec)
     ! columns: class +1 field, class -1 field, their sum
     allocate (x(2 * n, 3), y(2 * n, 3), z(2 * n, 3))
     call random_number(x)
@@ -156,6 +162,22 @@ contains
     call destroy_circulant_preconditioner(prec)
 
   end subroutine check_parity
+
+  !> nu = 0 on a y-symmetric patch: the dense path's three decoupled systems
+  !> (px even; px odd; py even), the iterative path's two parity classes.
+  subroutine check_coupled_plan()
+    type(status_t) :: st
+    type(patch_t) :: patch
+    type(subsystem_t), allocatable :: dense(:), iterative(:)
+    logical, parameter :: all_cases(n_load_cases) = .true.
+    call ellipse_patch(1.3_real64, 0.7_real64, 41, 27, patch, st)
+    dense = plan_subsystems(patch, 0.0_real64, .true., all_cases)
+    iterative = plan_subsystems(patch, 0.0_real64, .true., all_cases, decouple=.false.)
+    call t%check(size(dense) == 3 .and. all(dense%m < patch%n), 'nu = 0, dense path: three decoupled systems')
+    call t%check(size(iterative) == 2 .and. iterative(1)%parity_class == 1 .and. &
+                 iterative(2)%parity_class == -1 .and. iterative(1)%serves(1) .and. iterative(2)%serves(2) .and. &
+                 iterative(2)%serves(3), 'nu = 0, iterative path: the two parity classes (xi; eta and phi)')
+  end subroutine check_coupled_plan
 
   !> r(:, 1), r(:, 2): the results for a field of each class; r(:, 3): for their sum.
   subroutine check_split(r, mirror, what)

@@ -483,7 +483,10 @@ contains
     integer :: i, j, nc, n, mmax, worst
 
     n = patch%n
-    subs = plan_subsystems(patch, nu, opts%split_systems, requested)
+    ! px and py stay together at nu = 0 too: the parity classes then pair on
+    ! the transforms (xi with eta, phi alone: two full vectors, apply_expanded),
+    ! where the decoupled systems take three (measured: docs/performance.md)
+    subs = plan_subsystems(patch, nu, opts%split_systems, requested, decouple=.false.)
     ! one GMRES column per (subsystem, requested load case it serves)
     allocate (case_of(0), sub_of(0))
     do j = 1, n_load_cases

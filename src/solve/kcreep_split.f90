@@ -44,11 +44,14 @@ module kcreep_split
 
 contains
 
-  !> The systems to solve for the requested load cases.
-  function plan_subsystems(patch, nu, split, requested) result(subs)
+  !> The systems to solve for the requested load cases. decouple (default
+  !> true): split px from py when nu = 0 (smaller dense factorisations; the
+  !> iterative path keeps them together, see solve_iterative).
+  function plan_subsystems(patch, nu, split, requested, decouple) result(subs)
     type(patch_t), intent(in) :: patch
     real(real64), intent(in) :: nu
     logical, intent(in) :: split, requested(n_load_cases)
+    logical, intent(in), optional :: decouple
     type(subsystem_t), allocatable :: subs(:)
     type(subsystem_t) :: candidates(3)
     integer :: nc, i
@@ -56,6 +59,7 @@ contains
 
     symmetric = split .and. patch%mirror_symmetric_in_y()
     decoupled = split .and. nu == 0
+    if (present(decouple)) decoupled = decoupled .and. decouple
     if (symmetric .and. decoupled) then
       candidates(1) = build('px even', [0], [even], [.true., .false., .false.])
       candidates(2) = build('px odd', [0], [odd], [.false., .false., .true.])
