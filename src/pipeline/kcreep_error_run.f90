@@ -12,7 +12,9 @@
 !>   staircase's four-fold harmonic, ellipse_level_estimate) through the finest
 !>   8 levels, as long as the next level stays within the cell budget of the
 !>   target (level_cell_budget). From a/b = 3 on, each level's grid is the
-!>   quietest near the wanted one (kcreep_staircase_defects, quiet_grids).
+!>   quietest near the wanted one (kcreep_staircase_defects, quiet_grids),
+!>   and the estimate's order margin counts at least the circle's slope
+!>   (kcreep_error_control long_in_x_slope_floor).
 !> target > 0 on a mask: every cell is split into k x k subcells, k = 1, 2, 3, 4
 !>   (the staircase is the patch the user gave; it is not smoothed).
 !> a given grid (ellipse with mx, my; CONTACT's grid) or target = 0: the grid
@@ -193,7 +195,13 @@ contains
         harmonic4 = [harmonic4, staircase_harmonic4(level_problem%patch)]
         if (k == size(levels) .and. k >= ellipse_fit_min) then
           first = max(1, k - ellipse_fit_width + 1)
-          call fit_levels(1.0_real64 / cells(first:k), fnorm(:, :, first:k), result, shape=harmonic4(first:k))
+          ! the ellipses long in x of the quiet grids: their order margin has a floor
+          if (quiet_grids(a, b, problem%scheme%name)) then
+            call fit_levels(1.0_real64 / cells(first:k), fnorm(:, :, first:k), result, shape=harmonic4(first:k), &
+                            slope_floor=long_in_x_slope_floor)
+          else
+            call fit_levels(1.0_real64 / cells(first:k), fnorm(:, :, first:k), result, shape=harmonic4(first:k))
+          end if
           if (within_target(result%err, coefficient_targets(problem%target_error))) exit
           finest = next_level(levels(k))
           call ellipse_level_grid(a, b, finest, mx, my, long_in_y)
@@ -332,11 +340,12 @@ contains
   end subroutine run_level
 
   !> The fit of every f entry: the result gets the limits, err those of C11, C22, C23.
-  subroutine fit_levels(h, fnorm, result, smooth, shape)
+  subroutine fit_levels(h, fnorm, result, smooth, shape, slope_floor)
     real(real64), intent(in) :: h(:), fnorm(:, :, :)
     type(result_t), intent(inout) :: result
     logical, intent(in), optional :: smooth   !< levels without staircase noise (mask splits)
     real(real64), intent(in), optional :: shape(:)   !< an ellipse's staircase harmonic per level (ellipse_level_estimate)
+    real(real64), intent(in), optional :: slope_floor(3, 3)   !< per f entry (ellipse_level_estimate)
     real(real64) :: limit, rel
     integer :: i, j
     result%err = ieee_value(1.0_real64, ieee_quiet_nan)
@@ -348,6 +357,8 @@ contains
         end if
         if (present(smooth)) then
           call smooth_level_estimate(h, fnorm(i, j, :), limit, rel)
+        else if (present(shape) .and. present(slope_floor)) then
+          call ellipse_level_estimate(h, fnorm(i, j, :), shape, limit, rel, slope_floor(i, j))
         else if (present(shape)) then
           call ellipse_level_estimate(h, fnorm(i, j, :), shape, limit, rel)
         else
