@@ -169,7 +169,8 @@ contains
     integer :: k, mx, my, finest, first
     real(real64), allocatable :: guess(:, :)     !< the last level's tractions on this level's cells
     real(real64) :: t(4), budget
-    logical :: long_in_y
+    real(real64) :: slope_floor(3, 3)   !< of the order margin, per f entry (zero: none)
+    logical :: long_in_y, quiet
 
     allocate (fnorm(3, 3, 0), harmonic4(0), warnings(0), cells(0))
     t = 0
@@ -178,11 +179,15 @@ contains
     budget = cell_budget_or(problem, level_cell_budget(problem%target_error))
     long_in_y = ellipse_cells_long_in_y(problem%target_error, problem%scheme%name)
     associate (a => problem%patch%semi_a, b => problem%patch%semi_b)
+      ! an ellipse long in x: quiet grids, and a floor under its order margin
+      quiet = quiet_grids(a, b, problem%scheme%name)
+      slope_floor = 0
+      if (quiet) slope_floor = long_in_x_slope_floor
       levels = ellipse_base_levels(a, b, budget, long_in_y)
       k = 1
       do
         call ellipse_level_grid(a, b, levels(k), mx, my, long_in_y)
-        if (quiet_grids(a, b, problem%scheme%name)) call quiet_ellipse_grid(a, b, levels(k), my, mx)
+        if (quiet) call quiet_ellipse_grid(a, b, levels(k), my, mx)
         cells = [cells, my]
         call ellipse_patch(a, b, mx, my, level_problem%patch, status)
         if (status%failed()) return
@@ -195,13 +200,8 @@ contains
         harmonic4 = [harmonic4, staircase_harmonic4(level_problem%patch)]
         if (k == size(levels) .and. k >= ellipse_fit_min) then
           first = max(1, k - ellipse_fit_width + 1)
-          ! the ellipses long in x of the quiet grids: their order margin has a floor
-          if (quiet_grids(a, b, problem%scheme%name)) then
-            call fit_levels(1.0_real64 / cells(first:k), fnorm(:, :, first:k), result, shape=harmonic4(first:k), &
-                            slope_floor=long_in_x_slope_floor)
-          else
-            call fit_levels(1.0_real64 / cells(first:k), fnorm(:, :, first:k), result, shape=harmonic4(first:k))
-          end if
+          call fit_levels(1.0_real64 / cells(first:k), fnorm(:, :, first:k), result, shape=harmonic4(first:k), &
+                          slope_floor=slope_floor)
           if (within_target(result%err, coefficient_targets(problem%target_error))) exit
           finest = next_level(levels(k))
           call ellipse_level_grid(a, b, finest, mx, my, long_in_y)
@@ -345,7 +345,7 @@ contains
     type(result_t), intent(inout) :: result
     logical, intent(in), optional :: smooth   !< levels without staircase noise (mask splits)
     real(real64), intent(in), optional :: shape(:)   !< an ellipse's staircase harmonic per level (ellipse_level_estimate)
-    real(real64), intent(in), optional :: slope_floor(3, 3)   !< per f entry (ellipse_level_estimate)
+    real(real64), intent(in), optional :: slope_floor(3, 3)   !< per f entry (ellipse_level_estimate); given with shape
     real(real64) :: limit, rel
     integer :: i, j
     result%err = ieee_value(1.0_real64, ieee_quiet_nan)
@@ -357,10 +357,8 @@ contains
         end if
         if (present(smooth)) then
           call smooth_level_estimate(h, fnorm(i, j, :), limit, rel)
-        else if (present(shape) .and. present(slope_floor)) then
-          call ellipse_level_estimate(h, fnorm(i, j, :), shape, limit, rel, slope_floor(i, j))
         else if (present(shape)) then
-          call ellipse_level_estimate(h, fnorm(i, j, :), shape, limit, rel)
+          call ellipse_level_estimate(h, fnorm(i, j, :), shape, limit, rel, slope_floor(i, j))
         else
           call level_estimate(h, fnorm(i, j, :), limit, rel)
         end if
