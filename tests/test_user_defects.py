@@ -22,6 +22,7 @@ names       batch cases named by their path relative to the list; two cases
 import os
 import re
 import resource
+import shutil
 import subprocess
 import sys
 import time
@@ -84,12 +85,16 @@ def section_paths():
     proc = run(["--batch", "l.list"])
     rows = kc.read_table(os.path.join(folder, "l.tab")) if proc.returncode == 0 else []
     kc.check(rows and rows[0]["n"] == 8, f"--batch: the same 8 cells ({proc.stderr.strip()})")
-    # the shipped examples: single (from the repository root and from elsewhere),
-    # --estimate-memory and --batch
+    # the shipped examples, --estimate-memory and --batch from another folder;
+    # on a copy of input/ (with shared/ beside it as in the repository's
+    # parent), because their traction files are written beside the namelists
     repo = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
-    inputs = os.path.join(repo, "input")
-    examples = sorted(f for f in os.listdir(inputs) if f.endswith(".nml"))
+    inputs = os.path.join(folder, "repo", "input")
+    shutil.copytree(os.path.join(repo, "input"), inputs)
     shared = os.path.isdir(os.path.join(repo, "..", "shared", "contact-samples"))
+    if shared:
+        os.symlink(os.path.abspath(os.path.join(repo, "..", "shared")), os.path.join(folder, "shared"))
+    examples = sorted(f for f in os.listdir(inputs) if f.endswith(".nml"))
     out = os.path.join(folder, "out")
     os.makedirs(out)
     for name in examples:
