@@ -2,7 +2,8 @@
 """Check kcreep's stated errors against an independent reference.
 
     independent_check.py [--cases 1:0.25,0.5:0.25,...] [--levels 136,152,160,...,384] [--max-cells 200000]
-                         [--cache FILE] [--target T] [--cell-budget CELLS] [--markdown] [--out FILE]
+                         [--cache FILE] [--target T] [--cell-budget CELLS] [--tolerance T] [--restart R]
+                         [--markdown] [--out FILE]
 
 For each case (a/b : nu; ellipse with c = sqrt(ab) = 1) kcreep is run twice
 with only semi_a, semi_b, nu given:
@@ -91,6 +92,8 @@ def main():
                     help="the reference levels' cells: near-square, or for a/b < 1 N x N over the bounding box "
                          "(cells long in y, as kcreep's levels for tight targets); keep each in its own --cache")
     ap.add_argument("--tolerance", type=float, default=0.0, help="&solver tolerance of the reference levels (0: kcreep's)")
+    ap.add_argument("--restart", type=int, default=0,
+                    help="&solver restart of the reference levels (0: kcreep's; smaller needs less memory)")
     ap.add_argument("--markdown", action="store_true")
     ap.add_argument("--out", default="")
     args = ap.parse_args()
@@ -109,6 +112,7 @@ def main():
             mx, my = K.square_grid(ratio, n, args.grid)
             if n not in have and mx * my <= args.max_cells:
                 extra = K.TARGET_ZERO + (f", tolerance = {args.tolerance!r}" if args.tolerance > 0 else "")
+                extra += f", restart = {args.restart}" if args.restart > 0 else ""
                 have[n] = K.ellipse_level(ratio, nu, n, grid=args.grid, extra_solver=extra)
                 append_cache(args.cache, ratio, nu, n, have[n])
         ref = reference({n: v for n, v in have.items() if n in levels}, ratio, nu)
