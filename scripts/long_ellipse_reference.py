@@ -4,8 +4,8 @@ one window of fine levels against the fit through finer ones, and each
 level's first-order error N (f(N) / f0 - 1) from coarse to fine.
 
     long_ellipse_reference.py [--ratio 10] [--nu 0.5] [--windows 296-632,448-1024,600-1024,296-1024]
-                              [--ladders 56-148,72-196,96-256] [--cache FILE[,FILE]] [--out FILE]
-                              [--figure FILE]
+                              [--ladders 56-148,72-196,96-256] [--compute] [--cache FILE[,FILE]]
+                              [--out FILE] [--figure FILE]
 
 The levels (ellipse a = sqrt(ratio), b = 1/sqrt(ratio), near-square cells,
 N cells across b, normalised by the staircase area) are read from the
@@ -20,10 +20,13 @@ kcreep fits its finest 8 levels, the plain grids of a ladder of about 15 %
 steps (56, 64, 72, 84, 96, 112, 128, 148, 172, 196, 224, 256, as far as the
 cache has them) within each range, and gives its error against that
 reference beside kcreep's estimate without the slope floor (t95 x SE plus a
-tenth of the extrapolation from the finest level). Prints markdown tables
+tenth of the extrapolation from the finest level). With --compute the
+ladder's plain grids missing from the caches are solved (&solver method =
+'iterative', tolerance = 1e-9, target_error = 0; under a minute at a/b = 10)
+and appended to docs/data/long_ellipse_ladder_levels.dat. Prints markdown tables
 (to --out as well); --figure draws N (f(N) / f0 - 1) of C11, C22, C23
 against N (matplotlib: /usr/bin/python3 with Debian's python3-matplotlib).
-Standard library otherwise; nothing is computed, so it takes seconds.
+Standard library otherwise; without --compute nothing is solved (seconds).
 """
 import argparse
 import os
@@ -31,10 +34,11 @@ import sys
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 import kcreep_levels as K  # noqa: E402
-from independent_check import reference  # noqa: E402
+from independent_check import append_cache, reference  # noqa: E402
 from refine_kalker_table import T95, lstsq_columns  # noqa: E402
 
 DATA = os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "docs", "data")
+LADDER_CACHE = os.path.join(DATA, "long_ellipse_ladder_levels.dat")
 COEFFS = ("c11", "c22", "c23")
 #: kcreep's ladder from its first levels on, one level about 15 % finer at a time
 LADDER = (56, 64, 72, 84, 96, 112, 128, 148, 172, 196, 224, 256)
@@ -89,13 +93,26 @@ def main():
     ap.add_argument("--windows", default="296-632,448-1024,600-1024,296-1024")
     ap.add_argument("--ladders", default="")
     ap.add_argument("--cache", default=",".join(os.path.join(DATA, f) for f in
-                                                ("fine_reference_levels_long.dat", "staircase_defect_levels.dat")))
+                                                ("fine_reference_levels_long.dat", "staircase_defect_levels.dat",
+                                                 "long_ellipse_ladder_levels.dat")))
+    ap.add_argument("--compute", action="store_true")
     ap.add_argument("--out", default="")
     ap.add_argument("--figure", default="")
     args = ap.parse_args()
     levels = {}
     for path in args.cache.split(","):
         levels.update(K.read_level_file(path).get((args.ratio, args.nu), {}))
+    if args.compute and args.ladders:
+        if not os.path.exists(LADDER_CACHE):
+            with open(LADDER_CACHE, "w") as f:
+                f.write("# plain ladder levels of scripts/long_ellipse_reference.py --compute: ellipse c = 1, backward\n"
+                        "# scheme, near-square grids (no quiet-grid choice), N cells across the shorter axis,\n"
+                        "# tolerance 1e-9, coefficients normalised by the staircase area (kcreep_levels.ellipse_level)\n"
+                        "# a_over_b nu N mx my n c11 c22 c23 c33 c32\n")
+        for n in LADDER:
+            if n not in levels:
+                levels[n] = K.ellipse_level(args.ratio, args.nu, n, extra_solver=K.TARGET_ZERO + ", tolerance = 1e-9")
+                append_cache(LADDER_CACHE, args.ratio, args.nu, n, levels[n])
     if not levels:
         sys.exit(f"long_ellipse_reference.py: error: no levels of a/b = {args.ratio:g}, nu = {args.nu:g} "
                  f"in {args.cache}")
