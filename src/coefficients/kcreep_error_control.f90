@@ -27,7 +27,7 @@ module kcreep_error_control
   public :: coefficient_targets, ellipse_level_grid, ellipse_cells_long_in_y, next_level, level_cell_budget, student_t95
   public :: cell_budget_allowed, cell_budget_range, level_solver_tolerance
   public :: first_order_fit, level_estimate, ellipse_level_estimate, smooth_level_estimate, basis_fit
-  public :: single_grid_estimate, ellipse_fit_min, ellipse_fit_width, long_in_x_slope_floor
+  public :: single_grid_estimate, ellipse_fit_min, ellipse_fit_width
   public :: split_grid_estimate, within_target, uncertain_flag
 
   !> &solver target_error when not given: the relative error aimed at for C11 and C22.
@@ -51,20 +51,6 @@ module kcreep_error_control
   !> The share of an ellipse's extrapolation (f0 - f(finest level)) counted
   !> as the uncertainty of its order (ellipse_level_estimate).
   real(real64), parameter :: order_margin = 0.1_real64
-  !> On an ellipse long in x (a >= 3 b, the levels' h = 1 / cells across b)
-  !> the first-order slope K / f0 is small (-0.006 per 1/N at a/b = 4, -0.09
-  !> at 10), but the straight line through the levels still misses f0: by
-  !> 0.009-0.014 % (C22) and 0.016-0.024 % (C23) at 170-250 cells across at
-  !> a/b = 6, 8 and 10 (nu = 0.5), against references from levels of up to
-  !> 632-768 cells across, where a tenth of the extrapolation was 0.001-0.002 %
-  !> (C22) and 0.006-0.008 % (C23) at a/b = 10 (docs/accuracy.md section
-  !> 6.6). The order margin there counts at least the circle's slope
-  !> (section 6.4: |K| / f0 = 0.282, 0.347, 0.632 per 1/N for C11, C22, C23,
-  !> nu = 0.25), indexed like f(3, 3); the other entries take C23's. The
-  !> misses at a/b = 10 needed 0.18 (C22) and 0.31 (C23).
-  real(real64), parameter :: long_in_x_slope_floor(3, 3) = reshape( &
-    [0.282_real64, 0.632_real64, 0.632_real64, 0.632_real64, 0.347_real64, 0.632_real64, &
-     0.632_real64, 0.632_real64, 0.632_real64], [3, 3])
   !> Patch cells of the finest level kcreep may choose at target_error = 1e-3
   !> (level_cell_budget). A run-time budget: on the iterative path on two
   !> threads of the 2-core development machine a level of 40,000 cells takes
@@ -246,19 +232,15 @@ contains
   !> is 1 only to within about 0.06: fits with a free order give 0.94 to 1;
   !> a straight line through levels 56-148 then misses f0 by up to 9 % of the
   !> correction). Checked against references from grids of 136 to 384 cells
-  !> across (docs/accuracy.md section 3.1).
-  !> slope_floor (relative, per unit h): the extrapolation counted in the
-  !> order margin is at least slope_floor x h(finest) x |f0|. Ellipses long
-  !> in x need it (long_in_x_slope_floor): there the levels' slope is small,
-  !> yet the straight line misses f0 by more than a tenth of it.
-  pure subroutine ellipse_level_estimate(h, f, shape, limit, rel_error, slope_floor)
+  !> across (docs/accuracy.md section 3.1); on ellipses long in x (a/b = 3.33
+  !> to 10) against references from levels up to 632-1024 cells across
+  !> (section 6.7).
+  pure subroutine ellipse_level_estimate(h, f, shape, limit, rel_error)
     real(real64), intent(in) :: h(:), f(:), shape(:)
     real(real64), intent(out) :: limit, rel_error
-    real(real64), intent(in), optional :: slope_floor
     real(real64) :: se, extrapolation
     call three_column_fit(h, f, shape, limit, se)
     extrapolation = abs(limit - f(minloc(h, 1)))
-    if (present(slope_floor)) extrapolation = max(extrapolation, slope_floor * minval(h) * abs(limit))
     rel_error = (student_t95(size(h) - 3) * se + order_margin * extrapolation) / abs(limit)
   end subroutine ellipse_level_estimate
 

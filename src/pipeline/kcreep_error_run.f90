@@ -11,10 +11,7 @@
 !>   second moments (kcreep_staircase_normalisation), each fit (with the
 !>   staircase's four-fold harmonic, ellipse_level_estimate) through the finest
 !>   8 levels, as long as the next level stays within the cell budget of the
-!>   target (level_cell_budget). From a/b = 3 on, each level's grid is the
-!>   quietest near the wanted one (kcreep_staircase_defects, quiet_grids),
-!>   and the estimate's order margin counts at least the circle's slope
-!>   (kcreep_error_control long_in_x_slope_floor).
+!>   target (level_cell_budget).
 !> target > 0 on a mask: every cell is split into k x k subcells, k = 1, 2, 3, 4
 !>   (the staircase is the patch the user gave; it is not smoothed).
 !> a given grid (ellipse with mx, my; CONTACT's grid) or target = 0: the grid
@@ -36,7 +33,6 @@ module kcreep_error_run
   use kcreep_error_control
   use kcreep_staircase_normalisation, only: ellipse_normalised, staircase_harmonic4
   use kcreep_gap_levels, only: run_gap_patch
-  use kcreep_staircase_defects, only: quiet_ellipse_grid
   use kcreep_grid_transfer, only: transferred_traction
   implicit none
   private
@@ -46,11 +42,6 @@ module kcreep_error_run
   integer, parameter :: base_levels(5) = [56, 64, 72, 84, 96]
   !> The base levels of a long ellipse are scaled down to its cell budget, to no fewer than this.
   integer, parameter :: min_base_cells = 32
-  !> Ellipses from this a/b on take the quietest grid near each level
-  !> (quiet_grids): their rows are long and the row ends' scatter held the
-  !> accurate mode up at a/b = 5 to 10; at a/b = 2.5 to 3.5 it made no
-  !> difference, on the circle it doubled the estimates (docs/accuracy.md 6.5).
-  real(real64), parameter :: quiet_grid_min_ratio = 3
   !> The share of an ellipse's bounding grid inside it (pi/4), for its patch cells.
   real(real64), parameter :: ellipse_fill = 0.79_real64
   !> Patch cells of the finest split of a mask or of a single grid's
@@ -160,8 +151,7 @@ contains
     type(result_t), intent(out) :: result
     type(status_t), intent(inout) :: status
     type(problem_t) :: level_problem
-    integer, allocatable :: levels(:)              !< cells across wanted (the ladder)
-    integer, allocatable :: cells(:)               !< cells across used (the quietest grid near the wanted one)
+    integer, allocatable :: levels(:)              !< cells across the shorter axis (the ladder)
     real(real64), allocatable :: fnorm(:, :, :)    !< (3, 3, level) f referred to the patch (kcreep_staircase_normalisation)
     real(real64), allocatable :: harmonic4(:)      !< (level) the staircase's four-fold harmonic
     character(len=message_length), allocatable :: warnings(:)
@@ -169,46 +159,38 @@ contains
     integer :: k, mx, my, finest, first
     real(real64), allocatable :: guess(:, :)     !< the last level's tractions on this level's cells
     real(real64) :: t(4), budget
-    real(real64) :: slope_floor(3, 3)   !< of the order margin, per f entry (zero: none)
-    logical :: long_in_y, quiet
+    logical :: long_in_y
 
-    allocate (fnorm(3, 3, 0), harmonic4(0), warnings(0), cells(0))
+    allocate (fnorm(3, 3, 0), harmonic4(0), warnings(0))
     t = 0
     level_problem = problem
     call level_tolerance(level_problem)
     budget = cell_budget_or(problem, level_cell_budget(problem%target_error))
     long_in_y = ellipse_cells_long_in_y(problem%target_error, problem%scheme%name)
     associate (a => problem%patch%semi_a, b => problem%patch%semi_b)
-      ! an ellipse long in x: quiet grids, and a floor under its order margin
-      quiet = quiet_grids(a, b, problem%scheme%name)
-      slope_floor = 0
-      if (quiet) slope_floor = long_in_x_slope_floor
       levels = ellipse_base_levels(a, b, budget, long_in_y)
       k = 1
       do
         call ellipse_level_grid(a, b, levels(k), mx, my, long_in_y)
-        if (quiet) call quiet_ellipse_grid(a, b, levels(k), my, mx)
-        cells = [cells, my]
         call ellipse_patch(a, b, mx, my, level_problem%patch, status)
         if (status%failed()) return
         call place_like(level_problem%patch, problem%patch)
         ! the last level's tractions carried over: GMRES starts closer (fewer
         ! iterations); unallocated on the first level, where it counts as absent
         if (k > 1) guess = transferred_traction(result%patch, result%traction, level_problem%patch)
-        call run_level(level_problem, my, result, fnorm, warnings, t, status, guess)
+        call run_level(level_problem, levels(k), result, fnorm, warnings, t, status, guess)
         if (status%failed()) return
         harmonic4 = [harmonic4, staircase_harmonic4(level_problem%patch)]
         if (k == size(levels) .and. k >= ellipse_fit_min) then
           first = max(1, k - ellipse_fit_width + 1)
-          call fit_levels(1.0_real64 / cells(first:k), fnorm(:, :, first:k), result, shape=harmonic4(first:k), &
-                          slope_floor=slope_floor)
+          call fit_levels(1.0_real64 / levels(first:k), fnorm(:, :, first:k), result, shape=harmonic4(first:k))
           if (within_target(result%err, coefficient_targets(problem%target_error))) exit
           finest = next_level(levels(k))
           call ellipse_level_grid(a, b, finest, mx, my, long_in_y)
           if (ellipse_fill * mx * my > budget) then
             line = 'error control: the next level, '//itoa(mx)//' x '//itoa(my)//', would exceed the budget of '// &
                    itoa(nint(budget))//' patch cells at target_error '//rtoa(problem%target_error)// &
-                   ', stopped at '//itoa(cells(k))//' cells across (&solver cell_budget raises it)'
+                   ', stopped at '//itoa(levels(k))//' cells across (&solver cell_budget raises it)'
             warnings = [warnings, line]
             exit
           end if
@@ -220,15 +202,6 @@ contains
     call finish_result(result, t)
     result%warnings = warnings
   end subroutine run_ellipse_levels
-
-  !> Whether an ellipse's levels use the quietest grid near each wanted one
-  !> (kcreep_staircase_defects): the backward scheme on near-square cells,
-  !> a/b from quiet_grid_min_ratio (docs/accuracy.md section 6.5).
-  pure logical function quiet_grids(a, b, scheme_name)
-    real(real64), intent(in) :: a, b
-    character(len=*), intent(in) :: scheme_name
-    quiet_grids = a >= quiet_grid_min_ratio * b .and. scheme_name == 'backward'
-  end function quiet_grids
 
   !> An ellipse's base levels; a long one's scaled down so that the finest keeps to the budget.
   pure function ellipse_base_levels(a, b, budget, long_in_y) result(levels)
@@ -340,12 +313,11 @@ contains
   end subroutine run_level
 
   !> The fit of every f entry: the result gets the limits, err those of C11, C22, C23.
-  subroutine fit_levels(h, fnorm, result, smooth, shape, slope_floor)
+  subroutine fit_levels(h, fnorm, result, smooth, shape)
     real(real64), intent(in) :: h(:), fnorm(:, :, :)
     type(result_t), intent(inout) :: result
     logical, intent(in), optional :: smooth   !< levels without staircase noise (mask splits)
     real(real64), intent(in), optional :: shape(:)   !< an ellipse's staircase harmonic per level (ellipse_level_estimate)
-    real(real64), intent(in), optional :: slope_floor(3, 3)   !< per f entry (ellipse_level_estimate); given with shape
     real(real64) :: limit, rel
     integer :: i, j
     result%err = ieee_value(1.0_real64, ieee_quiet_nan)
@@ -358,7 +330,7 @@ contains
         if (present(smooth)) then
           call smooth_level_estimate(h, fnorm(i, j, :), limit, rel)
         else if (present(shape)) then
-          call ellipse_level_estimate(h, fnorm(i, j, :), shape, limit, rel, slope_floor(i, j))
+          call ellipse_level_estimate(h, fnorm(i, j, :), shape, limit, rel)
         else
           call level_estimate(h, fnorm(i, j, :), limit, rel)
         end if
