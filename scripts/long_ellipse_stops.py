@@ -11,9 +11,8 @@ For each nu and each stop W (cells across the shorter axis of a level of
 kcreep's ladder) kcreep runs the ellipse a = sqrt(ratio), b = 1/sqrt(ratio)
 with &solver target_error = --target and cell_budget = the patch cells kcreep
 counts for the wanted grid of W (ellipse_fill x mx x my, as
-kcreep_error_run.run_ellipse_levels): the run solves its ladder up to W (the
-grid it uses may be a quieter one a little smaller) and stops there, or
-earlier when it is `ok`. Its C11, C22, C23 and their estimates are compared
+kcreep_error_run.run_ellipse_levels): the run solves its ladder up to W and
+stops there, or earlier when it is `ok`. Its C11, C22, C23 and their estimates are compared
 with the reference of scripts/independent_check.py (levels --levels from the
 --cache files, fitted by f0 + K h + B harmonic4; u the larger of the fit's
 95 % interval and the change when an h^2 term is added). With --compute the
