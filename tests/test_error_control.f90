@@ -106,7 +106,6 @@ program test_error_control
   call t%check(abs(limit - 4.11_real64) < 1e-12_real64 .and. &
                abs(rel - 0.1_real64 * abs(f8(8) - 4.11_real64) / 4.11_real64) < 1e-12_real64, &
                'ellipse_level_estimate: exact f0 + K h + B shape, estimate 0.1 |f0 - f(finest)| / f0')
-  f8 = 4.11_real64 + 1.06_real64 * h8 - 0.28_real64 * shape8
   ! ... and the shape term is what takes the scatter out: without it the same
   ! levels leave a scatter that the linear fit reports
   call level_estimate(h8, f8, limit, rel)

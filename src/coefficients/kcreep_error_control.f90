@@ -238,10 +238,9 @@ contains
   pure subroutine ellipse_level_estimate(h, f, shape, limit, rel_error)
     real(real64), intent(in) :: h(:), f(:), shape(:)
     real(real64), intent(out) :: limit, rel_error
-    real(real64) :: se, extrapolation
+    real(real64) :: se
     call three_column_fit(h, f, shape, limit, se)
-    extrapolation = abs(limit - f(minloc(h, 1)))
-    rel_error = (student_t95(size(h) - 3) * se + order_margin * extrapolation) / abs(limit)
+    rel_error = (student_t95(size(h) - 3) * se + order_margin * abs(limit - f(minloc(h, 1)))) / abs(limit)
   end subroutine ellipse_level_estimate
 
   !> Least-squares fit f = f0 + K h + L g(h) with g(h) = h**1.5 (kind 1) or
