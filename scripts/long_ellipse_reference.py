@@ -20,7 +20,8 @@ kcreep fits its finest 8 levels, the plain grids of a ladder of about 15 %
 steps (56, 64, 72, 84, 96, 112, 128, 148, 172, 196, 224, 256, as far as the
 cache has them) within each range, and gives its error against that
 reference beside kcreep's estimate without the slope floor (t95 x SE plus a
-tenth of the extrapolation from the finest level). With --compute the
+tenth of the extrapolation from the finest level, level_fit.kcreep_estimate;
+numpy). With --compute the
 ladder's plain grids missing from the caches are solved (&solver method =
 'iterative', tolerance = 1e-9, target_error = 0; under a minute at a/b = 10)
 and appended to docs/data/long_ellipse_ladder_levels.dat. Prints markdown tables
@@ -35,17 +36,19 @@ import sys
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 import kcreep_levels as K  # noqa: E402
 from independent_check import append_cache, reference  # noqa: E402
-from refine_kalker_table import T95, lstsq_columns  # noqa: E402
 
 DATA = os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "docs", "data")
 LADDER_CACHE = os.path.join(DATA, "long_ellipse_ladder_levels.dat")
 COEFFS = ("c11", "c22", "c23")
+#: kcreep's largest grid, mx x my (kcreep_limits max_grid_cells)
+GRID_LIMIT = 4.0e6
 #: kcreep's ladder from its first levels on, one level about 15 % finer at a time
 LADDER = (56, 64, 72, 84, 96, 112, 128, 148, 172, 196, 224, 256)
 
 
 def ladder_lines(levels, ratio, nu, ref, ranges):
     """Markdown rows: each plain ladder's fit (f0 + K h + B harmonic4) against ref."""
+    from level_fit import kcreep_estimate   # numpy, only for --ladders
     slopes = K.table_slopes(ratio, nu)
     lines = ["| plain ladder (cells across b) | C11: error / estimate without the floor | C22 | C23 |",
              "|---|---|---|---|"]
@@ -54,12 +57,10 @@ def ladder_lines(levels, ratio, nu, ref, ranges):
         if len(ns) < 5:
             continue
         referred = {n: K.refer_to_ellipse(ratio, nu, levels[n], slopes) for n in ns}
-        columns = [[1.0] * len(ns), [1.0 / n for n in ns], [referred[n]["harmonic4"] for n in ns]]
         cells = []
         for c in COEFFS:
-            f0, se, dof = lstsq_columns(columns, [referred[n][c] for n in ns])
-            estimate = T95.get(dof, 2.0) * se + 0.1 * abs(f0 - referred[ns[-1]][c])
-            cells.append(f"{100 * (f0 / ref[c][0] - 1):+.4f} / {100 * estimate / abs(f0):.4f} %")
+            f0, estimate = kcreep_estimate(referred, ns, c)
+            cells.append(f"{100 * (f0 / ref[c][0] - 1):+.4f} / {100 * estimate:.4f} %")
         lines.append(f"| {ns[0]}-{ns[-1]} ({len(ns)} levels) | " + " | ".join(cells) + " |")
     return lines
 
@@ -74,7 +75,7 @@ def draw(levels, ratio, nu, ref, window, path):
     for ax, c in zip(axes, COEFFS):
         values = [n * (K.refer_to_ellipse(ratio, nu, levels[n], slopes)[c] / ref[c][0] - 1) for n in ns]
         ax.semilogx(ns, values, ".", color="C0")
-        ax.axvline((4.0e6 / ratio) ** 0.5, color="0.6", lw=0.8, ls="--")   # kcreep's grid limit
+        ax.axvline((GRID_LIMIT / ratio) ** 0.5, color="0.6", lw=0.8, ls="--")
         ax.set_title(f"{c.upper()}, a/b = {ratio:g}, nu = {nu:g}")
         ax.set_xlabel("N, cells across b (dashed: 4,000,000 grid cells)")
         ax.grid(alpha=0.3)
