@@ -26,6 +26,20 @@ def setup():
     return SCRATCH
 
 
+def copy_inputs(folder):
+    """Copy the shipped examples (input/) to folder/repo/input, with the
+    repository's ../shared linked beside them as folder/shared, so that they
+    run with their relative paths and write nothing into the source tree.
+    Returns (the copied input folder, whether ../shared/contact-samples is there)."""
+    repo = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
+    shared = os.path.join(repo, "..", "shared")
+    inputs = os.path.join(folder, "repo", "input")
+    shutil.copytree(os.path.join(repo, "input"), inputs)
+    if os.path.isdir(shared):
+        os.symlink(os.path.abspath(shared), os.path.join(folder, "shared"))
+    return inputs, os.path.isdir(os.path.join(shared, "contact-samples"))
+
+
 def namelist(patch="", material="", solver="", output=""):
     """A namelist for a test of a specific discretisation: unless the solver
     string says otherwise, the grid is solved exactly as given (target_error = 0)

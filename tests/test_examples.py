@@ -5,23 +5,18 @@ or verdict uncertain (some estimate above it); CONTACT's grid has no target."""
 import math
 import glob
 import os
-import shutil
 import subprocess
 import sys
 import kctest as kc
 
 scratch = kc.setup()
-repo = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
-shared = os.path.join(repo, "..", "shared")
-work = os.path.join(scratch, "repo")
-shutil.copytree(os.path.join(repo, "input"), os.path.join(work, "input"))
-if os.path.isdir(shared):
-    os.symlink(os.path.abspath(shared), os.path.join(scratch, "shared"))
-examples = sorted(glob.glob(os.path.join(work, "input", "*.nml")))
+inputs, shared = kc.copy_inputs(scratch)
+work = os.path.dirname(inputs)
+examples = sorted(glob.glob(os.path.join(inputs, "*.nml")))
 kc.check(len(examples) >= 4, f"{len(examples)} examples in input/")
 for path in examples:
     rel = os.path.relpath(path, work)
-    if "contact" in rel and not os.path.isdir(shared):
+    if "contact" in rel and not shared:
         kc.check(False, f"{rel}: needs ../shared/contact-samples beside the repository")
         continue
     proc = subprocess.run([kc.KCREEP, rel], cwd=work, capture_output=True, text=True)

@@ -22,7 +22,6 @@ names       batch cases named by their path relative to the list; two cases
 import os
 import re
 import resource
-import shutil
 import subprocess
 import sys
 import time
@@ -88,12 +87,7 @@ def section_paths():
     # the shipped examples, --estimate-memory and --batch from another folder;
     # on a copy of input/ (with shared/ beside it as in the repository's
     # parent), because their traction files are written beside the namelists
-    repo = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
-    inputs = os.path.join(folder, "repo", "input")
-    shutil.copytree(os.path.join(repo, "input"), inputs)
-    shared = os.path.isdir(os.path.join(repo, "..", "shared", "contact-samples"))
-    if shared:
-        os.symlink(os.path.abspath(os.path.join(repo, "..", "shared")), os.path.join(folder, "shared"))
+    inputs, shared = kc.copy_inputs(folder)
     examples = sorted(f for f in os.listdir(inputs) if f.endswith(".nml"))
     out = os.path.join(folder, "out")
     os.makedirs(out)
