@@ -1,13 +1,15 @@
 #!/usr/bin/env bash
 # The accurate mode (&solver target_error = 1e-4) of two kcreep builds side by
 # side in one run: ellipses with c = sqrt(ab) = 1, nu = NU (0.25), only semi_a,
-# semi_b given, over a/b = 0.1 ... 10. For each a/b: the median process wall
+# semi_b given, over a/b = 0.1 ... 10, always solved (method = 'iterative':
+# the default 'auto' answers the table's fine rows from the table, nothing to
+# time; set METHOD=auto to time that). For each a/b: the median process wall
 # time of each build over the repeats (the builds alternate), their ratio, the
 # finest grid and the verdict of each. Both builds get the same cell budget
 # when CELL_BUDGET is set (to compare the speed of the levels); otherwise
 # each runs its own default.
 #   scripts/bench_accurate_mode.sh OLD_KCREEP [NEW_KCREEP]   (NEW: build/kcreep)
-#   REPEATS=3 RATIOS=0.1,0.25,0.5,1,2,4,10 NU=0.25 CELL_BUDGET=1.6e5  the defaults but for CELL_BUDGET (unset)
+#   REPEATS=3 RATIOS=0.1,0.25,0.5,1,2,4,10 NU=0.25 METHOD=iterative CELL_BUDGET=1.6e5  the defaults but for CELL_BUDGET (unset)
 # Every timing runs under flock /tmp/kcreep-bench.lock (one benchmark at a time).
 #   scripts/bench_accurate_mode.sh --help     this text (nothing is run)
 #   KCREEP_BUILD_DIR=dir                       NEW_KCREEP's default folder (default build/)
@@ -24,6 +26,7 @@ done
 repeats=${REPEATS:-3}
 IFS=, read -r -a ratios <<< "${RATIOS:-0.1,0.25,0.5,1,2,4,10}"
 nu=${NU:-0.25}
+method=${METHOD:-iterative}
 budget=${CELL_BUDGET:+, cell_budget = $CELL_BUDGET}
 work=$(mktemp -d)
 trap 'rm -rf "$work"' EXIT
@@ -37,14 +40,14 @@ run_one() {
        END { printf "%s %s %s\n", w, g, v }' <<< "$out"
 }
 
-echo "accurate mode, target_error = 1e-4${budget:+ (cell_budget = $CELL_BUDGET)}, nu = $nu, median of $repeats"
+echo "accurate mode, target_error = 1e-4, method = $method${budget:+ (cell_budget = $CELL_BUDGET)}, nu = $nu, median of $repeats"
 echo "old: $old"
 echo "new: $new"
 printf '%-6s %9s %9s %7s  %-12s %-10s %-12s %-10s\n' "a/b" "old [s]" "new [s]" "old/new" "old grid" "old" "new grid" "new"
 for r in "${ratios[@]}"; do
   read -r a b < <(awk -v r="$r" 'BEGIN { printf "%.15g %.15g\n", sqrt(r), 1 / sqrt(r) }')
-  printf "&patch shape = 'ellipse', semi_a = %s, semi_b = %s /\n&material nu = %s /\n&solver target_error = 1e-4%s /\n&output table_file = 'case.tab' /\n" \
-    "$a" "$b" "$nu" "$budget" > "$work/case.nml"
+  printf "&patch shape = 'ellipse', semi_a = %s, semi_b = %s /\n&material nu = %s /\n&solver target_error = 1e-4, method = '%s'%s /\n&output table_file = 'case.tab' /\n" \
+    "$a" "$b" "$nu" "$method" "$budget" > "$work/case.nml"
   : > "$work/old" ; : > "$work/new"
   for ((k = 0; k < repeats; k++)); do
     run_one "$old" >> "$work/old"

@@ -266,6 +266,9 @@ def texts(values):
     evt = {(r["scheme"], r["m"]): r for r in rows}
     ctl = {r["scheme"]: r for r in rows if r["scheme"] in ("default", "accurate")}
     ref1 = ref_of(1.0)
+    # a fine row of the table (docs/accuracy.md 5.2) is fitted through reference levels from 296 across up
+    nmin1, nmax1 = int(node(1.0, NU)["Nmin"]), int(node(1.0, NU)["Nmax"])
+    fine1 = nmin1 >= 296
     f = convergence_order.fmt
 
     def ptext(key):
@@ -357,15 +360,25 @@ def texts(values):
                      + ", ".join(apct(e) for e in best_fixed["err"]) + f" off in {best_fixed['t']:.2f} s, "
                      + f"{min(e / (ref1[c][1] / ref1[c][0]) for e, c in zip(best_fixed['err'], COEF)):.1f} to "
                      + f"{max(e / (ref1[c][1] / ref1[c][0]) for e, c in zip(best_fixed['err'], COEF)):.1f} times the "
-                       "reference's u: what the solved run buys is an error that this reference can no longer "
-                       "resolve, and an estimate of it.")
-        lines.append("- Read the solved run's small error with care: the refined table is a fit through levels of "
-                     "56 to 196 cells across of the same scheme and normalisation, and the solved run's levels "
-                     + ("are among them" if d["m"] <= 96 else f"(up to {d['m']} across) overlap them in part")
-                     + ", so the two agreeing says partly that the fits agree. The independent check of its "
-                     "estimate and of the table's: docs/accuracy.md section 3.1 "
-                     "(`scripts/independent_check.py`, grids of 136-384 cells across); the fixed grids above do not "
-                     "share any level with the reference.")
+                       "reference's u: what the solved run buys is "
+                     + ("an error that this reference can no longer resolve, and an estimate of it." if below_u else
+                        f"an error {min(b / e for b, e in zip(best_fixed['err'], d['err'])):.0f} to "
+                        f"{max(b / e for b, e in zip(best_fixed['err'], d['err'])):.0f} times smaller, and an "
+                        "estimate that " + ("bounds it." if all(e <= x for e, x in zip(d["err"], d["est"]))
+                                            else "does not bound it everywhere.")))
+        if fine1:
+            lines.append(f"- The reference here is one of the table's fine rows (docs/accuracy.md section 5.2): a fit "
+                         f"through levels of {nmin1} to {nmax1} cells across, none of which the solved run (up to "
+                         f"{d['m']} across) or the fixed grids above use, so these errors are measured against an "
+                         "independent reference.")
+        else:
+            lines.append("- Read the solved run's small error with care: the refined table is a fit through levels of "
+                         "56 to 196 cells across of the same scheme and normalisation, and the solved run's levels "
+                         + ("are among them" if d["m"] <= 96 else f"(up to {d['m']} across) overlap them in part")
+                         + ", so the two agreeing says partly that the fits agree. The independent check of its "
+                         "estimate and of the table's: docs/accuracy.md section 3.1 "
+                         "(`scripts/independent_check.py`, grids of 136-384 cells across); the fixed grids above do "
+                         "not share any level with the reference.")
     a = ctl.get("accurate")
     if a and d:
         same = a["c"] == d["c"]
@@ -378,11 +391,10 @@ def texts(values):
                         + ", ".join(apct(e, 3) for e in a["est"])
                         + (": at this level the reference's u, not kcreep, limits what can be shown"
                            if all(e <= ref1[c][1] / ref1[c][0] for e, c in zip(a["err"], COEF)) else "") + "."))
-        lines.append("- Against grids of up to 1024 cells across (docs/accuracy.md section 6) the accurate mode's "
-                     "errors on the circle at 600 cells across are 0.001 % against estimates of 0.008-0.014 %: "
-                     "the refined table's own u cannot show errors that small. Its default cell budget, 320,000 "
-                     "cells, reaches 600 cells across on the circle; ellipses long in x (a/b = 5, 10) stop "
-                     "`uncertain` at the budget (docs/accuracy.md section 6).")
+        lines.append("- Its default cell budget, 320,000 cells, reaches 600 cells across on the circle; solved, "
+                     "ellipses long in x (a/b = 5, 10) stop `uncertain` at the budget, and the default "
+                     "`method = 'auto'` answers them, and the circle, from the table's fine rows instead "
+                     "(docs/accuracy.md sections 5.2 and 6).")
     ext = [r for r in rows if r["scheme"].endswith("+extrapolate")]
     if ext:
         best = min(ext, key=lambda r: max(r["err"]))

@@ -3,6 +3,8 @@
 
     refine_kalker_table.py [--levels 56,64,72,84,96,112,128,148] [--fit-from 56] [--ratios 0.5,1,2]
                            [--nu 0,0.25,0.5] [--max-seconds S] [--table-only]
+                           [--fine-levels FILE[,FILE]] [--fine-from 296] [--out FILE]
+                           [--fine-check N]
 
 For every a/b and nu of data/kalker-table-E3.dat: the ellipse with c = 1 on
 near-square grids with N cells across its shorter axis (the levels), the
@@ -22,12 +24,33 @@ docs/data/kalker_refined.dat is then rebuilt from all levels present:
            plus the order's uncertainty (kcreep_error_control order_margin); absolute units
 
 The fit uses the levels from --fit-from cells across up (the coarser ones
-carry more staircase noise). Cases with fewer than 4 such levels are left
+carry more staircase noise). Cases with fewer than 5 such levels are left
 out of the table.
+
+Fine rows: where the --fine-levels files (default: the references of
+docs/accuracy.md 6.1 and 6.7, fine_reference_levels.dat and
+fine_reference_levels_long.dat; near-square cells, as written by
+independent_check.py) hold at least 6 levels from --fine-from cells across
+up for a point of the table, its row is fitted through those levels alone,
+the same way (Nmin Nmax levels say which). Their u is a tenth to a third of
+the coarse rows', small enough for target_error = 1e-4 (docs/accuracy.md
+5.2). Levels beyond kcreep's 4,000,000 grid cells in those files came from a
+build with a larger limit (docs/accuracy.md 6.7).
+
+Each level is referred to the ellipse with slopes d ln C / d ln(a/b) taken
+from the table itself, so the table is rebuilt until it no longer changes
+(two or three rounds): it is the fixed point of its levels, and the test
+refined_table_module rebuilds it (--table-only --out) and compares.
+
+--fine-check N (nothing solved, nothing written): for every fine row, the
+coarse row (the table's own levels) against it, and where the row has levels
+beyond N cells across, the row fitted through its levels up to N against
+the row through all of them; markdown on standard output (docs/accuracy.md 5.2).
 """
 import argparse
 import math
 import os
+import shutil
 import sys
 import time
 
@@ -38,6 +61,10 @@ ROOT = os.path.join(os.path.dirname(os.path.abspath(__file__)), "..")
 LEVELS_FILE = os.path.join(ROOT, "docs", "data", "kalker_refined_levels.dat")
 TABLE_FILE = os.path.join(ROOT, "docs", "data", "kalker_refined.dat")
 KALKER_FILE = os.path.join(ROOT, "data", "kalker-table-E3.dat")
+FINE_LEVELS = ",".join(os.path.join(ROOT, "docs", "data", name)
+                       for name in ("fine_reference_levels.dat", "fine_reference_levels_long.dat"))
+#: the fewest fine levels a fine row is fitted through
+FINE_MIN_LEVELS = 6
 T95 = {1: 12.706, 2: 4.303, 3: 3.182, 4: 2.776, 5: 2.571, 6: 2.447, 7: 2.365, 8: 2.306}
 LEVEL_COLUMNS = ["a_over_b", "nu", "N", "mx", "my", "n", "c11", "c22", "c23", "c33", "c32", "iterations", "seconds"]
 
@@ -132,23 +159,44 @@ def refined_value(levels, coeff):
     return f1, u
 
 
-def write_table(data, points, fit_from):
+def read_fine_levels(paths):
+    """{key(a/b, nu): {N: level}} of the fine levels files (later files add to earlier ones)."""
+    fine = {}
+    for path in paths:
+        for (r, nu), levels in K.read_level_file(path).items():
+            fine.setdefault(key(r, nu), {}).update(levels)
+    return fine
+
+
+def row_levels(data, fine, r, nu, fit_from, fine_from):
+    """The levels a row is fitted through: the fine ones where there are
+    enough of them, else the table's own from fit_from cells across."""
+    lv = {N: v for N, v in fine.get(key(r, nu), {}).items() if N >= fine_from}
+    if len(lv) >= FINE_MIN_LEVELS:
+        return lv
+    return {N: v for N, v in data.get(key(r, nu), {}).items() if N >= fit_from}
+
+
+def write_table(data, points, fit_from, fine=None, fine_from=296, out=TABLE_FILE):
+    """Rebuild the table `out` from the levels; the slopes of each level's
+    reference to the ellipse come from `out` as it was."""
     rows = []
     for r, nu in points:
-        lv = {N: v for N, v in data.get(key(r, nu), {}).items() if N >= fit_from}
+        lv = row_levels(data, fine or {}, r, nu, fit_from, fine_from)
         if len(lv) < 5:
             continue
-        slopes = K.table_slopes(r, nu)
+        slopes = K.table_slopes(r, nu, out)
         lv = {N: K.refer_to_ellipse(r, nu, v, slopes) for N, v in lv.items()}
         vals = []
         for c in ("c11", "c22", "c23", "c33", "c32"):
             vals.extend(refined_value(lv, c))
         rows.append((r, nu, min(lv), max(lv), len(lv), vals))
-    tmp = TABLE_FILE + ".tmp"
+    tmp = out + ".tmp"
     with open(tmp, "w") as f:
         f.write("# Kalker's creep coefficients recomputed by kcreep (scripts/refine_kalker_table.py):\n"
                 "# ellipse with c = sqrt(ab) = 1, backward scheme on near-square cells, levels from Nmin to Nmax\n"
-                "# cells across the shorter axis, each referred to the ellipse by the staircase's second moments\n"
+                "# cells across the shorter axis (rows with Nmin >= 256: the fine reference levels of docs/accuracy.md\n"
+                "# 6.1 and 6.7), each referred to the ellipse by the staircase's second moments\n"
                 "# (scripts/kcreep_levels.py refer_to_ellipse), least-squares fit f0 + K h + B harmonic4;\n"
                 "# u = absolute uncertainty: max(95 % interval of the fit, change when an h^2 term is added)\n"
                 "# + 0.1 x the extrapolation from the finest level (the order is 1 to within 0.06).\n"
@@ -156,8 +204,52 @@ def write_table(data, points, fit_from):
         f.write("# a_over_b nu c11 u11 c22 u22 c23 u23 c33 u33 c32 u32 Nmin Nmax levels\n")
         for r, nu, nmin, nmax, nl, v in rows:
             f.write(f"{r:.6g} {nu:.6g} " + " ".join(f"{x:.6g}" for x in v) + f" {nmin} {nmax} {nl}\n")
-    os.replace(tmp, TABLE_FILE)
+    os.replace(tmp, out)
     return rows
+
+
+def fine_check(data, fine, points, fit_from, fine_from, upto):
+    """Markdown: each fine row against its coarse row, and its levels up to
+    `upto` against all of them; counts of differences within the stated u."""
+    coeffs = ("c11", "c22", "c23")
+    coarse_lines, trunc_lines = [], []
+    coarse_in = trunc_in = coarse_n = trunc_n = 0
+    for r, nu in points:
+        fine_lv = row_levels(data, fine, r, nu, fit_from, fine_from)
+        if min(fine_lv, default=0) < fine_from:
+            continue                                   # not a fine row
+        slopes = K.table_slopes(r, nu)
+        refer = {N: K.refer_to_ellipse(r, nu, v, slopes) for N, v in fine_lv.items()}
+        best = {c: refined_value(refer, c) for c in coeffs}
+        coarse = {N: K.refer_to_ellipse(r, nu, v, slopes) for N, v in data.get(key(r, nu), {}).items() if N >= fit_from}
+        cells = []
+        for c in coeffs:
+            v, u = refined_value(coarse, c)
+            diff = v / best[c][0] - 1
+            coarse_in += abs(v - best[c][0]) <= u
+            coarse_n += 1
+            cells.append(f"{100 * diff:+.4f} / {100 * u / v:.4f} %")
+        coarse_lines.append(f"| {r:.6g} | {nu:g} | {min(coarse)}-{max(coarse)} | {max(refer)} | " + " | ".join(cells) + " |")
+        early = {N: v for N, v in refer.items() if N <= upto}
+        if len(early) < FINE_MIN_LEVELS or len(early) == len(refer):
+            continue
+        cells = []
+        for c in coeffs:
+            v, u = refined_value(early, c)
+            trunc_in += abs(v - best[c][0]) <= u
+            trunc_n += 1
+            cells.append(f"{100 * (v / best[c][0] - 1):+.4f} / {100 * u / v:.4f} / {100 * best[c][1] / best[c][0]:.4f} %")
+        trunc_lines.append(f"| {r:.6g} | {nu:g} | {min(early)}-{max(early)} | {min(refer)}-{max(refer)} | "
+                           + " | ".join(cells) + " |")
+    print("| a/b | nu | coarse levels | fine to | C11: coarse - fine / coarse u | C22 | C23 |")
+    print("|---|---|---|---|---|---|---|")
+    print("\n".join(coarse_lines))
+    print(f"\nThe coarse row's u bounded its difference from the fine row in {coarse_in} of {coarse_n}.\n")
+    print(f"| a/b | nu | levels | against | C11: difference / u of the shorter fit / u of the longer | C22 | C23 |")
+    print("|---|---|---|---|---|---|---|")
+    print("\n".join(trunc_lines))
+    print(f"\nThe fit through levels up to {upto} bounded its difference from the fit through all in "
+          f"{trunc_in} of {trunc_n}.")
 
 
 def main():
@@ -168,9 +260,19 @@ def main():
     ap.add_argument("--nu", default=",".join(f"{nu:g}" for nu in TABLE_NU))
     ap.add_argument("--max-seconds", type=float, default=float("inf"), help="stop starting new levels after this")
     ap.add_argument("--table-only", action="store_true")
+    ap.add_argument("--fine-levels", default=FINE_LEVELS,
+                    help="comma-separated levels files of fine rows ('' for none)")
+    ap.add_argument("--fine-from", type=int, default=296, help="a fine row's levels from this many cells across up")
+    ap.add_argument("--out", default=TABLE_FILE, help="the table to write (its slopes start from the committed table's)")
+    ap.add_argument("--fine-check", type=int, default=0, metavar="N",
+                    help="compare the fine rows with the coarse ones and with their own levels up to N")
     args = ap.parse_args()
     points = table_points()
     data = read_levels()
+    if args.fine_check:
+        fine_check(data, read_fine_levels([p for p in args.fine_levels.split(",") if p]), points, args.fit_from,
+                   args.fine_from, args.fine_check)
+        return
     if not args.table_only:
         levels = [int(x) for x in args.levels.split(",")]
         ratios = [float(x) for x in args.ratios.split(",")] if args.ratios else None
@@ -190,8 +292,17 @@ def main():
                 append_level(r, nu, N, d)
                 data.setdefault(key(r, nu), {})[N] = d
                 print(f"a/b {r:.4g} nu {nu:g} N {N}: {d['mx']} x {d['my']}, {d['time']:.1f} s", file=sys.stderr)
-    rows = write_table(data, points, args.fit_from)
-    print(f"{len(rows)} of {len(points)} points in {TABLE_FILE}")
+    fine = read_fine_levels([p for p in args.fine_levels.split(",") if p])
+    if not os.path.exists(args.out):
+        shutil.copyfile(TABLE_FILE, args.out)
+    for rounds in range(1, 11):
+        with open(args.out) as f:
+            before = f.read()
+        rows = write_table(data, points, args.fit_from, fine, args.fine_from, args.out)
+        with open(args.out) as f:
+            if f.read() == before:
+                break
+    print(f"{len(rows)} of {len(points)} points in {args.out} ({rounds} rounds)")
 
 
 if __name__ == "__main__":

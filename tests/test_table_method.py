@@ -75,6 +75,26 @@ for name, a, b, key in (("circle", 1.0, 1.0, (1.0, 0.25)), ("ab2", 2.0, 1.0, (2.
                                    solver="method = 'table', target_error = 0.01"), folder, name + "_loose")
     kc.check(t[0]["verdict"] == "ok" and "warning" not in err, f"{name}: target_error 0.01 met: verdict ok")
 
+# --- 1b. the accurate mode (target_error = 1e-4, method 'auto'): answered from the table at a
+# point whose row meets it (the fine rows, docs/accuracy.md 5.2: the circle at nu = 0.25, and
+# a/b = 10 at nu = 0.5, which the solve leaves uncertain within 10 s), solved at one whose row
+# does not (a/b = 0.2; a small cell budget keeps the solve short)
+for name, ratio, nu, budget, expect_fine in (("accurate_circle", 1.0, 0.25, "", True),
+                                             ("accurate_ab10", 10.0, 0.5, "", True),
+                                             ("accurate_ab02", 0.2, 0.25, ", cell_budget = 5000", False)):
+    r = ref[(ratio, nu)]
+    fine = r["u11"] / r["c11"] <= 1e-4 and r["u22"] / r["c22"] <= 1e-4 and r["u23"] / r["c23"] <= 3e-4
+    kc.check(fine == expect_fine, f"{name}: the row's u/C {'meets' if fine else 'misses'} 1e-4 (C23 3e-4)")
+    patch = f"shape = 'ellipse', semi_a = {math.sqrt(ratio)!r}, semi_b = {1 / math.sqrt(ratio)!r}"
+    code, out, err, t = kc.run(nml(patch, material=f"nu = {nu}", solver="target_error = 1e-4" + budget), folder, name)
+    row = t[0]
+    if fine:
+        kc.check(row["scheme"] == "table" and row["verdict"] == "ok" and max(row["err11"], row["err22"]) <= 1e-4
+                 and row["err23"] <= 3e-4, f"{name}: from the table, ok ({row['scheme']}, {row['verdict']}, "
+                                           f"{row['err11']:.1e} {row['err22']:.1e} {row['err23']:.1e})")
+    else:
+        kc.check(row["scheme"] == "backward" and row["mx"] > 0, f"{name}: solved ({row['scheme']}, {row['mx']} x {row['my']})")
+
 # --- 2. between the points: against a solve under error control (default target)
 patch = "shape = 'ellipse', semi_a = 1.5, semi_b = 1"
 tab = kc.run(nml(patch, material="nu = 0.3"), folder, "between")[3][0]

@@ -10,7 +10,9 @@
 !> meet the default target (1e-3, C23 3e-3), where method = 'auto' answers
 !> from the table instead of solving; and the same on a regular grid of 401
 !> a/b (log-spaced) x 101 nu over the whole range, with the largest stated
-!> uncertainties. Run it under flock /tmp/kcreep-bench.lock.
+!> uncertainties, and at how many of those the accurate mode's target (1e-4,
+!> C23 3e-4) is met (the table's fine rows, docs/accuracy.md 5.2). Run it
+!> under flock /tmp/kcreep-bench.lock.
 !>   kcreep_table_bench [CALLS [M]]
 program table_bench
   use, intrinsic :: iso_fortran_env, only: real64, int64, output_unit
@@ -82,21 +84,34 @@ contains
   !> The stated uncertainty on a regular 401 x 101 grid of a/b (log-spaced, 0.1 to 10) and nu (0 to 0.5).
   subroutine grid_sweep()
     integer, parameter :: n_ratio = 401, n_nu = 101
-    integer :: i, j, within
-    real(real64) :: worst(4), c4(4), r4(4)
+    integer :: i, j, within, within_accurate, long_points, long_accurate
+    real(real64) :: worst(4), c4(4), r4(4), ratio
     type(status_t) :: sweep_status
     within = 0
+    within_accurate = 0
+    long_points = 0
+    long_accurate = 0
     worst = 0
     do j = 0, n_nu - 1
       do i = 0, n_ratio - 1
-        call table_coefficients(10.0_real64**(2 * real(i, real64) / (n_ratio - 1) - 1), &
-                                0.5_real64 * j / (n_nu - 1), c4, r4, sweep_status)
+        ratio = 10.0_real64**(2 * real(i, real64) / (n_ratio - 1) - 1)
+        call table_coefficients(ratio, 0.5_real64 * j / (n_nu - 1), c4, r4, sweep_status)
         worst = max(worst, r4)
         if (r4(1) <= 1e-3_real64 .and. r4(2) <= 1e-3_real64 .and. r4(3) <= 3e-3_real64) within = within + 1
+        ! a/b >= 3.33 is where every column of the table's rows is a fine row (docs/accuracy.md 5.2)
+        if (ratio >= 10.0_real64 / 3) long_points = long_points + 1
+        if (r4(1) <= 1e-4_real64 .and. r4(2) <= 1e-4_real64 .and. r4(3) <= 3e-4_real64) then
+          within_accurate = within_accurate + 1
+          if (ratio >= 10.0_real64 / 3) long_accurate = long_accurate + 1
+        end if
       end do
     end do
     write (output_unit, '(a, i0, a, i0, a, 3f8.4)') 'grid of 401 a/b x 101 nu: within the default target at ', &
       within, ' of ', n_ratio * n_nu, ' points; largest stated uncertainty of C11 C22 C23 [%]:', 100 * worst(1:3)
+    write (output_unit, '(a, i0, a, i0, a)') 'grid of 401 a/b x 101 nu: within the accurate mode''s target '// &
+      '(1e-4, C23 3e-4) at ', within_accurate, ' of ', n_ratio * n_nu, ' points'
+    write (output_unit, '(a, i0, a, i0, a)') '  of which with a/b >= 3.33 (fine rows only): ', long_accurate, ' of ', &
+      long_points, ' points'
   end subroutine grid_sweep
 
   subroutine report(what, t)
