@@ -267,7 +267,8 @@ def texts(values):
     ctl = {r["scheme"]: r for r in rows if r["scheme"] in ("default", "accurate")}
     ref1 = ref_of(1.0)
     # a fine row of the table (docs/accuracy.md 5.2) is fitted through reference levels from 296 across up
-    nmin1, nmax1 = int(node(1.0, NU)["Nmin"]), int(node(1.0, NU)["Nmax"])
+    node1 = node(1.0, NU)
+    nmin1, nmax1 = int(node1["Nmin"]), int(node1["Nmax"])
     fine1 = nmin1 >= 296
     f = convergence_order.fmt
 

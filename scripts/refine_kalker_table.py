@@ -160,9 +160,13 @@ def refined_value(levels, coeff):
 
 
 def read_fine_levels(paths):
-    """{key(a/b, nu): {N: level}} of the fine levels files (later files add to earlier ones)."""
+    """{key(a/b, nu): {N: level}} of the fine levels files (later files add to earlier ones).
+    A file named but missing is an error: without it the table would lose its fine rows."""
     fine = {}
     for path in paths:
+        if not os.path.isfile(path):
+            sys.exit(f"refine_kalker_table.py: --fine-levels: {path}: no such file (give existing levels files, "
+                     "or '' for none)")
         for (r, nu), levels in K.read_level_file(path).items():
             fine.setdefault(key(r, nu), {}).update(levels)
     return fine
@@ -195,8 +199,8 @@ def write_table(data, points, fit_from, fine=None, fine_from=296, out=TABLE_FILE
     with open(tmp, "w") as f:
         f.write("# Kalker's creep coefficients recomputed by kcreep (scripts/refine_kalker_table.py):\n"
                 "# ellipse with c = sqrt(ab) = 1, backward scheme on near-square cells, levels from Nmin to Nmax\n"
-                "# cells across the shorter axis (rows with Nmin >= 256: the fine reference levels of docs/accuracy.md\n"
-                "# 6.1 and 6.7), each referred to the ellipse by the staircase's second moments\n"
+                f"# cells across the shorter axis (rows with Nmin >= {fine_from}: the fine rows of docs/accuracy.md 5.2,\n"
+                "# from the reference levels of 6.1 and 6.7), each referred to the ellipse by the staircase's second moments\n"
                 "# (scripts/kcreep_levels.py refer_to_ellipse), least-squares fit f0 + K h + B harmonic4;\n"
                 "# u = absolute uncertainty: max(95 % interval of the fit, change when an h^2 term is added)\n"
                 "# + 0.1 x the extrapolation from the finest level (the order is 1 to within 0.06).\n"
@@ -269,9 +273,9 @@ def main():
     args = ap.parse_args()
     points = table_points()
     data = read_levels()
+    fine = read_fine_levels([p for p in args.fine_levels.split(",") if p])
     if args.fine_check:
-        fine_check(data, read_fine_levels([p for p in args.fine_levels.split(",") if p]), points, args.fit_from,
-                   args.fine_from, args.fine_check)
+        fine_check(data, fine, points, args.fit_from, args.fine_from, args.fine_check)
         return
     if not args.table_only:
         levels = [int(x) for x in args.levels.split(",")]
@@ -292,7 +296,6 @@ def main():
                 append_level(r, nu, N, d)
                 data.setdefault(key(r, nu), {})[N] = d
                 print(f"a/b {r:.4g} nu {nu:g} N {N}: {d['mx']} x {d['my']}, {d['time']:.1f} s", file=sys.stderr)
-    fine = read_fine_levels([p for p in args.fine_levels.split(",") if p])
     if not os.path.exists(args.out):
         shutil.copyfile(TABLE_FILE, args.out)
     for rounds in range(1, 11):
