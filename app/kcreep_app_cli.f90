@@ -18,10 +18,11 @@ module kcreep_app_cli
   use kcreep_app_batch, only: run_batch, estimate_memory, default_batch_table, text_t, exit_cases_failed
   use kcreep_app_files, only: write_temporary, commit_temporary, discard_temporary
   use kcreep_app_summary, only: print_summary
+  !$ use omp_lib, only: omp_set_num_threads
   use kcreep_app_fastsim, only: run_fastsim
   implicit none
   private
-  public :: command_t, parse_command, run_command, stop_with
+  public :: command_t, parse_command, run_command, stop_with, follow_slurm_cpus
 
   type :: command_t
     character(len=:), allocatable :: mode     !< 'single', 'batch', 'estimate', 'help' or 'version'
@@ -187,6 +188,20 @@ contains
   end subroutine estimate_mode
 
   !> The one place where errors are reported: one line, then exit with the code.
+  !> Inside a SLURM job step the CPUs per task bound the automatic thread
+  !> count (unless OMP_NUM_THREADS says otherwise): the library's automatic
+  !> count follows OpenMP's limit, set here for this process.
+  subroutine follow_slurm_cpus()
+    character(len=32) :: value
+    integer :: stat, cpus
+    call get_environment_variable('OMP_NUM_THREADS', status=stat)
+    if (stat == 0) return
+    call get_environment_variable('SLURM_CPUS_PER_TASK', value, status=stat)
+    if (stat /= 0) return
+    read (value, *, iostat=stat) cpus
+    !$ if (stat == 0 .and. cpus >= 1) call omp_set_num_threads(cpus)
+  end subroutine follow_slurm_cpus
+
   subroutine stop_with(status)
     use, intrinsic :: iso_c_binding, only: c_int
     type(status_t), intent(in) :: status

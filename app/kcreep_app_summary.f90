@@ -99,6 +99,14 @@ contains
       write (output_unit, '(2x, a, i0, a, es9.2, a)') 'method: iterative (FFT operator, preconditioned GMRES), ', &
         record%iterations, ' iterations, relative residual ', record%backward_error, ' (no rcond estimate)'
     end if
+    if (record%method /= 'table') then
+      if (cfg%solve%threads > 0) then
+        write (output_unit, '(2x, a, i0, a)') 'threads: ', record%threads, ' (&solver threads)'
+      else
+        write (output_unit, '(2x, a, i0, a)') 'threads: ', record%threads, &
+          ' (automatic: CPUs this process may use that were free, where the work pays; docs/performance.md)'
+      end if
+    end if
     write (output_unit, '(2x, a, 4f9.3)') 'time assemble factor solve total [s]:', record%t_assemble, &
       record%t_factor, record%t_solve, record%t_total
     write (output_unit, '(2x, a)') 'verdict: '//record%verdict//'   table: '//cfg%table_file

@@ -53,6 +53,12 @@ int kcreep_set_spin_centre(kcreep_handle handle, double x, double y);
  * uncertainty as the error estimate, no tractions; the grid is only FASTSIM's). */
 int kcreep_set_solver(kcreep_handle handle, const char *method, double tolerance);
 int kcreep_set_extrapolation(kcreep_handle handle, int levels, int ratio);   /* levels 0: off */
+/* Threads of each solve: 0 automatic (default: the CPUs this process may use
+ * that are free when a stage starts, where the work pays for them; one on a
+ * busy machine), else exactly this many (1 to 1024). Handles are
+ * independent: several threads, each with its own handle, may solve at
+ * once. Results do not depend on the count. */
+int kcreep_set_threads(kcreep_handle handle, int threads);
 /* Error control: relative target for C11, C22 (C23: 3 times it; 0: none);
  * refine_grid != 0 lets kcreep choose the grids (ellipse) or split cells (mask);
  * estimate 0 (with target 0) skips the estimate of a given grid, which costs
@@ -100,6 +106,8 @@ int kcreep_get_tractions(kcreep_handle handle, int length, double *t, int *ix, i
 int kcreep_get_diagnostics(kcreep_handle handle, int *iterations, double *residual, double *rcond,
                            double *seconds);
 int kcreep_get_reuse_count(kcreep_handle handle, int *count);
+/* The threads the last solve's linear solve ran on. */
+int kcreep_get_threads(kcreep_handle handle, int *threads);
 /* All numbers of the last solve in one call (length >= 33): [0..8] f row by
  * row, [9..11] C11 C22 C23, [12..14] L1 L2 L3, [15..17] relative error
  * estimates, [18..20] extrapolated C, [21..23] their errors, [24] iterations,

@@ -11,12 +11,14 @@
 !> src/api, the Python package on top of it).
 module kcreep
   use, intrinsic :: ieee_arithmetic, only: ieee_value, ieee_quiet_nan
-  use, intrinsic :: iso_fortran_env, only: real64
+  use, intrinsic :: iso_fortran_env, only: real64, int64
   use kcreep_strings, only: rtoa
   use kcreep_status, only: status_t, fail, exit_bad_input, exit_numerical, exit_io
   use kcreep_patch, only: patch_t, ellipse_patch, mask_patch
   use kcreep_assembly, only: scheme_t, n_load_cases, load_case_names
   use kcreep_solver_options, only: solver_options_t
+  use kcreep_threads, only: team_size, enter_team, leave_team, cells_per_thread_iterative, solve_started, &
+                            solve_ended, max_threads
   use kcreep_verdict, only: verdict_ok, verdict_degenerate, verdict_nonphysical, verdict_alpha_edge, &
                             verdict_coarse, verdict_ill_conditioned, verdict_inaccurate, verdict_uncertain, &
                             verdict_words, &
@@ -35,7 +37,7 @@ module kcreep
   use kcreep_table_run, only: run_table, table_meets_target
   implicit none
   private
-  public :: kcreep_solve, kcreep_version, kcreep_version_number
+  public :: kcreep_solve, kcreep_version, kcreep_version_number, max_threads
   public :: creep_request_t, creep_point_t, creep_map_t, creep_curve, source_names
   public :: fastsim_forces, fastsim_result_t, flexibility_weighted, flexibility_separate
   public :: hertz_pressure, strip_parabolic_pressure, equivalent_ellipse_t, equivalent_ellipses
@@ -68,32 +70,42 @@ contains
     type(solve_cache_t), intent(inout), optional :: cache
 
     type(problem_t) :: centred
+    integer :: previous_team
 
-    if (problem%normal%active) then
-      ! the patch is the contact area of the normal problem, solved under error
-      ! control on grids of finer geometry (kcreep_gap_levels)
-      call run_controlled(problem, result, status, cache)
-      return
-    end if
-    call check_problem(problem, status)
-    if (status%failed()) return
-    if (all(problem%spin_centre == 0)) then
-      call solve_as_given(problem)
-    else
-      ! about another point: solve the patch moved so that the point is the
-      ! origin (the operator depends on cell offsets only), then move back
-      centred = problem
-      centred%patch%x0 = problem%patch%x0 - problem%spin_centre(1)
-      centred%patch%y0 = problem%patch%y0 - problem%spin_centre(2)
-      call solve_as_given(centred)
-      if (status%failed()) return
-      result%centroid = result%centroid + problem%spin_centre
-      result%patch%x0 = result%patch%x0 + problem%spin_centre(1)
-      result%patch%y0 = result%patch%y0 + problem%spin_centre(2)
-    end if
-    if (status%failed()) return
-    result%spin_centre = problem%spin_centre
-    call warn_spin_centre_outside(problem%patch, problem%spin_centre, result%warnings)
+    ! the stages outside the linear solves (operator tables, assembly) on a
+    ! team for the patch as given; each solve chooses its own (kcreep_threads)
+    call solve_started()
+    call enter_team(team_size(problem%solve%threads, int(problem%patch%n, int64), cells_per_thread_iterative), &
+                    previous_team)
+    solve: block
+      if (problem%normal%active) then
+        ! the patch is the contact area of the normal problem, solved under error
+        ! control on grids of finer geometry (kcreep_gap_levels)
+        call run_controlled(problem, result, status, cache)
+        exit solve
+      end if
+      call check_problem(problem, status)
+      if (status%failed()) exit solve
+      if (all(problem%spin_centre == 0)) then
+        call solve_as_given(problem)
+      else
+        ! about another point: solve the patch moved so that the point is the
+        ! origin (the operator depends on cell offsets only), then move back
+        centred = problem
+        centred%patch%x0 = problem%patch%x0 - problem%spin_centre(1)
+        centred%patch%y0 = problem%patch%y0 - problem%spin_centre(2)
+        call solve_as_given(centred)
+        if (status%failed()) exit solve
+        result%centroid = result%centroid + problem%spin_centre
+        result%patch%x0 = result%patch%x0 + problem%spin_centre(1)
+        result%patch%y0 = result%patch%y0 + problem%spin_centre(2)
+      end if
+      if (status%failed()) exit solve
+      result%spin_centre = problem%spin_centre
+      call warn_spin_centre_outside(problem%patch, problem%spin_centre, result%warnings)
+    end block solve
+    call leave_team(previous_team)
+    call solve_ended()
 
   contains
 

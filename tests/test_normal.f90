@@ -96,7 +96,7 @@ contains
         end do
       end do
     end do
-    call create_normal_operator(mx, my, 0.3_real64, 0.2_real64, 1.5_real64, op)
+    call create_normal_operator(mx, my, 0.3_real64, 0.2_real64, 1.5_real64, 0, op)
     call apply_normal_operator(op, p, u)
     call destroy_normal_operator(op)
     ! round-off of a 14 x 10 FFT pair: ~1e-15 relative; 1e-13 is generous

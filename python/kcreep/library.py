@@ -56,6 +56,8 @@ _signatures = {
     "kcreep_set_scheme": ([_h, ctypes.c_char_p, _d, _d], _i),
     "kcreep_set_solver": ([_h, ctypes.c_char_p, _d], _i),
     "kcreep_set_extrapolation": ([_h, _i, _i], _i),
+    "kcreep_set_threads": ([_h, _i], _i),
+    "kcreep_get_threads": ([_h, ctypes.POINTER(_i)], _i),
     "kcreep_set_ellipse": ([_h, _d, _d, _i, _i], _i),
     "kcreep_set_mask": ([_h, _i, _i, _p, _d, _d, _d, _d], _i),
     "kcreep_solve": ([_h], _i),
@@ -96,7 +98,7 @@ def version():
 class Result:
     """One solve: f (3 x 3), c (C11, C22, C23), fastsim (L1, L2, L3), verdict,
     verdict_flags, warnings, n (cells), err (estimated relative errors of c,
-    NaN when there is none), ext and ext_error (NaN unless extrapolated), iterations, residual, rcond, seconds (diagnostics) and, with tractions=True, traction (n x 2 x 3: px, py per load
+    NaN when there is none), ext and ext_error (NaN unless extrapolated), iterations, residual, rcond, seconds, threads (diagnostics) and, with tractions=True, traction (n x 2 x 3: px, py per load
     case xi, eta, phi) with the cells' grid indices ix, iy (1-based)."""
 
     def __repr__(self):
@@ -110,13 +112,17 @@ class Solver:
     <= 10 from kcreep's refined table in microseconds, err the stated
     uncertainty, no tractions). cell_budget: the most patch cells of a level
     kcreep chooses under error control (0: the defaults, a run-time budget;
-    raise it for reference work, e.g. target_error=1e-4)."""
+    raise it for reference work, e.g. target_error=1e-4). threads: 0
+    automatic (the CPUs this process may use that are free when a stage
+    starts, where the work pays), else exactly this many; solvers on several
+    threads, one each, run at once."""
 
     def __init__(self, *, nu=0.25, g=1.0, scheme="backward", alpha=0.5, spin_shift=0.0,
                  method="auto", tolerance=0.0, extrapolate_levels=0, refine_ratio=2,
                  target_error=0.0, refine_grid=False, estimate_error=True, cell_budget=0.0, spin_centre=(0.0, 0.0),
-                 bodies=None):
+                 bodies=None, threads=0):
         self._handle = _h(_lib.kcreep_new())
+        self._check(_lib.kcreep_set_threads(self._handle, int(threads)))
         self._check(_lib.kcreep_set_spin_centre(self._handle, float(spin_centre[0]), float(spin_centre[1])))
         self._check(_lib.kcreep_set_error_control(self._handle, target_error, int(bool(refine_grid)),
                                                   int(bool(estimate_error))))
@@ -204,6 +210,9 @@ class Solver:
         r.ext, r.ext_error = v[18:21], v[21:24]
         r.iterations, r.residual, r.rcond, r.seconds = int(v[24]), v[25], v[26], v[27]
         r.n, r.mx, r.my, r.verdict_flags = int(v[28]), int(v[29]), int(v[30]), int(v[31])
+        threads = _i()
+        self._check(_lib.kcreep_get_threads(self._handle, ctypes.byref(threads)))
+        r.threads = threads.value
         if r.verdict_flags == 0 and v[32] == 0:
             r.verdict, r.warnings = "ok", []
         else:

@@ -13,7 +13,7 @@ module kcreep_capi
   use kcreep_kinds, only: wp
   use kcreep_status, only: status_t, fail, exit_bad_input
   use kcreep_strings, only: itoa
-  use kcreep, only: kcreep_solve, kcreep_version_number, problem_t, result_t, default_problem, solve_cache_t, &
+  use kcreep, only: kcreep_solve, kcreep_version_number, max_threads, problem_t, result_t, default_problem, solve_cache_t, &
                     ellipse_patch, mask_patch, n_load_cases, gap_from_array
   use kcreep_creep_curve, only: creep_request_t, creep_point_t, creep_map_t, creep_curve
   use kcreep_fastsim_forces, only: flexibility_weighted, flexibility_separate
@@ -165,6 +165,34 @@ contains
       h%problem%solve%tolerance_given = .true.
     end if
   end function c_set_solver
+
+  !> Threads of each solve on this handle: 0 automatic (the default: the CPUs
+  !> this process may use that are free when a stage starts, where the work
+  !> pays for them), else exactly this many (1 to 1024).
+  integer(c_int) function c_set_threads(handle, threads) bind(c, name='kcreep_set_threads')
+    type(c_ptr), value :: handle
+    integer(c_int), value :: threads
+    type(handle_t), pointer :: h
+    c_set_threads = begin(handle, h)
+    if (c_set_threads /= status_ok) return
+    if (threads < 0 .or. threads > max_threads) then
+      call fail(h%last, exit_bad_input, 'kcreep_set_threads: threads = '//itoa(int(threads))// &
+                ' (allowed: 0 = automatic, or 1 to '//itoa(max_threads)//')')
+    else
+      h%problem%solve%threads = int(threads)
+    end if
+    c_set_threads = finish(h)
+  end function c_set_threads
+
+  !> The threads the last solve's linear solve ran on.
+  integer(c_int) function c_get_threads(handle, threads) bind(c, name='kcreep_get_threads')
+    type(c_ptr), value :: handle
+    integer(c_int), intent(out) :: threads
+    type(handle_t), pointer :: h
+    c_get_threads = solved(handle, h)
+    if (c_get_threads /= status_ok) return
+    threads = int(h%result%threads, c_int)
+  end function c_get_threads
 
   !> Richardson extrapolation over levels (2 or 3) refined by ratio; levels 0 turns it off.
   integer(c_int) function c_set_extrapolation(handle, levels, ratio) bind(c, name='kcreep_set_extrapolation')

@@ -107,7 +107,7 @@ contains
     character(len=32) :: shape, scheme, method, refine, spin_centre, preconditioner
     real(real64) :: spin_centre_x, spin_centre_y
     real(real64) :: semi_a, semi_b, dx, dy, x0, y0, g, nu, alpha, spin_shift, tolerance, target_error, cell_budget
-    integer :: mx, my, extrapolate_levels, refine_ratio, max_iterations, restart
+    integer :: mx, my, extrapolate_levels, refine_ratio, max_iterations, restart, threads
     logical :: extrapolate, split_systems
     character(len=4096) :: mask_file, table_file, traction_file
     character(len=64) :: load_cases
@@ -136,7 +136,7 @@ contains
     namelist /material/ g, nu
     namelist /solver/ target_error, cell_budget, scheme, alpha, spin_shift, load_cases, extrapolate, extrapolate_levels, &
                       refine_ratio, refine, method, tolerance, max_iterations, restart, split_systems, spin_centre, &
-                      spin_centre_x, spin_centre_y, preconditioner
+                      spin_centre_x, spin_centre_y, preconditioner, threads
     namelist /output/ table_file, traction_file, pressure_file, contact_mask_file, creep_file, &
                       creep_map_file
     namelist /normal/ gap_file, contact_inp, contact_inp_case, rx, ry, lx, ly, cx, cy, approach, normal_force, &
@@ -183,6 +183,7 @@ contains
     tolerance = unset
     max_iterations = unset_int
     restart = unset_int
+    threads = cfg%solve%threads
     split_systems = cfg%solve%split_systems
     table_file = ''
     traction_file = ''
@@ -406,6 +407,7 @@ contains
     cfg%solve%tolerance = tolerance
     cfg%solve%max_iterations = max_iterations
     cfg%solve%restart = restart
+    cfg%solve%threads = threads
     if (len_trim(preconditioner) > 0) cfg%solve%preconditioner = lower(trim(adjustl(preconditioner)))
     cfg%solve%split_systems = split_systems
     cfg%table_file = resolve_path(trim(table_file), folder_of(path))

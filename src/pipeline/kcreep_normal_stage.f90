@@ -8,7 +8,7 @@ module kcreep_normal_stage
   use kcreep_status, only: status_t, fail, exit_bad_input
   use kcreep_patch, only: patch_t, mask_patch
   use kcreep_normal_influence, only: compliance_from_g_nu
-  use kcreep_normal_solve, only: normal_result_t, solve_normal
+  use kcreep_normal_solve, only: normal_result_t, normal_options_t, solve_normal
   use kcreep_problem, only: problem_t, result_t
   use kcreep_verdict, only: message_length
   implicit none
@@ -25,6 +25,7 @@ contains
     type(normal_result_t), intent(out) :: nres
     type(status_t), intent(inout) :: status
     real(real64) :: compliance
+    type(normal_options_t) :: options
     integer :: ilo, ihi, jlo, jhi
     logical, allocatable :: contact(:, :)
 
@@ -40,10 +41,12 @@ contains
       end if
       compliance = np%compliance
       if (compliance <= 0) compliance = compliance_from_g_nu(problem%g, problem%nu)
+      options = np%options
+      options%threads = problem%solve%threads   ! one thread knob for every stage
       if (np%force_given) then
-        call solve_normal(gap%h, gap%dx, gap%dy, compliance, np%options, nres, status, normal_force=np%normal_force)
+        call solve_normal(gap%h, gap%dx, gap%dy, compliance, options, nres, status, normal_force=np%normal_force)
       else
-        call solve_normal(gap%h, gap%dx, gap%dy, compliance, np%options, nres, status, approach=np%approach)
+        call solve_normal(gap%h, gap%dx, gap%dy, compliance, options, nres, status, approach=np%approach)
       end if
       if (status%failed()) return
       contact = nres%pressure > 0

@@ -96,6 +96,7 @@ module kcreep_problem
     ! diagnostics of the solve
     character(len=:), allocatable :: method     !< 'dense' or 'iterative'
     integer :: iterations = 0                   !< GMRES iterations, 0 for dense
+    integer :: threads = 1                      !< threads the (last) linear solve ran on
     real(real64) :: rcond = 0, backward_error = 0
     real(real64) :: backward_error_initial = 0, relative_residual = 0   !< before refinement
     character(len=:), allocatable :: refine     !< mode and whether it refined

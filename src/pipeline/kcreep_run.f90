@@ -115,6 +115,7 @@ contains
       result%refine = problem%refine//merge(' (refined)    ', ' (not refined)', diag%refined)
       result%method = diag%method
       result%iterations = diag%iterations
+      result%threads = diag%threads
       result%t_assemble = t_table + diag%t_assemble
       result%t_factor = diag%t_factor
       result%t_solve = diag%t_solve

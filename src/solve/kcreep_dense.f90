@@ -32,6 +32,7 @@ module kcreep_dense
     real(real64) :: t_assemble = 0, t_factor = 0, t_solve = 0
     character(len=:), allocatable :: method   !< 'dense' or 'iterative' (set by linear_solve)
     integer :: iterations = 0                 !< GMRES iterations (largest over load cases), 0 for dense
+    integer :: threads = 1                    !< the solve's team (kcreep_threads)
     real(real64) :: t_operator = 0, t_preconditioner = 0, t_orthogonalise = 0   !< where GMRES spent its time
   end type dense_diagnostics_t
 

@@ -136,8 +136,6 @@ contains
     if (mod(op%nx, 2) /= 0) op%nx = fast_size(op%nx + 1)   ! even: a simple half spectrum
     op%ny = fast_size(max(ny_min, patch%my))
     nh = op%nx / 2 + 1
-    ! single-threaded plans, even if an earlier caller asked FFTW for threads
-    if (fftw_init_threads() /= 0) call fftw_plan_with_nthreads(1_c_int)
     allocate (op%slots(2 * max_vectors))
     do s = 1, size(op%slots)
       op%slots(s)%p_real = fftw_alloc_real(int(op%nx, c_size_t) * op%ny)
@@ -148,6 +146,11 @@ contains
     ! FFTW's dimensions are row-major: (ny, nx) is our (nx, ny) in Fortran order.
     ! FFTW_ESTIMATE: measured planning (seconds at 800 x 800) did not pay back here.
     call c_f_pointer(op%slots(1)%p_spec, in_place, [nh, op%ny])
+    ! FFTW's planner is not thread-safe: one planner at a time in the process
+    ! (handles may be used from several threads at once). Single-threaded
+    ! plans, even if an earlier plan asked FFTW for threads.
+    !$omp critical (kcreep_fftw_planner)
+    if (fftw_init_threads() /= 0) call fftw_plan_with_nthreads(1_c_int)
     associate (w => op%slots(1))
       op%forward = fftw_plan_dft_r2c_2d(op%ny, op%nx, w%grid, w%spec, FFTW_ESTIMATE)
       op%backward = fftw_plan_dft_c2r_2d(op%ny, op%nx, w%spec, w%grid, FFTW_ESTIMATE)
@@ -169,6 +172,7 @@ contains
                                                in_place, [int(op%ny, c_int)], int(nh, c_int), 1_c_int, &
                                                FFTW_BACKWARD, FFTW_ESTIMATE)
     end associate
+    !$omp end critical (kcreep_fftw_planner)
   end subroutine plan_fft_grid
 
   !> The circulant approximation of the inverse of the displacement operator
@@ -274,12 +278,14 @@ contains
       call fftw_free(op%slots(s)%p_spec)
       nullify (op%slots(s)%grid, op%slots(s)%spec)
     end do
+    !$omp critical (kcreep_fftw_planner)
     call fftw_destroy_plan(op%forward)
     call fftw_destroy_plan(op%backward)
     call fftw_destroy_plan(op%rows_forward)
     call fftw_destroy_plan(op%rows_backward)
     call fftw_destroy_plan(op%columns_forward)
     call fftw_destroy_plan(op%columns_backward)
+    !$omp end critical (kcreep_fftw_planner)
     deallocate (op%slots)
   end subroutine destroy_fft_operator
 

@@ -28,6 +28,8 @@ module kcreep_linear_solve
                                             apply_circulant_preconditioner, destroy_circulant_preconditioner
   use kcreep_krylov, only: block_operator_t, gmres_result_t, gmres
   use kcreep_solver_options, only: solver_options_t
+  use kcreep_threads, only: team_size, enter_team, leave_team, serial_blas, cells_per_thread_dense, &
+                            cells_per_thread_iterative
   implicit none
   private
   public :: solve_load_cases, choose_method, solve_memory_bytes, solve_memory_plan
@@ -183,7 +185,7 @@ contains
     real(real64), intent(in), optional :: initial(:, :)
     type(subsystem_t), allocatable :: subs(:)
     real(real64), allocatable :: rhs(:, :)
-    integer :: j, n
+    integer :: j, n, previous_team
     logical :: fallback
 
     n = patch%n
@@ -194,6 +196,13 @@ contains
     traction = ieee_value(1.0_real64, ieee_quiet_nan)
     subs = plan_subsystems(patch, nu, opts%split_systems, requested)
     diag%method = choose_method(opts, patch, subs, requested)
+    ! the team for this solve, chosen now (kcreep_threads): a ladder of
+    ! levels re-judges the machine's load at every level
+    diag%threads = team_size(opts%threads, int(n, int64), &
+                             merge(cells_per_thread_dense, cells_per_thread_iterative, diag%method == 'dense'))
+    call enter_team(diag%threads, previous_team)
+    call serial_blas()
+    solve: block
     if (diag%method == 'dense') then
       if (.not. dense_fits(subs, opts%memory_limit)) then
         call fail(status, exit_bad_input, 'method = ''dense'': the largest dense matrix ('// &
@@ -201,7 +210,7 @@ contains
                   rtoa(8 * real(maxval(subs%m), real64)**2 / 2.0_real64**30)//' GiB, only '// &
                   rtoa(real(opts%memory_limit, real64) / 2.0_real64**30)// &
                   ' GiB are available (use method = ''iterative'' or ''auto'')')
-        return
+        exit solve
       end if
       if (refine == 'lapack') then
         call solve_dense_expert(patch, table, requested, opts%memory_limit, rhs, traction, diag, status)
@@ -210,7 +219,7 @@ contains
       end if
     else
       call check_iterative_memory(opts, patch, count(requested), status)
-      if (status%failed()) return
+      if (status%failed()) exit solve
       call solve_iterative(resolved_preconditioner(opts, scheme), nu, patch, table, requested, rhs, traction, diag, &
                            status, initial)
       fallback = status%code == exit_numerical .and. opts%method == 'auto'
@@ -224,6 +233,8 @@ contains
         call solve_dense_split(patch, table, subs, requested, refine, rhs, traction, diag, status)
       end if
     end if
+    end block solve
+    call leave_team(previous_team)
   end subroutine solve_load_cases
 
   !> refine = 'lapack': the whole 2n x 2n system through dense_solver's dgesvx path.

@@ -24,11 +24,11 @@
 !> deformation) below the tolerance.
 module kcreep_normal_solve
   use, intrinsic :: iso_c_binding
-  use, intrinsic :: iso_fortran_env, only: real64
+  use, intrinsic :: iso_fortran_env, only: real64, int64
   use kcreep_status, only: status_t, fail, exit_bad_input, exit_numerical
   use kcreep_strings, only: itoa, rtoa
   use kcreep_normal_influence, only: normal_offset_table
-  !$ use omp_lib, only: omp_get_max_threads
+  use kcreep_threads, only: team_size, cells_per_thread_normal
   implicit none
   private
   public :: normal_options_t, normal_result_t, solve_normal
@@ -39,6 +39,8 @@ module kcreep_normal_solve
   type :: normal_options_t
     real(real64) :: tolerance = 1e-10_real64   !< on the complementarity residual
     integer :: max_iterations = 5000
+    !> FFTW threads: 0 automatic (kcreep_threads), else this many
+    integer :: threads = 0
   end type normal_options_t
 
   type :: normal_result_t
@@ -58,6 +60,7 @@ module kcreep_normal_solve
   type :: normal_operator_t
     integer :: mx = 0, my = 0, nx = 0, ny = 0
     integer :: applications = 0                 !< products A p done
+    integer :: threads = 1                      !< FFTW threads of its plans
     type(c_ptr) :: p_real = c_null_ptr, p_spec = c_null_ptr
     real(c_double), pointer :: grid(:, :) => null()
     complex(c_double_complex), pointer :: spec(:, :) => null()
@@ -86,32 +89,35 @@ contains
     end do
   end function fast_even_size
 
-  subroutine create_normal_operator(mx, my, dx, dy, compliance, op)
-    integer, intent(in) :: mx, my
+  !> threads: FFTW threads for the transforms, 0 automatic (kcreep_threads)
+  subroutine create_normal_operator(mx, my, dx, dy, compliance, threads, op)
+    integer, intent(in) :: mx, my, threads
     real(real64), intent(in) :: dx, dy, compliance
     type(normal_operator_t), intent(out) :: op
     real(real64), allocatable :: table(:, :)
-    integer :: i, j, nh, threads
+    integer :: i, j, nh
 
     op%mx = mx
     op%my = my
     op%nx = fast_even_size(2 * mx)
     op%ny = fast_even_size(2 * my)
     nh = op%nx / 2 + 1
-    threads = 1
-    !$ threads = omp_get_max_threads()
-    if (real(op%nx, real64) * op%ny < 6.5e4_real64) threads = 1
-    if (threads > 1) then
-      if (fftw_init_threads() == 0) threads = 1
-      call fftw_plan_with_nthreads(int(threads, c_int))
-    end if
+    op%threads = team_size(threads, int(op%nx, int64) * op%ny, cells_per_thread_normal)
     op%p_real = fftw_alloc_real(int(op%nx, c_size_t) * op%ny)
     op%p_spec = fftw_alloc_complex(int(nh, c_size_t) * op%ny)
     call c_f_pointer(op%p_real, op%grid, [op%nx, op%ny])
     call c_f_pointer(op%p_spec, op%spec, [nh, op%ny])
-    ! FFTW's dimensions are row-major: (ny, nx) is our (nx, ny).
+    ! FFTW's dimensions are row-major: (ny, nx) is our (nx, ny). Its planner
+    ! is not thread-safe: one planner at a time in the process.
+    !$omp critical (kcreep_fftw_planner)
+    if (fftw_init_threads() /= 0) then
+      call fftw_plan_with_nthreads(int(op%threads, c_int))
+    else
+      op%threads = 1   ! FFTW without thread support
+    end if
     op%forward = fftw_plan_dft_r2c_2d(op%ny, op%nx, op%grid, op%spec, FFTW_ESTIMATE)
     op%backward = fftw_plan_dft_c2r_2d(op%ny, op%nx, op%spec, op%grid, FFTW_ESTIMATE)
+    !$omp end critical (kcreep_fftw_planner)
 
     call normal_offset_table(mx, my, dx, dy, compliance, table)
     op%grid = 0
@@ -129,8 +135,10 @@ contains
     if (.not. c_associated(op%p_real)) return
     call fftw_free(op%p_real)
     call fftw_free(op%p_spec)
+    !$omp critical (kcreep_fftw_planner)
     call fftw_destroy_plan(op%forward)
     call fftw_destroy_plan(op%backward)
+    !$omp end critical (kcreep_fftw_planner)
     op%p_real = c_null_ptr
     op%p_spec = c_null_ptr
     nullify (op%grid, op%spec)
@@ -222,7 +230,7 @@ contains
       end if
     end if
 
-    call create_normal_operator(mx, my, dx, dy, compliance, op)
+    call create_normal_operator(mx, my, dx, dy, compliance, options%threads, op)
     if (.not. force_given) then
       ! first estimate: the best multiple of the interpenetration
       call apply_normal_operator(op, g, u)

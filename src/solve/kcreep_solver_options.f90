@@ -4,6 +4,7 @@ module kcreep_solver_options
   use, intrinsic :: iso_fortran_env, only: real64, int64
   use kcreep_status, only: status_t, fail, exit_bad_input
   use kcreep_strings, only: itoa, rtoa
+  use kcreep_threads, only: max_threads
   implicit none
   private
   public :: solver_options_t, validate_solver_options
@@ -27,6 +28,10 @@ module kcreep_solver_options
     !> Bytes the solve may allocate (the caller measures what the machine
     !> allows); negative: no limit known, nothing is checked.
     integer(int64) :: memory_limit = -1
+    !> Threads of each stage: 0 automatic (the CPUs this process may use
+    !> that are free when the stage starts, where the work pays for them:
+    !> kcreep_threads), else this many.
+    integer :: threads = 0
   end type solver_options_t
 
 contains
@@ -51,6 +56,8 @@ contains
         where//'&solver tolerance = '//rtoa(opts%tolerance)//' (allowed: 1e-15 <= tolerance < 1)')
     if (opts%max_iterations < 1) call fail(status, exit_bad_input, where//'&solver max_iterations = '// &
         itoa(opts%max_iterations)//' (must be >= 1)')
+    if (opts%threads < 0 .or. opts%threads > max_threads) call fail(status, exit_bad_input, where// &
+        '&solver threads = '//itoa(opts%threads)//' (allowed: 0 = automatic, or 1 to '//itoa(max_threads)//')')
     if (opts%restart < 1 .or. opts%restart > 1000) call fail(status, exit_bad_input, where// &
         '&solver restart = '//itoa(opts%restart)//' (allowed: 1 to 1000)')
   end subroutine validate_solver_options
