@@ -16,7 +16,8 @@ module kcreep
   use kcreep_status, only: status_t, fail, exit_bad_input, exit_numerical, exit_io
   use kcreep_patch, only: patch_t, ellipse_patch, mask_patch
   use kcreep_assembly, only: scheme_t, n_load_cases, load_case_names
-  use kcreep_solver_options, only: solver_options_t
+  use kcreep_solver_options, only: solver_options_t, validate_solver_options
+  use kcreep_dense, only: refine_modes
   use kcreep_threads, only: team_size, enter_team, leave_team, cells_per_thread_iterative, solve_started, &
                             solve_ended, max_threads
   use kcreep_verdict, only: verdict_ok, verdict_degenerate, verdict_nonphysical, verdict_alpha_edge, &
@@ -26,9 +27,10 @@ module kcreep
   use kcreep_problem, only: problem_t, result_t, default_problem, normal_problem_t
   use kcreep_normal_solve, only: normal_result_t, normal_options_t
   use kcreep_gap, only: gap_t, polynomial_gap_t, gap_from_array, gap_from_polynomial, auto_grid
-  use kcreep_check, only: check_problem
+  use kcreep_check, only: check_problem, collocation_aspect_limit
   use kcreep_run, only: run_case, solve_cache_t
-  use kcreep_creep_curve, only: creep_request_t, creep_point_t, creep_map_t, creep_curve, source_names
+  use kcreep_creep_curve, only: creep_request_t, creep_point_t, creep_map_t, creep_curve, source_names, &
+                                source_flexibilities
   use kcreep_fastsim_forces, only: fastsim_forces, fastsim_result_t, flexibility_weighted, flexibility_separate
   use kcreep_pressure_models, only: hertz_pressure, strip_parabolic_pressure
   use kcreep_equivalent_ellipse, only: equivalent_ellipse_t, equivalent_ellipses
@@ -38,7 +40,8 @@ module kcreep
   implicit none
   private
   public :: kcreep_solve, kcreep_version, kcreep_version_number, max_threads
-  public :: creep_request_t, creep_point_t, creep_map_t, creep_curve, source_names
+  public :: creep_request_t, creep_point_t, creep_map_t, creep_curve, source_names, source_flexibilities
+  public :: validate_solver_options, refine_modes, collocation_aspect_limit
   public :: fastsim_forces, fastsim_result_t, flexibility_weighted, flexibility_separate
   public :: hertz_pressure, strip_parabolic_pressure, equivalent_ellipse_t, equivalent_ellipses
   public :: normal_problem_t, normal_options_t, gap_t, polynomial_gap_t, gap_from_array, gap_from_polynomial, auto_grid

@@ -5,7 +5,7 @@ module kcreep_table
   use, intrinsic :: iso_fortran_env, only: real64
   use kcreep_patch, only: patch_t
   use kcreep_assembly, only: load_case_names, n_load_cases
-  use kcreep_problem, only: result_t
+  use kcreep, only: result_t
   implicit none
   private
   public :: run_record_t, table_lines, table_row, traction_lines, table_columns, case_name, line_length
