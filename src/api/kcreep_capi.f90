@@ -14,10 +14,9 @@ module kcreep_capi
   use kcreep_status, only: status_t, fail, exit_bad_input
   use kcreep_strings, only: itoa
   use kcreep, only: kcreep_solve, kcreep_version_number, max_threads, problem_t, result_t, default_problem, solve_cache_t, &
-                    ellipse_patch, mask_patch, n_load_cases, gap_from_array
-  use kcreep_creep_curve, only: creep_request_t, creep_point_t, creep_map_t, creep_curve
-  use kcreep_fastsim_forces, only: flexibility_weighted, flexibility_separate
-  use kcreep_normal_influence, only: compliance_from_e_nu, combined_g_nu_from_e_nu
+                    ellipse_patch, mask_patch, n_load_cases, gap_from_array, &
+                    creep_request_t, creep_point_t, creep_map_t, creep_curve, flexibility_weighted, &
+                    flexibility_separate, compliance_from_e_nu, combined_g_nu_from_e_nu
   implicit none
   private
 
