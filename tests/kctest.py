@@ -40,6 +40,28 @@ def copy_inputs(folder):
     return inputs, os.path.isdir(os.path.join(shared, "contact-samples"))
 
 
+def copy_repository(repo, copy):
+    """Copy the tracked files of repo to copy (git), or the tree without
+    build*/, studies/ and caches (no git: a source archive)."""
+    try:
+        listed = subprocess.run(["git", "-C", repo, "ls-files", "-z", "--cached", "--others",
+                                 "--exclude-standard"], capture_output=True, check=True).stdout
+        files = [f for f in listed.decode().split("\0") if f]
+    except (OSError, subprocess.CalledProcessError):
+        files = []
+    if not files:
+        shutil.copytree(repo, copy, symlinks=True,
+                        ignore=shutil.ignore_patterns(".git", "build*", "studies", "__pycache__", "*.tab.partial"))
+        return
+    for rel in files:
+        source = os.path.join(repo, rel)
+        os.makedirs(os.path.dirname(os.path.join(copy, rel)), exist_ok=True)
+        try:
+            shutil.copy2(source, os.path.join(copy, rel), follow_symlinks=False)
+        except FileNotFoundError:  # deleted in the working tree since git listed it
+            continue
+
+
 def namelist(patch="", material="", solver="", output=""):
     """A namelist for a test of a specific discretisation: unless the solver
     string says otherwise, the grid is solved exactly as given (target_error = 0)
