@@ -27,6 +27,7 @@ module kcreep
   use kcreep_problem, only: problem_t, result_t, default_problem, normal_problem_t
   use kcreep_normal_solve, only: normal_result_t, normal_options_t
   use kcreep_gap, only: gap_t, polynomial_gap_t, gap_from_array, gap_from_polynomial, auto_grid
+  use kcreep_creep_matrix, only: normalised_about
   use kcreep_check, only: check_problem, collocation_aspect_limit
   use kcreep_run, only: run_case, solve_cache_t
   use kcreep_creep_curve, only: creep_request_t, creep_point_t, creep_map_t, creep_curve, source_names, &
@@ -43,7 +44,7 @@ module kcreep
   private
   public :: kcreep_solve, kcreep_memory_need, kcreep_version, kcreep_version_number, max_threads
   public :: creep_request_t, creep_point_t, creep_map_t, creep_curve, source_names, source_flexibilities
-  public :: validate_solver_options, refine_modes, collocation_aspect_limit
+  public :: validate_solver_options, refine_modes, collocation_aspect_limit, normalised_about
   public :: fastsim_forces, fastsim_result_t, flexibility_weighted, flexibility_separate, flexibility_rule_name
   public :: compliance_from_e_nu, combined_g_nu_from_e_nu
   public :: hertz_pressure, strip_parabolic_pressure, equivalent_ellipse_t, equivalent_ellipses

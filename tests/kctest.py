@@ -7,7 +7,9 @@ import subprocess
 import sys
 import tempfile
 
-sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "python"))
+#: the repository (tests/ is one level down)
+REPO = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
+sys.path.insert(0, os.path.join(REPO, "python"))
 from kcreep import table  # noqa: E402  (standard library only)
 
 KCREEP = None
@@ -31,7 +33,7 @@ def copy_inputs(folder):
     repository's ../shared linked beside them as folder/shared, so that they
     run with their relative paths and write nothing into the source tree.
     Returns (the copied input folder, whether ../shared/contact-samples is there)."""
-    repo = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
+    repo = REPO
     shared = os.path.join(repo, "..", "shared")
     inputs = os.path.join(folder, "repo", "input")
     shutil.copytree(os.path.join(repo, "input"), inputs)
