@@ -15,23 +15,37 @@ module kcreep_namelist
   use kcreep_mask_file, only: read_mask_file, parse_mask_rows
   use kcreep_contact_reader, only: read_contact_case, combined_material
   use kcreep_file_checks, only: read_input_file
-  use kcreep_namelist_scan, only: scan_namelist_text
+  use kcreep_namelist_scan, only: scan_namelist_text, diagnose_group
   use kcreep_nml_config, only: config_t, input_where, unset, max_inline_rows, max_row_length, max_creepages
-  use kcreep_nml_patch, only: patch_group_t, read_patch_group, apply_patch_group
-  use kcreep_nml_material, only: material_group_t, read_material_group, apply_material_group
-  use kcreep_nml_solver, only: solver_group_t, read_solver_group, apply_solver_group
-  use kcreep_nml_output, only: output_group_t, read_output_group, apply_output_group
-  use kcreep_nml_normal, only: normal_group_t, read_normal_group, apply_normal_group, load_gap
-  use kcreep_nml_fastsim, only: fastsim_group_t, read_fastsim_group, apply_fastsim_group
+  use kcreep_nml_patch, only: patch_variables, patch_group_t, read_patch_group, apply_patch_group
+  use kcreep_nml_material, only: material_variables, material_group_t, read_material_group, apply_material_group
+  use kcreep_nml_solver, only: solver_variables, solver_group_t, read_solver_group, apply_solver_group
+  use kcreep_nml_output, only: output_variables, output_group_t, read_output_group, apply_output_group
+  use kcreep_nml_normal, only: normal_variables, normal_group_t, read_normal_group, apply_normal_group, load_gap
+  use kcreep_nml_fastsim, only: fastsim_variables, fastsim_group_t, read_fastsim_group, apply_fastsim_group
   implicit none
   private
   public :: config_t, read_config, build_patch, problem_of, max_inline_rows, max_row_length, max_creepages
-  public :: group_names
+  public :: group_names, group_list
 
   character(len=*), parameter :: group_names(6) = [character(len=8) :: 'patch', 'material', 'solver', 'output', &
                                                     'normal', 'fastsim']
 
 contains
+
+  !> '&patch, &material, ... and &fastsim': the groups an input may hold.
+  pure function group_list() result(list)
+    character(len=:), allocatable :: list
+    integer :: k
+    list = '&'//trim(group_names(1))
+    do k = 2, size(group_names)
+      if (k == size(group_names)) then
+        list = list//' and &'//trim(group_names(k))
+      else
+        list = list//', &'//trim(group_names(k))
+      end if
+    end do
+  end function group_list
 
   !> Read and validate the namelist at path. Relative file names inside it
   !> (mask_file, contact_file, table_file, traction_file) are taken relative
@@ -125,6 +139,7 @@ contains
 
     subroutine check_read(k)
       integer, intent(in) :: k
+      character(len=:), allocatable :: why
       if (status%failed()) return
       if (ios == iostat_end .and. closed(k) .and. last_line_open) then
         ios = 0                           ! read whole: its / was there, the newline after it was not
@@ -132,7 +147,23 @@ contains
         call fail(status, exit_bad_input, 'input '''//path//''': namelist &'//trim(group_names(k))// &
                   ': end of file before the closing /')
       else if (ios /= 0) then
-        call fail(status, exit_bad_input, 'input '''//path//''': namelist &'//trim(group_names(k))//': '//trim(msg))
+        ! the compiler's words ("Cannot match namelist object name '.5'") in the input's
+        select case (k)
+        case (1)
+          why = diagnose_group(text, 'patch', patch_variables)
+        case (2)
+          why = diagnose_group(text, 'material', material_variables)
+        case (3)
+          why = diagnose_group(text, 'solver', solver_variables)
+        case (4)
+          why = diagnose_group(text, 'output', output_variables)
+        case (5)
+          why = diagnose_group(text, 'normal', normal_variables)
+        case default
+          why = diagnose_group(text, 'fastsim', fastsim_variables)
+        end select
+        if (len(why) == 0) why = '&'//trim(group_names(k))//': '//trim(msg)
+        call fail(status, exit_bad_input, 'input '''//path//''': namelist '//why)
       end if
     end subroutine check_read
 

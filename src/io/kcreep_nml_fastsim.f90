@@ -7,7 +7,7 @@ module kcreep_nml_fastsim
   use kcreep_nml_config, only: config_t, input_where, default_output_name, unset, max_creepages
   implicit none
   private
-  public :: fastsim_group_t, read_fastsim_group, apply_fastsim_group
+  public :: fastsim_variables, fastsim_group_t, read_fastsim_group, apply_fastsim_group
 
   !> The group as written (unset: not given).
   type :: fastsim_group_t
@@ -20,6 +20,14 @@ module kcreep_nml_fastsim
     character(len=4096) :: pressure_input_file = ''
     logical :: maps = .false.
   end type fastsim_group_t
+
+  !> The group's variables and their types, as in its namelist statement
+  !> (kcreep_namelist_scan diagnose_group explains a failed read with them).
+  character(len=*), parameter :: fastsim_variables(16) = [character(len=29) :: &
+    'mu real', 'creepages real', 'sweep_direction real', 'sweep_from real', 'sweep_to real', &
+    'sweep_points integer', 'sweep_spacing character', 'pressure character', &
+    'pressure_input_file character', 'fn real', 'flexibility character', 'l1 real', 'l2 real', 'l3 real', &
+    'rule character', 'maps logical']
 
 contains
 

@@ -7,13 +7,18 @@ module kcreep_nml_material
   use kcreep_nml_config, only: config_t, input_where, unset
   implicit none
   private
-  public :: material_group_t, read_material_group, apply_material_group
+  public :: material_variables, material_group_t, read_material_group, apply_material_group
 
   !> The group as written (unset: not given; shape = 'contact' and per-body
   !> moduli in &normal refuse a material written here).
   type :: material_group_t
     real(real64) :: g = unset, nu = unset
   end type material_group_t
+
+  !> The group's variables and their types, as in its namelist statement
+  !> (kcreep_namelist_scan diagnose_group explains a failed read with them).
+  character(len=*), parameter :: material_variables(2) = [character(len=7) :: &
+    'g real', 'nu real']
 
 contains
 

@@ -14,7 +14,7 @@ module kcreep_nml_normal
   use kcreep_nml_config, only: config_t, input_where, unset
   implicit none
   private
-  public :: normal_group_t, read_normal_group, apply_normal_group, load_gap
+  public :: normal_variables, normal_group_t, read_normal_group, apply_normal_group, load_gap
 
   !> The group as written (unset: not given).
   type :: normal_group_t
@@ -23,6 +23,14 @@ module kcreep_nml_normal
     real(real64) :: rx = 0, ry = 0, lx = 0, ly = 0, cx = 0, cy = 0, approach = unset, normal_force = unset, &
                     margin = 0.2_real64, e1 = unset, nu1 = unset, e2 = unset, nu2 = unset, normal_tolerance = 0
   end type normal_group_t
+
+  !> The group's variables and their types, as in its namelist statement
+  !> (kcreep_namelist_scan diagnose_group explains a failed read with them).
+  character(len=*), parameter :: normal_variables(19) = [character(len=29) :: &
+    'gap_file character', 'contact_inp character', 'contact_inp_case integer', 'rx real', 'ry real', &
+    'lx real', 'ly real', 'cx real', 'cy real', 'approach real', 'normal_force real', &
+    'cells_across integer', 'margin real', 'e1 real', 'nu1 real', 'e2 real', 'nu2 real', &
+    'normal_tolerance real', 'normal_max_iterations integer']
 
 contains
 

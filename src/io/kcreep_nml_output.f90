@@ -5,12 +5,18 @@ module kcreep_nml_output
   use kcreep_nml_config, only: config_t, input_where, default_output_name
   implicit none
   private
-  public :: output_group_t, read_output_group, apply_output_group
+  public :: output_variables, output_group_t, read_output_group, apply_output_group
 
   type :: output_group_t
     character(len=4096) :: table_file = '', traction_file = '', pressure_file = '', contact_mask_file = '', &
                            creep_file = '', creep_map_file = ''
   end type output_group_t
+
+  !> The group's variables and their types, as in its namelist statement
+  !> (kcreep_namelist_scan diagnose_group explains a failed read with them).
+  character(len=*), parameter :: output_variables(6) = [character(len=27) :: &
+    'table_file character', 'traction_file character', 'pressure_file character', &
+    'contact_mask_file character', 'creep_file character', 'creep_map_file character']
 
 contains
 

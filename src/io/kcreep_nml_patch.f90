@@ -7,7 +7,7 @@ module kcreep_nml_patch
   use kcreep_nml_config, only: config_t, input_where, unset, unset_int, max_inline_rows, max_row_length
   implicit none
   private
-  public :: patch_group_t, read_patch_group, apply_patch_group
+  public :: patch_variables, patch_group_t, read_patch_group, apply_patch_group
 
   integer, parameter :: default_cells = 60   !< an ellipse's cells across when mx, my are left out
 
@@ -19,6 +19,13 @@ module kcreep_nml_patch
     character(len=4096) :: mask_file = '', contact_file = ''
     character(len=max_row_length), allocatable :: mask_rows(:)
   end type patch_group_t
+
+  !> The group's variables and their types, as in its namelist statement
+  !> (kcreep_namelist_scan diagnose_group explains a failed read with them).
+  character(len=*), parameter :: patch_variables(13) = [character(len=22) :: &
+    'shape character', 'semi_a real', 'semi_b real', 'mx integer', 'my integer', 'mask_file character', &
+    'mask_rows character', 'dx real', 'dy real', 'x0 real', 'y0 real', 'contact_file character', &
+    'contact_case integer']
 
 contains
 

@@ -11,7 +11,7 @@ module kcreep_nml_solver
   use kcreep_nml_config, only: config_t, input_where, unset, unset_int
   implicit none
   private
-  public :: solver_group_t, read_solver_group, apply_solver_group
+  public :: solver_variables, solver_group_t, read_solver_group, apply_solver_group
 
   !> The group as written (unset: not given; values the case would not use are refused).
   type :: solver_group_t
@@ -23,6 +23,15 @@ module kcreep_nml_solver
     logical :: extrapolate = .false., split_systems = .true.
     character(len=64) :: load_cases = 'xi eta phi'
   end type solver_group_t
+
+  !> The group's variables and their types, as in its namelist statement
+  !> (kcreep_namelist_scan diagnose_group explains a failed read with them).
+  character(len=*), parameter :: solver_variables(20) = [character(len=26) :: &
+    'target_error real', 'cell_budget real', 'scheme character', 'alpha real', 'spin_shift real', &
+    'load_cases character', 'extrapolate logical', 'extrapolate_levels integer', 'refine_ratio integer', &
+    'refine character', 'method character', 'tolerance real', 'max_iterations integer', 'restart integer', &
+    'split_systems logical', 'spin_centre character', 'spin_centre_x real', 'spin_centre_y real', &
+    'preconditioner character', 'threads integer']
 
 contains
 
