@@ -7,7 +7,7 @@ module kcreep_run
   use kcreep_patch, only: patch_t
   use kcreep_assembly, only: operator_table_t, build_operator_table
   use kcreep_dense, only: dense_diagnostics_t
-  use kcreep_linear_solve, only: solve_load_cases
+  use kcreep_linear_solve, only: solve_load_cases, solve_workspace_t, clear_workspace
   use kcreep_creep_matrix, only: creep_matrix, normalised
   use kcreep_kalker_table, only: kalker_coefficients
   use kcreep_fastsim, only: fastsim_flexibilities
@@ -20,9 +20,12 @@ module kcreep_run
 
   !> What repeated solves on the same grid can share: the operator table
   !> (influence coefficients by cell offset) depends on the grid, the scheme
-  !> and the material, not on the mask. Kept by the caller between solves.
+  !> and the material, not on the mask, and so do the FFT operator and the
+  !> circulant preconditioner built from it (workspace). Kept by the caller
+  !> between solves, never copied (the workspace owns FFTW plans).
   type :: solve_cache_t
     type(operator_table_t) :: table
+    type(solve_workspace_t) :: workspace
     logical :: filled = .false.
     integer :: mx = 0, my = 0
     real(real64) :: dx = 0, dy = 0, nu = 0, g = 0, alpha = 0, spin_shift = 0
@@ -75,10 +78,10 @@ contains
         if (allocated(cache%last_traction)) then
           call solve_load_cases(problem%solve, problem%scheme, problem%nu, patch, table, problem%requested, &
                                 problem%refine, result%traction, diag, status, &
-                                initial=guess_from(cache%last_traction, patch))
+                                initial=guess_from(cache%last_traction, patch), workspace=cache%workspace)
         else
           call solve_load_cases(problem%solve, problem%scheme, problem%nu, patch, table, problem%requested, &
-                                problem%refine, result%traction, diag, status)
+                                problem%refine, result%traction, diag, status, workspace=cache%workspace)
         end if
         if (.not. status%failed()) call keep_solution(cache, patch, result%traction)
       else
@@ -170,11 +173,12 @@ contains
     end do
   end function guess_from
 
-  pure subroutine remember(cache, problem)
+  subroutine remember(cache, problem)
     type(solve_cache_t), intent(inout) :: cache
     type(problem_t), intent(in) :: problem
     cache%filled = .true.
     if (allocated(cache%last_traction)) deallocate (cache%last_traction)   ! another grid or operator
+    call clear_workspace(cache%workspace)   ! its kernel spectra were the old table's
     cache%mx = problem%patch%mx
     cache%my = problem%patch%my
     cache%dx = problem%patch%dx
