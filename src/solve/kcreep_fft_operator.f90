@@ -50,7 +50,7 @@ module kcreep_fft_operator
     integer :: n = 0                   !< patch cells
     integer :: nx = 0, ny = 0          !< padded periodic grid
     integer :: mx = 0, my = 0          !< the patch's bounding grid, the corner x and y live in
-    integer, allocatable :: ix(:), iy(:)
+    integer, allocatable :: at(:)      !< each patch cell's place in the grid, in array element order
     !> Kernel spectra by column (ny, nx/2 + 1), scaled by 1/(nx ny) (the unnormalised inverse FFT).
     complex(c_double_complex), allocatable :: kxx(:, :), kxy(:, :), kyy(:, :)
     type(fft_slot_t), allocatable :: slots(:)   !< 2 per vector of a block
@@ -130,8 +130,7 @@ contains
     type(patch_t), intent(in) :: patch
     if (patch%mx /= op%mx .or. patch%my /= op%my) error stop 'set_fft_cells: the patch is on another grid'
     op%n = patch%n
-    op%ix = patch%ix
-    op%iy = patch%iy
+    op%at = patch%ix + (patch%iy - 1) * op%nx
   end subroutine set_fft_cells
 
   !> The padded periodic grid of the patch's bounding grid, its FFT plans and
@@ -367,20 +366,13 @@ contains
     type(fft_operator_t), intent(in) :: op
     type(fft_slot_t), intent(inout) :: w
     real(real64), intent(in) :: values(:)   !< (n)
-    integer :: k
     if (op%pruned) then
-      w%grid(:, 1:op%my) = 0
-    else
-      w%grid = 0
-    end if
-    do k = 1, op%n
-      w%grid(op%ix(k), op%iy(k)) = values(k)
-    end do
-    if (op%pruned) then
+      call scatter(values, op%at, op%nx * op%my, w%grid)
       call fftw_execute_dft_r2c(op%rows_forward, w%grid, w%spec)
-      w%spec(:, op%my + 1:) = 0   ! the rows beyond the patch: zero input, zero spectrum
+      call clear(w%spec(:, op%my + 1:))   ! the rows beyond the patch: zero input, zero spectrum
       call fftw_execute_dft(op%columns_forward, w%spec, w%cols)
     else
+      call scatter(values, op%at, op%nx * op%ny, w%grid)
       call fftw_execute_dft_r2c(op%forward, w%grid, w%spec)
       w%cols = transpose(w%spec)
     end if
@@ -391,7 +383,6 @@ contains
     type(fft_operator_t), intent(in) :: op
     type(fft_slot_t), intent(inout) :: w
     real(real64), intent(out) :: values(:)   !< (n)
-    integer :: k
     if (op%pruned) then
       call fftw_execute_dft(op%columns_backward, w%cols, w%spec)
       call fftw_execute_dft_c2r(op%rows_backward, w%spec, w%grid)
@@ -399,10 +390,33 @@ contains
       w%spec = transpose(w%cols)
       call fftw_execute_dft_c2r(op%backward, w%spec, w%grid)
     end if
-    do k = 1, op%n
-      values(k) = w%grid(op%ix(k), op%iy(k))
-    end do
+    call gather(w%grid, op%at, values)
   end subroutine backward_slot
+
+  !> The grid's first cells (whole rows) = 0, then the values at their
+  !> places. scatter and gather are routines of their own so that the
+  !> compiler sees plain arrays: through the slot's pointers it reloaded
+  !> their descriptors at every element (a third of the operator's own time).
+  pure subroutine scatter(values, at, cells, grid)
+    real(real64), intent(in) :: values(:)
+    integer, intent(in) :: at(:)
+    integer, intent(in) :: cells
+    real(real64), intent(out) :: grid(cells)
+    grid = 0
+    grid(at) = values
+  end subroutine scatter
+
+  pure subroutine gather(grid, at, values)
+    real(real64), intent(in) :: grid(*)
+    integer, intent(in) :: at(:)
+    real(real64), intent(out) :: values(:)
+    values = grid(at)
+  end subroutine gather
+
+  pure subroutine clear(spectrum)
+    complex(c_double_complex), intent(out), contiguous :: spectrum(:, :)
+    spectrum = 0
+  end subroutine clear
 
   !> The 2 x 2 symbol times (sx, sy) along one spectrum column, in place.
   pure subroutine kernel_product(kxx, kxy, kyy, sx, sy)
