@@ -105,32 +105,51 @@ module kcreep_linear_solve
     final :: finalise_workspace
   end type solve_workspace_t
 
-  !> Rates for the 'auto' choice, from scripts/bench.sh on the 2-core
-  !> development machine (shared, so rough): the split dense LU ran at about
-  !> 3e10 flop/s end to end. One lockstep GMRES step for the three load cases
-  !> (operator, circulant preconditioner, Gram-Schmidt) costs 6e-9 s on two
-  !> threads and 9e-9 s on one per (padded FFT grid cell x log2 of the grid
-  !> size) (the unit circle at 296 and 600 cells across, docs/performance.md
-  !> "The iterative path on two cores"); the rate used is twice that, for
-  !> the FFT path's fixed costs (plans, threads). The choice falls near
-  !> 40 x 40 cells, where either path takes a fraction of a second.
-  real(real64), parameter :: dense_rate = 3e10_real64
-  real(real64), parameter :: iterative_step_cost = 2e-8_real64
-  !> GMRES iterations assumed by the estimate (circulant preconditioner:
-  !> measured 22 at 48 x 48, 33 at 192 x 192, 39 at 384 x 384).
-  integer, parameter :: assumed_iterations = 35
+  !> Costs for the 'auto' choice, measured on one thread (OMP_NUM_THREADS=1,
+  !> the 2-core development machine, shared, so good to about 30 %), on
+  !> circles of n cells, whose y-symmetric halves are two systems of about n
+  !> unknowns. Dense, the split LU end to end (assembly, dgetrf, dgecon,
+  !> dgetrs, FFT residuals), per system of m unknowns 2/3 m^3 / dense_rate +
+  !> dense_entry_cost m^2 (the second term: assembly and the O(m^2) LAPACK
+  !> steps, and LU's low rate on small matrices): measured 0.55, 1.0, 2.2,
+  !> 5.0, 16, 86, 636, 2932 ms at n = 152, 196, 306, 442, 688, 1264, 2828,
+  !> 5024, modelled 0.74, 1.25, 3.1, 6.8, 18, 70, 740, 3590 ms (the LU
+  !> alone runs at 5.8e10 flop/s at n = 5024). Iterative, one lockstep GMRES
+  !> step of the three load cases (operator, circulant preconditioner,
+  !> Gram-Schmidt) on the padded FFT grid of G cells: iterative_step_fixed +
+  !> iterative_step_cost G log2(G); measured 55 us at 14 x 14 cells, 0.26 ms
+  !> at 40 x 40, 35 ms at 296 x 296 (modelled 60 us, 0.35 ms, 26 ms). Its
+  !> setup (FFTW plans, kernel and preconditioner spectra), when the solve
+  !> workspace does not hold them for the grid yet: iterative_setup_fixed +
+  !> iterative_setup_cost G log2(G) (measured 0.55 ms at 40 x 40, 25 ms at
+  !> 296 x 296). The choice falls near n = 170 cells, where either takes
+  !> about a millisecond (measured dense / iterative with the workspace
+  !> kept: 0.55 / 0.83 ms at n = 152, 1.0 / 0.76 ms at n = 196; the moving
+  !> 40 x 40 mask of tests/api/api_example.c: 43 / 4.6 ms).
+  real(real64), parameter :: dense_rate = 6e10_real64
+  real(real64), parameter :: dense_entry_cost = 1.5e-8_real64
+  real(real64), parameter :: iterative_step_fixed = 3e-5_real64, iterative_step_cost = 4e-9_real64
+  real(real64), parameter :: iterative_setup_fixed = 3e-4_real64, iterative_setup_cost = 4e-9_real64
+  !> GMRES iterations assumed by the estimate (circulant preconditioner,
+  !> tolerance 1e-11, circles: measured 15 to 17 near the choice (14 x 14 to
+  !> 24 x 24), 19 at 40 x 40, 23 at 96 x 96, 26 at 296 x 296).
+  integer, parameter :: assumed_iterations = 20
 
 contains
 
-  !> 'dense' or 'iterative' for these options and this patch.
-  function choose_method(opts, patch, subs, requested) result(method)
+  !> 'dense' or 'iterative' for these options and this patch. prepared: the
+  !> iterative path's setup is done (the solve workspace holds the grid's
+  !> FFT operator, as in a loop over patches on one grid); default false.
+  function choose_method(opts, patch, subs, requested, prepared) result(method)
     type(solver_options_t), intent(in) :: opts
     type(patch_t), intent(in) :: patch
     type(subsystem_t), intent(in) :: subs(:)
     logical, intent(in) :: requested(n_load_cases)
+    logical, intent(in), optional :: prepared
     character(len=:), allocatable :: method
-    real(real64) :: t_dense, t_iterative, grid
+    real(real64) :: t_dense, t_iterative, grid_log
     integer :: i
+    logical :: setup_done
     if (opts%method /= 'auto') then
       method = opts%method
       return
@@ -141,11 +160,15 @@ contains
     end if
     t_dense = 0
     do i = 1, size(subs)
-      t_dense = t_dense + 2 * real(subs(i)%m, real64)**3 / 3 / dense_rate
+      t_dense = t_dense + 2 * real(subs(i)%m, real64)**3 / 3 / dense_rate + dense_entry_cost * real(subs(i)%m, real64)**2
     end do
-    grid = 4 * real(patch%mx, real64) * patch%my
-    t_iterative = assumed_iterations * iterative_step_cost * grid * log(grid) / log(2.0_real64) &
+    grid_log = 4 * real(patch%mx, real64) * patch%my
+    grid_log = grid_log * log(grid_log) / log(2.0_real64)
+    t_iterative = assumed_iterations * (iterative_step_fixed + iterative_step_cost * grid_log) &
                   * max(1, count(requested)) / 3
+    setup_done = .false.
+    if (present(prepared)) setup_done = prepared
+    if (.not. setup_done) t_iterative = t_iterative + iterative_setup_fixed + iterative_setup_cost * grid_log
     method = merge('dense    ', 'iterative', t_dense <= t_iterative)
     method = trim(method)
   end function choose_method
@@ -230,7 +253,7 @@ contains
       end do
       traction = ieee_value(1.0_real64, ieee_quiet_nan)
       subs = plan_subsystems(patch, nu, opts%split_systems, requested)
-      diag%method = choose_method(opts, patch, subs, requested)
+      diag%method = choose_method(opts, patch, subs, requested, operator_ready(ws, patch, nu, count(requested)))
       if (diag%method == 'dense') then
         if (.not. dense_fits(subs, opts%memory_limit)) then
           call fail(status, exit_bad_input, 'method = ''dense'': the largest dense matrix ('// &
