@@ -30,6 +30,8 @@ module kcreep_namelist
   use kcreep_normal_influence, only: compliance_from_g_nu, compliance_from_e_nu, combined_g_nu_from_e_nu
   use kcreep_creep_curve, only: creep_request_t, source_names
   use kcreep_fastsim_forces, only: flexibility_weighted, flexibility_separate
+  use kcreep_wheel_rail_run, only: wheel_rail_setup_t
+  use kcreep_wheel_rail_input, only: read_wheel_rail
   implicit none
   private
   public :: config_t, read_config, build_patch, problem_of, max_inline_rows, max_row_length, max_creepages
@@ -37,8 +39,8 @@ module kcreep_namelist
   integer, parameter :: max_inline_rows = 2048, max_row_length = 2048
   integer, parameter :: default_cells = 60
   integer, parameter :: max_creepages = 100000   !< creepage points of &fastsim (list and sweep together)
-  character(len=*), parameter :: group_names(6) = [character(len=8) :: 'patch', 'material', 'solver', 'output', &
-                                                    'normal', 'fastsim']
+  character(len=*), parameter :: group_names(7) = [character(len=10) :: 'patch', 'material', 'solver', 'output', &
+                                                    'normal', 'fastsim', 'wheel_rail']
   !> &normal: the number of cells across the automatic grid's larger side, its margin
   integer, parameter :: default_cells_across = 60
   real(real64), parameter :: default_margin = 0.2_real64
@@ -89,6 +91,10 @@ module kcreep_namelist
     real(real64) :: margin = default_margin
     real(real64) :: e(2) = 0, poisson(2) = 0    !< per body, when given (e(1) > 0)
     type(normal_problem_t) :: normal            !< built by read_config
+    ! &wheel_rail (kcreep_wheel_rail_input): a contact table over lateral shifts
+    logical :: wheel_rail_on = .false.
+    type(wheel_rail_setup_t) :: wheel_rail
+    character(len=:), allocatable :: wheel_rail_file   !< &output wheel_rail_file [<input name>.wr]
   end type config_t
 
 contains
@@ -124,7 +130,7 @@ contains
     integer :: sweep_points
     character(len=16) :: sweep_spacing, rule, pressure
     character(len=128) :: flexibility
-    character(len=4096) :: pressure_input_file, creep_file, creep_map_file
+    character(len=4096) :: pressure_input_file, creep_file, creep_map_file, wheel_rail_file
     logical :: maps
     !> "not given": g, nu and spin_shift default differently for shape = 'contact',
     !> and a value the user wrote is either used or refused, never replaced
@@ -138,7 +144,7 @@ contains
                       refine_ratio, refine, method, tolerance, max_iterations, restart, split_systems, spin_centre, &
                       spin_centre_x, spin_centre_y, preconditioner, threads
     namelist /output/ table_file, traction_file, pressure_file, contact_mask_file, creep_file, &
-                      creep_map_file
+                      creep_map_file, wheel_rail_file
     namelist /normal/ gap_file, contact_inp, contact_inp_case, rx, ry, lx, ly, cx, cy, approach, normal_force, &
                       cells_across, margin, e1, nu1, e2, nu2, normal_tolerance, normal_max_iterations
     namelist /fastsim/ mu, creepages, sweep_direction, sweep_from, sweep_to, sweep_points, sweep_spacing, &
@@ -210,6 +216,7 @@ contains
     normal_max_iterations = cfg%normal%options%max_iterations
     creep_file = ''
     creep_map_file = ''
+    wheel_rail_file = ''
     mu = unset
     allocate (creepages(3 * max_creepages + 1))
     creepages = unset
@@ -439,6 +446,12 @@ contains
     if (maps .and. len(cfg%creep_map_file) == 0) cfg%creep_map_file = default_output_name(path, '.creepmap')
     cfg%pressure_input_file = resolve_path(trim(pressure_input_file), folder_of(path))
 
+    cfg%wheel_rail_on = group_present(7)
+    cfg%wheel_rail_file = resolve_path(trim(wheel_rail_file), folder_of(path))
+    if (len(cfg%wheel_rail_file) == 0) cfg%wheel_rail_file = default_output_name(path, '.wr')
+    if (cfg%wheel_rail_on .and. any(group_present([1, 5, 6]))) call fail(status, exit_bad_input, where// &
+        '&wheel_rail finds its patches from the profiles: &patch, &normal and &fastsim are not read with it')
+    if (cfg%wheel_rail_on .and. .not. status%failed()) call read_wheel_rail(path, cfg%wheel_rail, status)
     call validate(cfg, mask_rows, nrows, load_cases, status)
     if (cfg%fastsim_on .and. .not. status%failed()) call validate_fastsim(status)
     if (cfg%shape == 'contact' .and. .not. status%failed()) call load_contact_case(cfg, material_given, status)
