@@ -11,8 +11,9 @@
 !>    order); then `point.begin ... point.end` with columns y z [weight]. `!` starts a comment.
 !>  - MiniProf `.whl` (wheel) / `.ban` (rail): a header (new style `Key=Value`
 !>    lines with `ColumnDef`, `XOffset`, `YOffset`; or old style free text),
-!>    a blank line, then columns; X lateral and Y vertical (positive upwards,
-!>    so z = -Y), the offsets added.
+!>    a blank line, then columns; X lateral and Y vertical, the offsets added;
+!>    z = -Y or Y, whichever puts the profile's two ends (its side faces) below
+!>    the mean for a rail and above it for a wheel (CONTACT's auto-detection).
 !>  - anything else: two columns y z in mm, z positive downwards; lines starting
 !>    with `!`, `%` or `#` are skipped.
 !> Every error names the file, the line and what was expected.
@@ -67,7 +68,7 @@ contains
     case ('simpack')
       call parse_simpack(text, source, is_wheel, y, z, status)
     case ('miniprof')
-      call parse_miniprof(text, source, y, z, status)
+      call parse_miniprof(text, source, is_wheel, y, z, status)
     case default
       call parse_table(text, source, y, z, status)
     end select
@@ -196,8 +197,9 @@ contains
 
   !> MiniProf: header up to the first blank line (its ColumnDef, XOffset, YOffset
   !> when given), then numeric rows; z = -(Y + YOffset), y = X + XOffset.
-  subroutine parse_miniprof(text, source, y, z, status)
+  subroutine parse_miniprof(text, source, is_wheel, y, z, status)
     character(len=*), intent(in) :: text, source
+    logical, intent(in) :: is_wheel
     real(real64), allocatable, intent(out) :: y(:), z(:)
     type(status_t), intent(inout) :: status
     character(len=:), allocatable :: line, key, value
@@ -287,6 +289,13 @@ contains
     end do
     y = y(1:n)
     z = z(1:n)
+    ! MiniProf's vertical axis points up on most files (hence z = -Y), but not on
+    ! all (avg_wheel.whl): as CONTACT, decide by the side faces, which run from
+    ! the running surface into the body: down (larger z) at a rail's ends, up
+    ! (smaller z) at a wheel's
+    if (n >= 4) then
+      if ((z(1) + z(n) > 2 * sum(z) / n) .eqv. is_wheel) z = -z
+    end if
     return
 900 call fail(status, exit_bad_input, source//' line '//itoa(lineno)//': '''//trim(line)//''' (a number expected)')
   end subroutine parse_miniprof
