@@ -4,10 +4,8 @@ module kcreep_app_wheel_rail
   use, intrinsic :: iso_fortran_env, only: real64, output_unit, error_unit
   use kcreep_status, only: status_t
   use kcreep_strings, only: rtoa, itoa
-  use kcreep, only: problem_t, default_problem
+  use kcreep, only: problem_t, patch_t, wheel_rail_row_t, kcreep_wheel_rail
   use kcreep_namelist, only: config_t, problem_of
-  use kcreep_patch, only: patch_t
-  use kcreep_wheel_rail_run, only: wheel_rail_row_t, run_wheel_rail
   use kcreep_wheel_rail_table, only: wheel_rail_lines
   use kcreep_app_files, only: check_output_path, write_text_file
   use kcreep_app_memory, only: memory_limit_bytes
@@ -32,7 +30,7 @@ contains
     base = problem_of(cfg, none)
     base%solve%memory_limit = memory_limit_bytes()
     call cpu_time(t0)
-    call run_wheel_rail(cfg%wheel_rail, base, rows, status)
+    call kcreep_wheel_rail(cfg%wheel_rail, base, rows, status)
     call cpu_time(t1)
     if (status%failed()) return
     call write_text_file(cfg%wheel_rail_file, wheel_rail_lines(rows, cfg%wheel_rail, cfg%g, cfg%nu, cfg%target_error), &

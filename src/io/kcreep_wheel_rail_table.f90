@@ -1,10 +1,10 @@
 !> The contact table of &wheel_rail as text lines (&output wheel_rail_file):
 !> comment lines starting with '#', the last naming the columns, then one row
-!> per shift and patch (kcreep_wheel_rail_run wheel_rail_columns). python/kcreep
+!> per shift and patch (the facade's wheel_rail_columns). python/kcreep
 !> table.read reads it.
 module kcreep_wheel_rail_table
   use, intrinsic :: iso_fortran_env, only: real64
-  use kcreep_wheel_rail_run, only: wheel_rail_row_t, wheel_rail_setup_t, wheel_rail_columns
+  use kcreep, only: wheel_rail_row_t, wheel_rail_setup_t, wheel_rail_columns
   use kcreep_strings, only: rtoa
   implicit none
   private

@@ -31,12 +31,15 @@ module kcreep_wheel_rail_run
   use kcreep_threads, only: team_size, enter_team, leave_team, solve_started, solve_ended, cells_per_thread_iterative
   implicit none
   private
-  public :: wheel_rail_setup_t, wheel_rail_row_t, prepare_track, run_wheel_rail, wheel_rail_columns
+  public :: wheel_rail_setup_t, wheel_rail_row_t, prepare_track, run_wheel_rail, wheel_rail_columns, &
+            check_wheel_rail_setup, max_wheel_rail_shifts
 
   !> The table's columns, in order (verdict a word).
   character(len=*), parameter :: wheel_rail_columns = 'shift yaw patch fn delta y_rail y_wheel r_wheel area '// &
                                  'length width c11 c22 c23 c33 err11 err22 err23 verdict l1 l2 l3 spin'
   real(real64), parameter :: pi = acos(-1.0_real64)
+  !> At most this many shifts in one table.
+  integer, parameter :: max_wheel_rail_shifts = 10000
   !> Cells across the larger side of a patch's potential contact area on the
   !> coarse grids of the force iteration and the first solve of error control.
   integer, parameter :: base_cells = 64
@@ -71,6 +74,54 @@ module kcreep_wheel_rail_run
   end type wheel_rail_row_t
 
 contains
+
+  !> The setup's values in their ranges (the namelist group and the C API both
+  !> check with this): where starts each message ("input 'a.nml': &wheel_rail "
+  !> or "kcreep_wheel_rail: "), which names the variable, value and range.
+  subroutine check_wheel_rail_setup(setup, where, status)
+    type(wheel_rail_setup_t), intent(in) :: setup
+    character(len=*), intent(in) :: where
+    type(status_t), intent(inout) :: status
+    if (status%failed()) return
+    if (.not. allocated(setup%side)) then
+      call fail(status, exit_bad_input, where//'side is not set (allowed: ''right'', ''left'')')
+    else if (setup%side /= 'right' .and. setup%side /= 'left') then
+      call fail(status, exit_bad_input, where//'side = '''//setup%side//''' (allowed: ''right'', ''left'')')
+    end if
+    call check_range('gauge_width', setup%gauge_width, 100.0_real64, 5000.0_real64)
+    call check_range('gauge_height', setup%gauge_height, 0.0_real64, 100.0_real64)
+    call check_range('rail_cant', setup%rail_cant, -0.5_real64, 0.5_real64)
+    call check_range('flange_back_distance', setup%flange_back_distance, 100.0_real64, 5000.0_real64)
+    call check_range('flange_back_position', setup%flange_back_position, -1000.0_real64, 1000.0_real64)
+    call check_range('nominal_radius', setup%nominal_radius, 10.0_real64, 10000.0_real64)
+    call check_range('smoothing', setup%smoothing, 0.0_real64, 1e12_real64)
+    call check_range('yaw', setup%yaw, -0.1_real64, 0.1_real64)
+    if (setup%force_given) then
+      call check_range('vertical_force', setup%vertical_force, 1e-6_real64, 1e9_real64)
+    else
+      call check_range('approach', setup%approach, 1e-9_real64, 10.0_real64)
+    end if
+    if (status%failed()) return
+    if (.not. allocated(setup%shifts)) then
+      call fail(status, exit_bad_input, where//'shifts: none given')
+    else if (size(setup%shifts) < 1 .or. size(setup%shifts) > max_wheel_rail_shifts) then
+      call fail(status, exit_bad_input, where//'shifts: '//itoa(size(setup%shifts))//' values (allowed: 1 to '// &
+                itoa(max_wheel_rail_shifts)//')')
+    else if (.not. all(abs(setup%shifts) <= 200)) then
+      call fail(status, exit_bad_input, where//'shifts: a value beyond 200 mm in magnitude (or not a number)')
+    end if
+
+  contains
+
+    subroutine check_range(name, value, lo, hi)
+      character(len=*), intent(in) :: name
+      real(real64), intent(in) :: value, lo, hi
+      if (status%failed()) return
+      if (.not. (value >= lo .and. value <= hi)) call fail(status, exit_bad_input, where//name//' = '// &
+          rtoa(value)//' (allowed: '//rtoa(lo)//' to '//rtoa(hi)//')')
+    end subroutine check_range
+
+  end subroutine check_wheel_rail_setup
 
   !> The profiles' splines and their placement in the track (right-side configuration).
   subroutine prepare_track(setup, track, status)
