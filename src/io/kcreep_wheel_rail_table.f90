@@ -4,11 +4,16 @@
 !> table.read reads it.
 module kcreep_wheel_rail_table
   use, intrinsic :: iso_fortran_env, only: real64
-  use kcreep, only: wheel_rail_row_t, wheel_rail_setup_t, wheel_rail_columns
+  use kcreep, only: wheel_rail_row_t, wheel_rail_setup_t, wheel_rail_columns, creep_request_t, creep_point_t, &
+                    source_names, flexibility_rule_name
   use kcreep_strings, only: rtoa
   implicit none
   private
-  public :: wheel_rail_lines, line_length
+  public :: wheel_rail_lines, line_length, wheel_rail_creep_header, wheel_rail_creep_rows, wheel_rail_creep_columns
+
+  !> The creep table of &fastsim with &wheel_rail: one block of rows per shift and patch.
+  character(len=*), parameter :: wheel_rail_creep_columns = 'shift yaw patch spin xi eta phi fx fy mz fn adhesion '// &
+                                                          'source fx_mufn fy_mufn'
 
   integer, parameter :: line_length = 600
 
@@ -47,6 +52,42 @@ contains
       end associate
     end do
   end function wheel_rail_lines
+
+  !> The creep table's comment lines and column names.
+  function wheel_rail_creep_header(setup, request) result(lines)
+    type(wheel_rail_setup_t), intent(in) :: setup
+    type(creep_request_t), intent(in) :: request
+    character(len=line_length), allocatable :: lines(:)
+    allocate (lines(5))
+    lines(1) = '# kcreep FASTSIM creep forces on each patch of a wheel on a rail ('//setup%wheel_name//' on '// &
+               setup%rail_name//')'
+    write (lines(2), '(a, es12.5, a)') '# mu = ', request%mu, ', flexibility rule '// &
+      flexibility_rule_name(request%rule)//', pressure: each patch''s normal solve, L1 L2 L3 per patch'
+    lines(3) = '# spin: the patch''s geometric spin sin(delta)/r_wheel (1/mm); phi = the given phi + spin '// &
+               '(the creepage FASTSIM ran with)'
+    lines(4) = '# (Fx, Fy, Mz) = -f (xi, eta, phi) at small creepage; adhesion: fraction of the area in adhesion; '// &
+               'fx_mufn = fx / (mu fn)'
+    lines(5) = '# '//wheel_rail_creep_columns
+  end function wheel_rail_creep_header
+
+  !> The rows of one patch: its points (FASTSIM at phi + spin) prefixed by shift, yaw, patch, spin.
+  function wheel_rail_creep_rows(row, request, points) result(lines)
+    type(wheel_rail_row_t), intent(in) :: row
+    type(creep_request_t), intent(in) :: request
+    type(creep_point_t), intent(in) :: points(:)
+    character(len=line_length), allocatable :: lines(:)
+    real(real64) :: mufn
+    integer :: k
+    allocate (lines(size(points)))
+    do k = 1, size(points)
+      associate (p => points(k), f => points(k)%force)
+        mufn = request%mu * f%fn
+        write (lines(k), '(2(es15.7), i4, es15.7, 7(1x, es23.15e3), 1x, f8.6, 1x, a, 2(1x, es23.15e3))') &
+          row%shift, row%yaw, row%patch, row%spin, p%creep, f%fx, f%fy, f%mz, f%fn, f%adhesion, &
+          trim(source_names(p%source)), f%fx / mufn, f%fy / mufn
+      end associate
+    end do
+  end function wheel_rail_creep_rows
 
   !> A verdict of several words as one column ('ok' or 'uncertain,coarse').
   pure function no_blanks(text) result(out)
