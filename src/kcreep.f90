@@ -40,6 +40,7 @@ module kcreep
   use kcreep_error_run, only: run_controlled, controlled_finest_patch
   use kcreep_normal_influence, only: compliance_from_e_nu, combined_g_nu_from_e_nu
   use kcreep_table_run, only: run_table, table_meets_target
+  use kcreep_error_control, only: default_target_error
   use kcreep_wheel_rail_run, only: wheel_rail_setup_t, wheel_rail_row_t, run_wheel_rail, wheel_rail_columns, &
                                    check_wheel_rail_setup, max_wheel_rail_shifts
   implicit none
@@ -57,7 +58,7 @@ module kcreep
   public :: verdict_ok, verdict_degenerate, verdict_nonphysical, verdict_alpha_edge, verdict_coarse, &
             verdict_ill_conditioned, verdict_inaccurate, verdict_uncertain, verdict_words
   public :: kcreep_wheel_rail, wheel_rail_setup_t, wheel_rail_row_t, wheel_rail_columns, check_wheel_rail_setup, &
-            max_wheel_rail_shifts
+            max_wheel_rail_shifts, default_target_error
 
   character(len=*), parameter :: kcreep_version = '0.2.0'
   !> The same as one number: 10000 major + 100 minor + patch.
