@@ -1,21 +1,33 @@
 #!/usr/bin/env bash
 # FASTSIM against CONTACT with friction: runs scripts/compare_contact_slip.py on the
 # slip runs (../shared/contact-slip, ../shared/contact-samples/ellipse_a6_b4_slip) and
-# draws docs/figures/fastsim_contact.png (F/(mu Fn) against the normalised creepage,
+# draws fastsim_contact.png (F/(mu Fn) against the normalised creepage,
 # one line per flexibility source, CONTACT's points) and fastsim_combined.png (the
 # error of each combined case under the weighted and the separate flexibility rule).
-#   scripts/fastsim_figures.sh [SHARED_FOLDER]      (default ../shared beside the repository)
-#   scripts/fastsim_figures.sh --help                this text
+#   scripts/figures/fastsim_figures.sh [--out DIR] [--data DIR] [SHARED_FOLDER]
+#     --out DIR      the figures (default build/figures; docs/figures to update docs/fastsim.md)
+#     --data DIR     the CSV tables and the summary (default: the --out folder; docs/data for the docs)
+#     SHARED_FOLDER  CONTACT's runs (default ../shared beside the repository)
+#   scripts/figures/fastsim_figures.sh --help                this text
 usage() { awk 'NR > 1 && /^#/ { sub(/^# ?/, ""); print; next } NR > 1 { exit }' "${BASH_SOURCE[0]}"; }
 for arg in "$@"; do case $arg in -h | --help) usage; exit 0 ;; --) break ;; esac; done
 set -euo pipefail
-here=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
+here=$(cd "$(dirname "${BASH_SOURCE[0]}")/../.." && pwd)
+figs=$here/build/figures data=""
+while (($#)); do
+  case $1 in
+    --out | --data) [[ $# -ge 2 ]] || { echo "fastsim_figures.sh: error: $1 needs a folder" >&2; exit 2; }
+      if [[ $1 == --out ]]; then figs=$2; else data=$2; fi; shift 2 ;;
+    -*) echo "fastsim_figures.sh: error: unknown option '$1' (see --help)" >&2; exit 2 ;;
+    *) break ;;
+  esac
+done
+data=${data:-$figs}
+mkdir -p "$figs" "$data" && figs=$(cd "$figs" && pwd) && data=$(cd "$data" && pwd)
 shared=$(cd "${1:-$here/../shared}" && pwd)
 export KCREEP=${KCREEP:-$here/build/kcreep}
 export KCREEP_FASTSIM_CURVE=${KCREEP_FASTSIM_CURVE:-$here/build/kcreep_fastsim_curve}
 command -v gnuplot >/dev/null || { echo "fastsim_figures.sh: gnuplot missing (run scripts/setup.sh)" >&2; exit 2; }
-data=$here/docs/data
-figs=$here/docs/figures
 s=$shared/contact-slip
 python3 "$here/scripts/compare_contact_slip.py" --quiet --csv "$data/fastsim_contact_slip.csv" \
   --curves "$data/fastsim_curves.csv" \

@@ -2,18 +2,20 @@
 # Redraw the figures of docs/method.md: the centre-row traction of the three
 # discretisations on the unit circle and the y-oscillation of the collocation
 # scheme on elongated cells.
-#   scripts/method_figures.sh [OUTPUT_FOLDER]   default OUTPUT_FOLDER: docs/figures
-#   scripts/method_figures.sh --help            this text
+#   scripts/figures/method_figures.sh [OUTPUT_FOLDER]   default OUTPUT_FOLDER: build/figures
+#   scripts/figures/method_figures.sh docs/figures      to update docs/method.md's figures
+#   scripts/figures/method_figures.sh --help            this text
 # Needs build/kcreep (or $KCREEP) and gnuplot. Exit 2 when either is missing
-# or OUTPUT_FOLDER is not a folder.
+# or OUTPUT_FOLDER cannot be made.
 usage() { awk 'NR > 1 && /^#/ { sub(/^# ?/, ""); print; next } NR > 1 { exit }' "${BASH_SOURCE[0]}"; }
 for arg in "$@"; do case $arg in -h | --help) usage; exit 0 ;; --) break ;; esac; done
 set -euo pipefail
-here=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
+here=$(cd "$(dirname "${BASH_SOURCE[0]}")/../.." && pwd)
 kcreep=${KCREEP:-$here/build/kcreep}
 (($# <= 1)) || { echo "method_figures.sh: error: at most one argument, OUTPUT_FOLDER (see --help)" >&2; exit 2; }
-[[ -d ${1:-$here/docs/figures} ]] || { echo "method_figures.sh: error: '$1' is not a folder" >&2; exit 2; }
-out=$(cd "${1:-$here/docs/figures}" && pwd)
+out=${1:-$here/build/figures}
+mkdir -p "$out" 2>/dev/null || { echo "method_figures.sh: error: cannot make the folder '$out'" >&2; exit 2; }
+out=$(cd "$out" && pwd)
 [[ -x $kcreep ]] || { echo "method_figures.sh: no kcreep at $kcreep (run scripts/setup.sh)" >&2; exit 2; }
 command -v gnuplot >/dev/null || { echo "method_figures.sh: gnuplot missing (run scripts/setup.sh)" >&2; exit 2; }
 work=$(mktemp -d)

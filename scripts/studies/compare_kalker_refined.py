@@ -10,7 +10,7 @@ and worst differences; --markdown prints the summary table for docs/accuracy.md.
 import sys as _sys
 
 if __name__ == "__main__" and any(a in ("-h", "--help") for a in _sys.argv[1:]):
-    print("usage: scripts/compare_kalker_refined.py\n" + __doc__)
+    print("usage: scripts/studies/compare_kalker_refined.py\n" + __doc__)
     _sys.exit(0)
 import os
 import statistics

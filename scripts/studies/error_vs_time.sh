@@ -7,9 +7,9 @@
 # = 1e-4); a table
 # and log-log plots (one curve per scheme and coefficient).
 #
-#   scripts/error_vs_time.sh [options]
+#   scripts/studies/error_vs_time.sh [options]
 #     --ratio 1             ellipse ratio a/b (c = 1); a node of the refined
-#                           table (scripts/refined_reference.py)
+#                           table (scripts/studies/refined_reference.py)
 #     --meshes "10 ... 160" grid sizes M (M x M cells; near-square cells when
 #                           a/b != 1, about M*M cells)
 #     --alpha 0.5           collocation point
@@ -94,7 +94,7 @@ if ((${#slurm[@]} == 0)); then
     echo "error_vs_time: flock not found: timing without the benchmark lock" >&2
   fi
 fi
-"${lock[@]}" "$study_here/run_cases.sh" "${slurm[@]}" "${jobs[@]}" "$list" "$out/runs.tab"
+"${lock[@]}" "$study_repo/scripts/run_cases.sh" "${slurm[@]}" "${jobs[@]}" "$list" "$out/runs.tab"
 status=$?
 [[ -s $out/runs.tab ]] || study_die "no table was produced"
 

@@ -15,7 +15,7 @@ sample (its gap per element, resampled bicubically as kcreep does): reference
 the first-order fit through levels of 96 to 192 cells across the contact
 area's equivalent diameter (each solved as given), u its 95 % interval.
 
-  /usr/bin/python3 scripts/gap_error_calibration.py [--kcreep build/kcreep]
+  /usr/bin/python3 scripts/studies/gap_error_calibration.py [--kcreep build/kcreep]
       [--samples ../shared/contact-samples] [--out docs/data/gap_error_calibration.dat]
       [--quick]   (Rx/Ry = 1, 2 at nu = 0.25 and the wheel only: a smoke run)
 
@@ -30,12 +30,25 @@ import sys
 sys.dont_write_bytecode = True   # importing the sibling script leaves no cache behind
 import tempfile
 
-import numpy as np
-from scipy.optimize import brentq
-from scipy.special import ellipe, ellipk
-
 HERE = os.path.dirname(os.path.abspath(__file__))
-ROOT = os.path.dirname(HERE)
+ROOT = os.path.dirname(os.path.dirname(HERE))
+
+
+def arguments():
+    p = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
+    p.add_argument("--kcreep", default=os.path.join(ROOT, "build", "kcreep"))
+    p.add_argument("--samples", default=os.path.join(ROOT, "..", "shared", "contact-samples"))
+    p.add_argument("--out", default=None)
+    p.add_argument("--quick", action="store_true")
+    return p
+
+
+if __name__ == "__main__":
+    ARGS = arguments().parse_args()   # --help answers before numpy and scipy load
+import numpy as np  # noqa: E402
+from scipy.optimize import brentq  # noqa: E402
+from scipy.special import ellipe, ellipk  # noqa: E402
+
 sys.path.insert(0, os.path.join(ROOT, "python"))
 from kcreep import contact_inp  # noqa: E402  (standard library only)
 sys.path.insert(0, HERE)
@@ -231,13 +244,7 @@ def nonelliptic_cases(runner, samples, quick):
     return rows
 
 
-def main():
-    p = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
-    p.add_argument("--kcreep", default=os.path.join(ROOT, "build", "kcreep"))
-    p.add_argument("--samples", default=os.path.join(ROOT, "..", "shared", "contact-samples"))
-    p.add_argument("--out", default=None)
-    p.add_argument("--quick", action="store_true")
-    args = p.parse_args()
+def main(args):
     samples = args.samples if os.path.isdir(args.samples) else None
     with tempfile.TemporaryDirectory() as work:
         runner = Runner(os.path.abspath(args.kcreep), work)
@@ -248,7 +255,7 @@ def main():
         r["bounded_u"] = r["error"] <= r["estimate"] + abs(r["u"] / r["ref"])
     if args.out:
         with open(args.out, "w") as f:
-            f.write("# scripts/gap_error_calibration.py: estimate against error of patches from a gap function\n")
+            f.write("# scripts/studies/gap_error_calibration.py: estimate against error of patches from a gap function\n")
             f.write("# case | estimator | coefficient value ref u_ref(abs) estimate(rel) error(rel) "
                     "area_error(rel, Hertz) verdict wall_s\n")
             for r in rows:
@@ -287,4 +294,4 @@ def main():
 
 
 if __name__ == "__main__":
-    main()
+    main(ARGS)

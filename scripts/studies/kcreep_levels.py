@@ -1,7 +1,7 @@
 #!/usr/bin/env python3
 """Run kcreep on an ellipse at given resolutions and extrapolate (standard library only).
 
-Shared by scripts/refine_kalker_table.py, scripts/accuracy_table.py and the
+Shared by scripts/studies/refine_kalker_table.py, scripts/studies/accuracy_table.py and the
 error-control tests. An ellipse with semi-axes a = sqrt(r), b = 1/sqrt(r)
 (c = sqrt(ab) = 1, r = a/b) is put on a grid of near-square cells with
 `cells` cells across its shorter axis. The coefficients are normalised by the
@@ -13,17 +13,17 @@ kcreep's own levels do (src/coefficients/kcreep_staircase_normalisation.f90).
 import sys as _sys
 
 if __name__ == "__main__" and any(a in ("-h", "--help") for a in _sys.argv[1:]):
-    print("usage: scripts/kcreep_levels.py\n" + __doc__)
+    print("usage: scripts/studies/kcreep_levels.py\n" + __doc__)
     _sys.exit(0)
 import math
 import os
 import subprocess
 import tempfile
 
-_sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "python"))
+_sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "python"))
 from kcreep import table as kcreep_table  # noqa: E402  (standard library only)
 
-KCREEP = os.environ.get("KCREEP", os.path.join(os.path.dirname(__file__), "..", "build", "kcreep"))
+KCREEP = os.environ.get("KCREEP", os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "build", "kcreep"))
 # the grid exactly as given, without the one-grid error estimate's extra grid
 # (set KCREEP_TARGET_ZERO='' for a kcreep older than &solver target_error)
 TARGET_ZERO = os.environ.get("KCREEP_TARGET_ZERO", ", target_error = 0")
@@ -178,7 +178,7 @@ def table_slopes(ratio, nu, table=None):
     """d ln C / d ln(a/b) of c11 c22 c23 c33 c32 from the refined table (central
     differences between its rows, linear in ln(a/b) between them; linear in nu
     between the table's nu columns, a nu outside them clamped)."""
-    table = table or os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "docs", "data",
+    table = table or os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "docs", "data",
                                   "kalker_refined.dat")
     columns = {}
     with open(table) as f:

@@ -2,10 +2,10 @@
 """Could the accurate mode (target_error = 1e-4) reach its target with fewer
 or cheaper levels? (docs/accuracy.md section 6.3)
 
-    /usr/bin/python3 scripts/level_design_study.py
+    /usr/bin/python3 scripts/studies/level_design_study.py
 
 Uses the stored levels of six ellipses (docs/data/*levels.dat, 56 to 1024
-cells across; see scripts/level_noise_study.py) and asks two questions:
+cells across; see scripts/studies/level_noise_study.py) and asks two questions:
 
 1. Honesty of two estimators over every design "the base levels 56-296 plus
    one or two finer levels J" the data allow. The reference of a design is

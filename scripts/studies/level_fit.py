@@ -12,7 +12,7 @@ import os
 import sys
 
 if __name__ == "__main__" and any(a in ("-h", "--help") for a in sys.argv[1:]):
-    print("usage: scripts/level_fit.py is imported by the level studies, not run\n" + __doc__)
+    print("usage: scripts/studies/level_fit.py is imported by the level studies, not run\n" + __doc__)
     sys.exit(0)
 import numpy as np  # noqa: E402
 

@@ -2,7 +2,7 @@
 """Two grids per level for ellipses long in x: does their mean carry less
 staircase noise? (docs/accuracy.md section 6.3)
 
-    /usr/bin/python3 scripts/offset_pair_study.py [--ratio 5] [--nu 0.25] [--levels 112,128,...,296]
+    /usr/bin/python3 scripts/studies/offset_pair_study.py [--ratio 5] [--nu 0.25] [--levels 112,128,...,296]
 
 For each level N (cells across the shorter axis b, square cells) the
 ellipse a = sqrt(ratio), b = 1/sqrt(ratio) is solved on two grids that are

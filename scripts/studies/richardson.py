@@ -17,14 +17,14 @@ coefficients normalised by the staircase patch's own area (c^2 = area/pi),
 which removes the irregular change of the staircase area with the mesh.
 
 Output: one line per series, triple and coefficient (whitespace columns,
-'#' header), read by the study scripts and scripts/make_report.py.
+'#' header), read by the study scripts and scripts/studies/make_report.py.
 """
 import argparse
 import math
 import os
 import sys
 
-sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "python"))
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "python"))
 from kcreep import table  # noqa: E402  (standard library only)
 
 

@@ -1,9 +1,9 @@
 #!/usr/bin/env python3
 """Where the staircase noise of ellipses long in x comes from, and whether
 fitting it away lets the accurate mode stop sooner (docs/accuracy.md 6.3,
-the figure docs/figures/staircase_defects.png).
+the figure docs/figures/staircase_defects.png; --figure docs/figures/staircase_defects.png redraws it, default build/figures/).
 
-    /usr/bin/python3 scripts/staircase_defect_study.py [--compute] [--no-figure]
+    /usr/bin/python3 scripts/studies/staircase_defect_study.py [--compute] [--no-figure | --figure FILE]
 
 Each level (N cells across the shorter axis, near-square cells; data in
 docs/data/staircase_defect_levels.dat, a/b = 5 from 296 also from
@@ -44,10 +44,10 @@ sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 import kcreep_levels as K  # noqa: E402
 from level_fit import fit_levels, kcreep_estimate  # noqa: E402
 
-ROOT = os.path.join(os.path.dirname(os.path.abspath(__file__)), "..")
+ROOT = os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..")
 DATA = os.path.join(ROOT, "docs", "data", "staircase_defect_levels.dat")
 LONG = os.path.join(ROOT, "docs", "data", "fine_reference_levels_long.dat")
-FIGURE = os.path.join(ROOT, "docs", "figures", "staircase_defects.png")
+FIGURE = os.path.join(ROOT, "build", "figures", "staircase_defects.png")  # --figure docs/figures/staircase_defects.png for the docs
 NU = 0.25
 RATIOS = (0.5, 1.0, 2.0, 5.0, 10.0)
 DENSE = list(range(40, 121))
@@ -189,7 +189,7 @@ def estimate_table(data):
                       f"| {100 * new:.4f} | {100 * err_new:.4f} |")
 
 
-def figure(data):
+def figure(data, path):
     import matplotlib
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
@@ -219,14 +219,16 @@ def figure(data):
     right.set_title("Estimate and error against references")
     right.legend(fontsize=7)
     fig.tight_layout()
-    fig.savefig(FIGURE, dpi=110)
-    print(f"\nfigure: {os.path.relpath(FIGURE, ROOT)}")
+    os.makedirs(os.path.dirname(os.path.abspath(path)), exist_ok=True)
+    fig.savefig(path, dpi=110)
+    print(f"\nfigure: {path}")
 
 
 def main():
     parser = argparse.ArgumentParser(description="staircase end defects of ellipses long in x")
     parser.add_argument("--compute", action="store_true", help="run kcreep for missing levels first")
     parser.add_argument("--no-figure", action="store_true")
+    parser.add_argument("--figure", default=FIGURE, help="where the figure goes (default build/figures/staircase_defects.png)")
     args = parser.parse_args()
     if args.compute:
         compute_missing()
@@ -235,7 +237,7 @@ def main():
     out_of_sample(data)
     estimate_table(data)
     if not args.no_figure:
-        figure(data)
+        figure(data, args.figure)
 
 
 if __name__ == "__main__":

@@ -1,10 +1,10 @@
 #!/usr/bin/env python3
 """How far the ellipse levels scatter about a straight line in the cell size,
 normalised three ways (docs/accuracy.md section 1, the figure
-docs/figures/staircase_normalisation.png).
+docs/figures/staircase_normalisation.png; --figure docs/figures/staircase_normalisation.png redraws it, default build/figures/).
 
-    /usr/bin/python3 scripts/staircase_normalisation_study.py [--from 32] [--to 148] [--kalker] [--levels-file F]
-                                                              [--no-figure]
+    /usr/bin/python3 scripts/studies/staircase_normalisation_study.py [--from 32] [--to 148] [--kalker] [--levels-file F]
+                                                              [--no-figure | --figure FILE]
 
 Data: docs/data/kalker_refined_levels.dat (the refined table's levels, stored
 normalised by the staircase area; Kalker's 57 points have levels 32 to 196
@@ -28,16 +28,16 @@ import os
 import sys
 
 if __name__ == "__main__" and any(a in ("-h", "--help") for a in sys.argv[1:]):
-    print("usage: scripts/staircase_normalisation_study.py [options]\n" + __doc__)
+    print("usage: scripts/studies/staircase_normalisation_study.py [options]\n" + __doc__)
     sys.exit(0)
 import numpy as np  # noqa: E402
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 import kcreep_levels as K  # noqa: E402
 
-ROOT = os.path.join(os.path.dirname(os.path.abspath(__file__)), "..")
+ROOT = os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..")
 LEVELS = os.path.join(ROOT, "docs", "data", "kalker_refined_levels.dat")
-FIGURE = os.path.join(ROOT, "docs", "figures", "staircase_normalisation.png")
+FIGURE = os.path.join(ROOT, "build", "figures", "staircase_normalisation.png")  # --figure docs/figures/staircase_normalisation.png for the docs
 SHOWN = [(1.0, 0.25), (0.7, 0.25), (2.5, 0.5)]
 NAMES = ("c11", "c22", "c23")
 
@@ -56,6 +56,7 @@ def main():
     ap.add_argument("--kalker", action="store_true", help="only Kalker's 57 points")
     ap.add_argument("--levels-file", default=LEVELS)
     ap.add_argument("--no-figure", action="store_true")
+    ap.add_argument("--figure", default=FIGURE, help="where the figure goes (default build/figures/staircase_normalisation.png)")
     args = ap.parse_args()
     data = K.read_level_file(args.levels_file)
     scatter = {v: [] for v in ("area", "moments", "harmonic")}
@@ -110,8 +111,10 @@ def main():
                 ax.legend(fontsize=8)
     fig.suptitle("Ellipse levels normalised three ways (docs/data/kalker_refined_levels.dat)")
     fig.tight_layout()
-    fig.savefig(FIGURE, dpi=110)
-    print(f"figure: {FIGURE}")
+    path = args.figure
+    os.makedirs(os.path.dirname(os.path.abspath(path)), exist_ok=True)
+    fig.savefig(path, dpi=110)
+    print(f"figure: {path}")
 
 
 if __name__ == "__main__":
