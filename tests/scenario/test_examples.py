@@ -9,6 +9,7 @@ import glob
 import hashlib
 import math
 import os
+import shutil
 import subprocess
 import sys
 import kctest as kc
@@ -50,6 +51,44 @@ for path in examples:
         above = target > 0 and any(e > t for e, t in zip(errs, [target, target, 3 * target]))
         kc.check(row["verdict"] == ("uncertain" if above else "ok"),
                  f"{rel}: verdict {row['verdict']} with estimates {errs} and target {target}")
+
+
+def pieces(mask_path):
+    """The number of 4-connected pieces of the contact area in a mask file."""
+    with open(mask_path) as f:
+        rows = [line.strip() for line in f.readlines()[1:] if line.strip()]
+    cells = {(i, j) for j, row in enumerate(rows) for i, c in enumerate(row) if c == "1"}
+    count = 0
+    while cells:
+        count += 1
+        todo = [cells.pop()]
+        while todo:
+            i, j = todo.pop()
+            for n in ((i + 1, j), (i - 1, j), (i, j + 1), (i, j - 1)):
+                if n in cells:
+                    cells.remove(n)
+                    todo.append(n)
+    return count
+
+
+# What an example promises of its contact area holds (defect 9 of issue 31:
+# wheel_rail.nml promised a two-lobed patch and the normal problem gave two).
+promise = os.path.join(scratch, "promise")
+os.makedirs(promise)
+for name in ("wheel_rail",):
+    with open(os.path.join(inputs, name + ".nml")) as f:
+        text = f.read()
+    comment = " ".join(l[1:].strip() for l in text.splitlines() if l.startswith("!")).lower()
+    for extra in ("gap",):
+        shutil.copy(os.path.join(inputs, f"{name}.{extra}"), promise)
+    with open(os.path.join(promise, name + ".nml"), "w") as f:
+        f.write(text + "&output contact_mask_file = 'area.mask' /\n")
+    proc = subprocess.run([kc.KCREEP, name + ".nml"], cwd=promise, capture_output=True, text=True)
+    found = pieces(os.path.join(promise, "area.mask")) if proc.returncode == 0 else -1
+    says = 2 if "two separate" in comment else 1 if "two-lobed" in comment else None
+    kc.check(says is not None and found == says,
+             f"{name}.nml says its contact area is in {says} piece(s): the normal problem gives {found}")
+
 changed = sorted(k for k in set(inputs_before) | set(state(inputs)) if inputs_before.get(k) != state(inputs).get(k))
 kc.check(not changed, f"the examples write nothing into input/ (written or changed there: {changed[:6]})")
 written = sorted(set(os.listdir(work)) - work_before)
