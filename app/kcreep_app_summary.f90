@@ -80,10 +80,11 @@ contains
       about_centroid = normalised_about(record%f, record%g, record%c, record%centroid - record%spin_centre)
       do i = 1, 2
         associate (e => record%ellipse(i))
-          write (output_unit, '(2x, a, f7.4, a, 3f8.4, a, 3f7.2, a)') 'equivalent ellipse ('//trim(e%kind)// &
-            '): a/b =', e%semi_a / e%semi_b, ', Kalker C11 C22 C23 =', e%c, ' (', 100 * (e%c / about_centroid - 1), ' %)'
-          write (output_unit, '(4x, a, 3es12.4, a, 3f7.2, a)') 'its L1 L2 L3:', e%flex, ' (', &
-            100 * (e%flex / record%fastsim - 1), ' % against the exact L)'
+          write (output_unit, '(2x, a)') 'equivalent ellipse ('//trim(e%kind)//'): a/b = '// &
+            columns([e%semi_a / e%semi_b], 4, 0)//', Kalker C11 C22 C23 ='//columns(e%c, 4, 8)// &
+            ' ('//columns(100 * (e%c / about_centroid - 1), 2, 7)//' %)'
+          write (output_unit, '(4x, a, 3es12.4, a)') 'its L1 L2 L3:', e%flex, ' ('// &
+            columns(100 * (e%flex / record%fastsim - 1), 2, 7)//' % against the exact L)'
         end associate
       end do
     end if
@@ -146,6 +147,28 @@ contains
       write (output_unit, '(2x, a)') trim(lines(i))
     end do
   end subroutine print_contact_comparison
+
+  !> values in fixed point with the given decimals, each right-aligned in at
+  !> least width characters and after one blank, so that columns never run
+  !> together (scientific notation where fixed point would not fit in 12).
+  pure function columns(values, decimals, width) result(text)
+    real(real64), intent(in) :: values(:)
+    integer, intent(in) :: decimals, width
+    character(len=:), allocatable :: text
+    character(len=32) :: buf
+    character(len=16) :: fmt
+    integer :: i
+    text = ''
+    write (fmt, '(a, i0, a)') '(f12.', decimals, ')'
+    do i = 1, size(values)
+      write (buf, fmt) values(i)
+      if (index(buf, '*') > 0 .or. values(i) /= values(i)) write (buf, '(es12.4)') values(i)
+      buf = adjustl(buf)
+      text = text//repeat(" ", max(1, width - len_trim(buf)))//trim(buf)
+    end do
+    if (width == 0) text = adjustl(text)
+    text = trim(text)
+  end function columns
 
   function rtoa_short(x) result(text)
     real(kind(1.0d0)), intent(in) :: x

@@ -1,3 +1,4 @@
+#!/usr/bin/env python3
 """Driver of scripts/bench.sh (standard-library Python): runs kcreep on a
 ladder of unit-circle grids per solution path under /usr/bin/time -v, takes
 medians of repeats, measures dgemm/dgetrf with kcreep_blas_bench, compares the

@@ -1,3 +1,4 @@
+#!/usr/bin/env python3
 """Body of scripts/bench_api.sh (needs numpy: /usr/bin/python3).
 
     scripts/bench_api.py BUILD_DIR REPOSITORY_ROOT [ARGS]   (scripts/bench_api.sh calls it)

@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # Shared start of the scripts that build kcreep before they run it
-# (bench.sh, bench_normal.sh, bench_preconditioner.sh, normal_figures.sh)
+# (bench.sh, bench_normal.sh, bench_preconditioner.sh, figures/normal_figures.sh)
 # or time given builds of it (bench_accurate_mode.sh);
 # they source it first thing, it is not run on its own.
 #   in such a script:  source "$(dirname "${BASH_SOURCE[0]}")/prebuild_lib.sh"
@@ -26,7 +26,7 @@ build_script=${BASH_SOURCE[1]}
 usage() { awk 'NR > 1 && /^#/ { sub(/^# ?/, ""); print; next } NR > 1 { exit }' "$build_script"; }
 for arg in "$@"; do case $arg in -h | --help) usage; exit 0 ;; --) break ;; esac; done
 set -euo pipefail
-here=$(cd "$(dirname "$build_script")/.." && pwd)
+here=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
 build_dir=${KCREEP_BUILD_DIR:-$here/build}
 
 build_kcreep() {

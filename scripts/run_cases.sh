@@ -17,7 +17,8 @@
 # reruns exactly the cases whose inputs changed.
 # A failed case is reported and the others go on; the summary counts them.
 # Finally all rows are merged into OUT_TABLE (header of the first table,
-# rows in LIST order). Exit status: 0 all done, 1 some cases failed,
+# rows in LIST order, each named as kcreep --batch names it: the case's
+# path in LIST without the extension, e.g. a/case). Exit status: 0 all done, 1 some cases failed,
 # 2 bad usage.
 #
 # Environment: KCREEP (the binary; default build/kcreep of this repository).
@@ -58,11 +59,24 @@ out_dir=$(dirname "$out")
 [[ -d $out_dir && -w $out_dir ]] || die "output folder '$out_dir' does not exist or is not writable"
 
 list_dir=$(cd "$(dirname "$list")" && pwd)
-cases=()
+# A case's name in the merged table, the rule of kcreep --batch: its path as
+# the list gives it, relative to the list's folder, without './' and the
+# extension, blanks as '_' (a/case.nml and b/case.nml stay a/case and b/case).
+listed_name() {
+  local name=$1 base
+  [[ $name == "$list_dir"/* ]] && name=${name#"$list_dir"/}
+  while [[ $name == ./* && ${#name} -gt 2 ]]; do name=${name#./}; done
+  base=${name##*/}
+  [[ $base == ?*.* ]] && name=${name%.*}
+  name=${name//[[:space:]]/_}
+  echo "${name:--}"
+}
+cases=() names=()
 while IFS= read -r line || [[ -n $line ]]; do
   line=${line%%#*}
   line=$(echo "$line" | xargs)
   [[ -z $line ]] && continue
+  names+=("$(listed_name "$line")")
   [[ $line == /* ]] || line=$list_dir/$line
   cases+=("$line")
 done <"$list"
@@ -179,7 +193,8 @@ header_done=0 merged=0
       grep '^#' "$tab" | grep -v '^# WARNING'
       header_done=1
     fi
-    grep -v '^#' "$tab"
+    # the row named by the list, as --batch names it (the table says only its file name)
+    grep -v '^#' "$tab" | awk -v name="${names[k]}" '{ i = index($0, " "); print name substr($0, i) }'
     merged=$((merged + 1))
   done
 } >"$tmp_out"

@@ -11,7 +11,7 @@ set -euo pipefail
 here=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
 build_dir=${KCREEP_BUILD_DIR:-$here/build}
 
-packages=(gfortran gcc cmake make liblapack-dev libopenblas-dev libfftw3-dev gnuplot-nox time python3 python3-numpy python3-scipy python3-pip python3-setuptools slurm-wlm munge)
+packages=(gfortran gcc cmake make liblapack-dev libopenblas-dev libfftw3-dev gnuplot-nox time python3 python3-numpy python3-scipy python3-matplotlib python3-pip python3-setuptools slurm-wlm munge)
 missing=()
 for p in "${packages[@]}"; do
   dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")

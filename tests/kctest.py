@@ -44,7 +44,7 @@ def copy_inputs(folder):
 
 def copy_repository(repo, copy):
     """Copy the tracked files of repo to copy (git), or the tree without
-    build*/, studies/ and caches (no git: a source archive)."""
+    build*/, the top studies/ and caches (no git: a source archive)."""
     try:
         listed = subprocess.run(["git", "-C", repo, "ls-files", "-z", "--cached", "--others",
                                  "--exclude-standard"], capture_output=True, check=True).stdout
@@ -52,8 +52,12 @@ def copy_repository(repo, copy):
     except (OSError, subprocess.CalledProcessError):
         files = []
     if not files:
-        shutil.copytree(repo, copy, symlinks=True,
-                        ignore=shutil.ignore_patterns(".git", "build*", "studies", "__pycache__", "*.tab.partial"))
+        anywhere = shutil.ignore_patterns(".git", "build*", "__pycache__", "*.tab.partial")
+
+        def ignore(folder, names):  # studies/ only at the top (scripts/studies/ is source)
+            top = os.path.abspath(folder) == os.path.abspath(repo)
+            return set(anywhere(folder, names)) | ({"studies"} & set(names) if top else set())
+        shutil.copytree(repo, copy, symlinks=True, ignore=ignore)
         return
     for rel in files:
         source = os.path.join(repo, rel)

@@ -15,13 +15,60 @@ contains
     s = trim(buf)
   end function itoa
 
+  !> A number as messages show it, in the summary's notation: 0.1 <= |x| < 1e6
+  !> in fixed point with 6 significant digits (0.25, 20.0, 80000.0), anything
+  !> else in scientific notation with a two- or three-digit exponent (1.0E-03,
+  !> 7.81111E-03, 1.0E+301); trailing zeros dropped, one decimal kept.
   pure function rtoa(x) result(s)
+    use, intrinsic :: ieee_arithmetic, only: ieee_is_nan
     real(real64), intent(in) :: x
     character(len=:), allocatable :: s
-    character(len=32) :: buf
-    write (buf, '(g0.6)') x
-    s = trim(adjustl(buf))
+    character(len=40) :: buf
+    character(len=16) :: fmt
+    integer :: decimals, e
+    if (ieee_is_nan(x)) then
+      s = 'NaN'
+      return
+    else if (abs(x) > huge(x)) then
+      s = merge('-Inf', ' Inf', x < 0)
+      s = trim(adjustl(s))
+      return
+    else if (x == 0) then
+      s = '0.0'
+      return
+    end if
+    if (abs(x) >= 0.1_real64 .and. abs(x) < 1e6_real64) then
+      decimals = max(1, 5 - floor(log10(abs(x))))
+      write (fmt, '(a, i0, a)') '(f30.', decimals, ')'
+      write (buf, fmt) x
+      s = trim(adjustl(buf))
+      s = strip_zeros(s)
+    else
+      if (abs(log10(abs(x))) < 99) then
+        write (buf, '(es20.5e2)') x
+      else
+        write (buf, '(es20.5e3)') x
+      end if
+      buf = adjustl(buf)
+      e = index(buf, 'E')
+      s = strip_zeros(buf(1:e - 1))//trim(buf(e:))
+    end if
   end function rtoa
+
+  !> '2.50000' -> '2.5', '20.0000' -> '20.0': trailing zeros after the point, one digit kept.
+  pure function strip_zeros(text) result(s)
+    character(len=*), intent(in) :: text
+    character(len=:), allocatable :: s
+    integer :: last, point
+    point = index(text, '.')
+    last = len_trim(text)
+    if (point > 0) then
+      do while (last > point + 1 .and. text(last:last) == '0')
+        last = last - 1
+      end do
+    end if
+    s = text(1:last)
+  end function strip_zeros
 
   !> A character as it can be shown in a one-line message (control bytes as \xNN).
   pure function printable(c) result(s)

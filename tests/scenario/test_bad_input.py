@@ -56,7 +56,7 @@ cases = [
     ("tolerance", kc.namelist(good_patch, "", "tolerance=0"), {}, "tolerance = 0"),
     ("max_iterations", kc.namelist(good_patch, "", "max_iterations=0"), {}, "max_iterations = 0"),
     ("cell_budget", kc.namelist("", "", "target_error=1e-3, scheme='backward', cell_budget=500"), {},
-     "cell_budget = 500.000 (allowed"),
+     "cell_budget = 500.0 (allowed"),
     ("cell_budget_given_grid", kc.namelist(good_patch, "", "cell_budget=5000"), {}, "this case has none"),
     ("restart", kc.namelist(good_patch, "", "restart=0"), {}, "restart = 0"),
     ("preconditioner", kc.namelist(good_patch, "", "preconditioner='ilu'"), {}, "preconditioner = 'ilu'"),

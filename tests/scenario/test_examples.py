@@ -1,10 +1,15 @@
 """Every example in input/ runs as the README says (from a folder holding
 input/, with shared/ beside it) and ends with exit 0 and either verdict ok
 (every error estimate within its target: target_error, 3 times it for C23)
-or verdict uncertain (some estimate above it); CONTACT's grid has no target."""
-import math
+or verdict uncertain (some estimate above it); CONTACT's grid has no target.
+Running them leaves nothing untracked in the repository: input/ is as it was
+(no example writes beside itself) and whatever they write in the working
+folder is ignored by the repository's .gitignore."""
 import glob
+import hashlib
+import math
 import os
+import shutil
 import subprocess
 import sys
 import kctest as kc
@@ -13,6 +18,19 @@ scratch = kc.setup()
 inputs, shared = kc.copy_inputs(scratch)
 work = os.path.dirname(inputs)
 examples = sorted(glob.glob(os.path.join(inputs, "*.nml")))
+
+
+def state(folder):
+    """{relative path: sha256} of the files under folder."""
+    found = {}
+    for root, _, files in os.walk(folder):
+        for name in files:
+            with open(os.path.join(root, name), "rb") as f:
+                found[os.path.relpath(os.path.join(root, name), folder)] = hashlib.sha256(f.read()).hexdigest()
+    return found
+
+
+inputs_before, work_before = state(inputs), set(os.listdir(work))
 kc.check(len(examples) >= 4, f"{len(examples)} examples in input/")
 for path in examples:
     rel = os.path.relpath(path, work)
@@ -37,4 +55,50 @@ for path in examples:
             above = target > 0 and any(e > t for e, t in zip(errs, [target, target, 3 * target]))
             kc.check(row["verdict"] == ("uncertain" if above else "ok"),
                      f"{rel}: verdict {row['verdict']} with estimates {errs} and target {target}")
+
+def pieces(mask_path):
+    """The number of 4-connected pieces of the contact area in a mask file."""
+    with open(mask_path) as f:
+        rows = [line.strip() for line in f.readlines()[1:] if line.strip()]
+    cells = {(i, j) for j, row in enumerate(rows) for i, c in enumerate(row) if c == "1"}
+    count = 0
+    while cells:
+        count += 1
+        todo = [cells.pop()]
+        while todo:
+            i, j = todo.pop()
+            for n in ((i + 1, j), (i - 1, j), (i, j + 1), (i, j - 1)):
+                if n in cells:
+                    cells.remove(n)
+                    todo.append(n)
+    return count
+
+
+# What an example promises of its contact area holds (defect 9 of issue 31:
+# wheel_rail.nml promised a two-lobed patch and the normal problem gave two).
+promise = os.path.join(scratch, "promise")
+os.makedirs(promise)
+for name in ("wheel_rail",):
+    with open(os.path.join(inputs, name + ".nml")) as f:
+        text = f.read()
+    comment = " ".join(l[1:].strip() for l in text.splitlines() if l.startswith("!")).lower()
+    for extra in ("gap",):
+        shutil.copy(os.path.join(inputs, f"{name}.{extra}"), promise)
+    with open(os.path.join(promise, name + ".nml"), "w") as f:
+        f.write(text + "&output contact_mask_file = 'area.mask' /\n")
+    proc = subprocess.run([kc.KCREEP, name + ".nml"], cwd=promise, capture_output=True, text=True)
+    found = pieces(os.path.join(promise, "area.mask")) if proc.returncode == 0 else -1
+    says = 2 if "two separate" in comment else 1 if "two-lobed" in comment else None
+    kc.check(says is not None and found == says,
+             f"{name}.nml says its contact area is in {says} piece(s): the normal problem gives {found}")
+
+changed = sorted(k for k in set(inputs_before) | set(state(inputs)) if inputs_before.get(k) != state(inputs).get(k))
+kc.check(not changed, f"the examples write nothing into input/ (written or changed there: {changed[:6]})")
+written = sorted(set(os.listdir(work)) - work_before)
+kc.check(len(written) >= len(examples) - 1, f"the examples wrote their outputs in the working folder ({len(written)})")
+ignored = subprocess.run(["git", "-C", kc.REPO, "check-ignore", "--no-index", "--stdin"], input="\n".join(written),
+                         capture_output=True, text=True)
+if ignored.returncode in (0, 1):
+    kept = sorted(set(written) - set(ignored.stdout.split()))
+    kc.check(not kept, f"the repository's .gitignore covers every output of the examples (not: {kept[:6]})")
 kc.finish()

@@ -2,6 +2,8 @@
 since its table was made: the namelist, the mask file, the CONTACT output
 (and its .mat files) and the kcreep binary, compared by content, whatever
 their modification times say. An unchanged case is still skipped (resume).
+Rows are named as kcreep --batch names them (defect 6 of issue 31): a/case.nml
+and b/case.nml give the rows a/case and b/case in both.
 
     test_run_cases.py PATH/TO/kcreep PATH/TO/run_cases.sh
 """
@@ -145,7 +147,30 @@ def main():
         f.write(b"\0")
     rc, skipped, rows, log = run_cases(folder, other)
     kctest.check(rc == 0 and skipped == 0, f"another kcreep binary: the case runs again ({skipped} skipped)")
+    check_names(scratch)
     kctest.finish()
+
+
+def check_names(scratch):
+    """run_cases.sh and kcreep --batch name the rows of one list alike."""
+    folder = os.path.join(scratch, "names")
+    for sub, semi_b in (("a", 0.8), ("b", 0.6)):
+        os.makedirs(os.path.join(folder, sub))
+        write(os.path.join(folder, sub, "case.nml"),
+              f"&patch semi_a = 1, semi_b = {semi_b}, mx = 12, my = 12 /\n&solver target_error = 0 /\n")
+    write(os.path.join(folder, "cases.list"), "a/case.nml\n./b/case.nml\n")
+    names = {}
+    for how, command in (("run_cases.sh", ["bash", RUN_CASES, "--jobs", "1", "cases.list", "merged.tab"]),
+                         ("--batch", [kctest.KCREEP, "--batch", "cases.list", "batch.tab"])):
+        proc = subprocess.run(command, cwd=folder, capture_output=True, text=True,
+                              env=dict(os.environ, KCREEP=kctest.KCREEP))
+        kctest.check(proc.returncode == 0, f"{how} on a/case.nml and b/case.nml: exit 0 ({proc.stderr.strip()[:200]})")
+        table = os.path.join(folder, "merged.tab" if how == "run_cases.sh" else "batch.tab")
+        names[how] = [row["case"] for row in kctest.read_table(table)] if os.path.exists(table) else []
+    kctest.check(names["run_cases.sh"] == ["a/case", "b/case"],
+                 f"run_cases.sh names the rows a/case, b/case ({names['run_cases.sh']})")
+    kctest.check(names["run_cases.sh"] == names["--batch"],
+                 f"run_cases.sh and --batch name the rows alike ({names['run_cases.sh']}, {names['--batch']})")
 
 
 if __name__ == "__main__":

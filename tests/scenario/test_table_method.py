@@ -155,7 +155,7 @@ bad = [
     ("precond", nml("shape = 'ellipse'", solver="method = 'table', preconditioner = 'strip'"),
      "method = 'table' solves nothing"),
     ("wide", nml("shape = 'ellipse', semi_a = 20, semi_b = 1"),
-     "&patch semi_a/semi_b = 20.0000 (allowed with &solver method = 'table': 0.1 <= a/b <= 10"),
+     "&patch semi_a/semi_b = 20.0 (allowed with &solver method = 'table': 0.1 <= a/b <= 10"),
     ("narrow", nml("shape = 'ellipse', semi_a = 1, semi_b = 11"), "0.1 <= a/b <= 10"),
     ("fast", nml("shape = 'ellipse'", solver="method = 'fast'"),
      "method = 'fast' (allowed: 'auto', 'dense', 'iterative', 'table' for ellipses)"),

@@ -3,6 +3,8 @@
     statement and its <group>_variables list, which explains failed reads) agree;
   - `kcreep --help` names every group, docs/input.md every group and variable;
   - docs/architecture.md's module graph is scripts/module_graph.py's;
+  - docs/output.md's summary sample is what `build/kcreep input/ellipse.nml`
+    prints (the run times aside);
   - README.md has at most 150 lines; no table cell in README.md or docs/*.md
     is longer than 400 characters (sub-sections and lists instead).
 
@@ -11,6 +13,7 @@ usage: test_docs.py KCREEP SOURCE_DIR
 import glob
 import os
 import re
+import shutil
 import subprocess
 import sys
 
@@ -56,4 +59,20 @@ graph = subprocess.run([sys.executable, os.path.join(root, "scripts", "module_gr
 architecture = open(os.path.join(root, "docs", "architecture.md")).read()
 kc.check(len(graph) > 1000 and graph in architecture,
          "docs/architecture.md holds scripts/module_graph.py's graph (rerun it after changing a use statement)")
+# docs/output.md's sample summary is the default example's, run as the README says
+scratch = os.path.join(kc.SCRATCH, "summary")
+os.makedirs(os.path.join(scratch, "input"))
+shutil.copy(os.path.join(root, "input", "ellipse.nml"), os.path.join(scratch, "input"))
+printed = subprocess.run([kc.KCREEP, "input/ellipse.nml"], cwd=scratch, capture_output=True, text=True).stdout
+output_md = open(os.path.join(root, "docs", "output.md")).read()
+sample = re.search(r"## The summary\n\n```\n(.*?)```", output_md, re.S)
+
+
+def without_times(text):
+    return [re.sub(r"(time .*\[s\]:).*", r"\1 ...", line) for line in text.splitlines()]
+
+
+kc.check(sample is not None and without_times(sample.group(1)) == without_times(printed),
+         "docs/output.md's summary sample is what build/kcreep input/ellipse.nml prints (run times aside):\n"
+         + "\n".join(l for l in without_times(printed) if sample is None or l not in without_times(sample.group(1))))
 kc.finish()

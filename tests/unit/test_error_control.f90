@@ -99,7 +99,7 @@ program test_error_control
   ! --- the ellipse levels' fit: f0 + K h + B shape is recovered exactly
   h8 = 1.0_real64 / [56, 64, 72, 84, 96, 112, 128, 148]
   shape8 = [2.3e-3_real64, -8.0e-3_real64, 1.8e-2_real64, -1.5e-3_real64, 2.8e-3_real64, 7.9e-3_real64, &
-            -1.4e-3_real64, 5.1e-3_real64]   ! harmonics of the circle's staircases (scripts/kcreep_levels.py)
+            -1.4e-3_real64, 5.1e-3_real64]   ! harmonics of the circle's staircases (scripts/studies/kcreep_levels.py)
   f8 = 4.11_real64 + 1.06_real64 * h8 - 0.28_real64 * shape8
   call ellipse_level_estimate(h8, f8, shape8, limit, rel)
   ! no scatter: the estimate is the order's share of the extrapolation alone
