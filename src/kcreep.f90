@@ -6,9 +6,10 @@
 !>   call ellipse_patch(2.0_real64, 1.0_real64, 80, 40, problem%patch, status)
 !>   call kcreep_solve(problem, result, status)
 !>
-!> The library prints nothing, reads no environment and writes no files:
-!> those belong to its callers (the command line in app/, the C API in
-!> src/api, the Python package on top of it).
+!> The library prints nothing, reads no environment variables and writes no
+!> files: those belong to its callers (the command line in app/, the C API
+!> in src/api, the Python package on top of it). Only its automatic thread
+!> count looks at the machine (kcreep_threads).
 module kcreep
   use, intrinsic :: ieee_arithmetic, only: ieee_value, ieee_quiet_nan
   use, intrinsic :: iso_fortran_env, only: real64, int64

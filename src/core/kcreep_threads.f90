@@ -33,7 +33,9 @@ module kcreep_threads
   !> thread (median of 5 pairs; docs/performance.md "Threads"):
   !> iterative circles of 12,892 / 31,428 / 61,544 cells ran 1.0 / 1.36 /
   !> 1.8 times faster on two threads; dense ones of 1,264 / 2,828 / 5,024
-  !> cells 1.0 / 1.24 / 1.65 times.
+  !> cells 1.0 / 1.24 / 1.65 times, measured with OpenBLAS's threads in the
+  !> LU (OpenBLAS is serial now, serial_blas: the dense path's threads run
+  !> its assembly and residuals, and 'auto' takes it for small patches only).
   integer, parameter :: cells_per_thread_iterative = 20000
   integer, parameter :: cells_per_thread_dense = 2000
   !> The normal solve's FFT grid (padded, nx ny) per FFTW thread: below it
