@@ -34,6 +34,7 @@ module kcreep
   use kcreep_equivalent_ellipse, only: equivalent_ellipse_t, equivalent_ellipses
   use kcreep_extrapolation, only: run_extrapolated
   use kcreep_error_run, only: run_controlled
+  use kcreep_error_control, only: default_target_error, nominal_ellipse_cells
   use kcreep_table_run, only: run_table, table_meets_target
   implicit none
   private
@@ -44,7 +45,7 @@ module kcreep
   public :: normal_problem_t, normal_options_t, gap_t, polynomial_gap_t, gap_from_array, gap_from_polynomial, auto_grid
   public :: problem_t, result_t, default_problem, solve_cache_t, status_t, patch_t, scheme_t, solver_options_t
   public :: ellipse_patch, mask_patch, n_load_cases, load_case_names, message_length
-  public :: exit_bad_input, exit_numerical, exit_io
+  public :: exit_bad_input, exit_numerical, exit_io, default_target_error, nominal_ellipse_cells
   public :: verdict_ok, verdict_degenerate, verdict_nonphysical, verdict_alpha_edge, verdict_coarse, &
             verdict_ill_conditioned, verdict_inaccurate, verdict_uncertain, verdict_words
 

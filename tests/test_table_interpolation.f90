@@ -177,6 +177,9 @@ contains
     integer :: mx, my
     problem = default_problem()
     problem%nu = nu
+    ! this grid as given, unjudged (the library's default would choose the grids)
+    problem%target_error = 0
+    problem%refine_grid = .false.
     problem%estimate_error = .false.
     call ellipse_level_grid(sqrt(ratio), 1 / sqrt(ratio), cells, mx, my)
     call ellipse_patch(sqrt(ratio), 1 / sqrt(ratio), mx, my, problem%patch, status)

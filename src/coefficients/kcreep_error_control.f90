@@ -23,7 +23,7 @@ module kcreep_error_control
   use kcreep_patch, only: near_square_cells
   implicit none
   private
-  public :: default_target_error, c23_target_factor, min_estimate_cells
+  public :: default_target_error, c23_target_factor, min_estimate_cells, nominal_ellipse_cells
   public :: coefficient_targets, ellipse_level_grid, ellipse_cells_long_in_y, next_level, level_cell_budget, student_t95
   public :: cell_budget_allowed, cell_budget_range, level_solver_tolerance
   public :: first_order_fit, level_estimate, ellipse_level_estimate, smooth_level_estimate, basis_fit
@@ -32,6 +32,10 @@ module kcreep_error_control
 
   !> &solver target_error when not given: the relative error aimed at for C11 and C22.
   real(real64), parameter :: default_target_error = 1e-3_real64
+  !> The grid an ellipse is set on when kcreep chooses its grids (the
+  !> namelist's ellipse without mx, my; the C API's mx = my = 0): only its
+  !> place and the ellipse matter, and a given-grid estimate would use it.
+  integer, parameter :: nominal_ellipse_cells = 60
   !> C23 (and f23, f32) get this multiple of target_error: it is the slowest to
   !> converge (its discretisation error is 2-3 times that of C11 at the same grid).
   real(real64), parameter :: c23_target_factor = 3

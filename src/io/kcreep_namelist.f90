@@ -20,7 +20,7 @@ module kcreep_namelist
   use kcreep_table_interpolation, only: table_ratio_range
   use kcreep_dense, only: refine_modes
   use kcreep_problem, only: problem_t
-  use kcreep_error_control, only: default_target_error, cell_budget_allowed, cell_budget_range
+  use kcreep_error_control, only: default_target_error, cell_budget_allowed, cell_budget_range, nominal_ellipse_cells
   use kcreep_check, only: collocation_aspect_limit
   use kcreep_problem, only: problem_t, normal_problem_t
   use kcreep_gap, only: gap_t, polynomial_gap_t, gap_from_polynomial, auto_grid
@@ -35,7 +35,7 @@ module kcreep_namelist
   public :: config_t, read_config, build_patch, problem_of, max_inline_rows, max_row_length, max_creepages
 
   integer, parameter :: max_inline_rows = 2048, max_row_length = 2048
-  integer, parameter :: default_cells = 60
+  integer, parameter :: default_cells = nominal_ellipse_cells
   integer, parameter :: max_creepages = 100000   !< creepage points of &fastsim (list and sweep together)
   character(len=*), parameter :: group_names(6) = [character(len=8) :: 'patch', 'material', 'solver', 'output', &
                                                     'normal', 'fastsim']
