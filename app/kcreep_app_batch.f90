@@ -19,7 +19,7 @@ module kcreep_app_batch
   use, intrinsic :: ieee_arithmetic, only: ieee_value, ieee_quiet_nan
   use kcreep_status, only: status_t, fail, exit_bad_input, exit_numerical, exit_io
   use kcreep_strings, only: itoa, rtoa
-  use kcreep_patch, only: patch_t
+  use kcreep, only: patch_t
   use kcreep_namelist, only: config_t
   use kcreep_app_case, only: solve_input, load_input, case_memory_bytes
   use kcreep_strings, only: folder_of, resolve_path

@@ -4,12 +4,8 @@
 module kcreep_app_case
   use, intrinsic :: iso_fortran_env, only: int64
   use kcreep_status, only: status_t
-  use, intrinsic :: iso_fortran_env, only: real64
-  use kcreep, only: problem_t, patch_t, kcreep_solve, mask_patch
+  use kcreep, only: problem_t, patch_t, kcreep_solve, kcreep_memory_need
   use kcreep_namelist, only: config_t, read_config, build_patch, problem_of
-  use kcreep_extrapolation, only: memory_need
-  use kcreep_error_run, only: controlled_finest_patch
-  use kcreep_table_run, only: table_meets_target
   use kcreep_table, only: run_record_t, case_name
   use kcreep_app_files, only: check_output_path
   use kcreep_app_memory, only: memory_limit_bytes
@@ -65,10 +61,7 @@ contains
   end subroutine solve_input
 
   !> Bytes a case needs at its peak and the solve path it takes there
-  !> (kcreep_extrapolation%memory_need: the dense subsystem matrix or the
-  !> iterative solver's storage, and the operator table, of the grid or the
-  !> extrapolation level that needs most). The program itself (code,
-  !> OpenBLAS buffers) is not included: a few tens of MiB, see docs/cluster.md.
+  !> (kcreep_memory_need), under the memory limit of this machine.
   subroutine case_memory_bytes(cfg, patch, bytes, method, status)
     type(config_t), intent(in) :: cfg
     type(patch_t), intent(in) :: patch
@@ -76,47 +69,9 @@ contains
     character(len=:), allocatable, intent(out) :: method
     type(status_t), intent(inout) :: status
     type(problem_t) :: problem
-    integer :: level
-    integer(int64) :: need
-    type(patch_t) :: bound
-    if (cfg%solve%method == 'table') then
-      ! interpolation in the refined table: no operator, no system
-      bytes = 0
-      method = 'table'
-      return
-    end if
     problem = problem_of(cfg, patch)
     problem%solve%memory_limit = memory_limit_bytes()
-    if (cfg%shape == 'gap') then
-      ! the contact area lies inside the interpenetration area {h < approach}
-      ! (the whole grid when the force is given): the tangential solve on that
-      ! bound, plus the normal solve's ~15 doubles per grid cell
-      associate (gap => cfg%normal%gap)
-        if (cfg%normal%force_given) then
-          call mask_patch(gap%h < huge(1.0_real64), gap%dx, gap%dy, gap%x0, gap%y0, 'gap', bound, status)
-        else
-          call mask_patch(gap%h < cfg%normal%approach, gap%dx, gap%dy, gap%x0, gap%y0, 'gap', bound, status)
-        end if
-        bytes = 120 * int(gap%mx, int64) * gap%my
-      end associate
-      if (status%failed()) return
-      problem%patch = bound
-      problem%extrapolate = .false.
-      call memory_need(problem, need, method, level, status)
-      bytes = bytes + need
-      return
-    end if
-    if (table_meets_target(problem)) then
-      ! method 'auto' answers this ellipse from the refined table
-      bytes = 0
-      method = 'table'
-      return
-    end if
-    ! under error control: the finest level kcreep may choose
-    call controlled_finest_patch(problem, bound, status)
-    if (status%failed()) return
-    problem%patch = bound
-    call memory_need(problem, bytes, method, level, status)
+    call kcreep_memory_need(problem, bytes, method, status)
   end subroutine case_memory_bytes
 
 end module kcreep_app_case

@@ -12,7 +12,7 @@ module kcreep_app_cli
   use kcreep_status, only: status_t, fail, exit_bad_input
   use kcreep_strings, only: itoa
   use kcreep, only: kcreep_version
-  use kcreep_namelist, only: config_t
+  use kcreep_namelist, only: config_t, group_list
   use kcreep_table, only: run_record_t, table_lines, traction_lines, pressure_lines, contact_mask_lines
   use kcreep_app_case, only: solve_input
   use kcreep_app_batch, only: run_batch, estimate_memory, default_batch_table, text_t, exit_cases_failed
@@ -72,7 +72,7 @@ contains
         'usage: kcreep INPUT.nml', &
         '       kcreep --batch LIST [OUT_TABLE]   (one namelist path per line; table <LIST name>.tab)', &
         '       kcreep --estimate-memory INPUT.nml...   (per file: FILE BYTES dense|iterative)', &
-        'The namelist groups &patch, &material, &solver and &output are described in docs/input.md.'
+        'The namelist groups '//group_list()//' are described in docs/input.md.'
     case ('version')
       write (output_unit, '(a)') 'kcreep '//kcreep_version
     case ('batch')

@@ -6,11 +6,10 @@ module kcreep_app_fastsim
   use kcreep_status, only: status_t
   use kcreep_namelist, only: config_t
   use kcreep_table, only: run_record_t
-  use kcreep_pressure_models, only: hertz_pressure, strip_parabolic_pressure
+  use kcreep, only: hertz_pressure, strip_parabolic_pressure, creep_point_t, creep_map_t, creep_curve, source_names, &
+                    flexibility_rule_name
   use kcreep_pressure_file, only: read_pressure_file
-  use kcreep_creep_curve, only: creep_point_t, creep_map_t, creep_curve, source_names
   use kcreep_creep_table, only: creep_lines, creep_map_lines
-  use kcreep_fastsim_forces, only: flexibility_rule_name
   implicit none
   private
   public :: run_fastsim, pressure_label

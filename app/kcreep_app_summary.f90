@@ -3,7 +3,7 @@
 !> times, verdict and warnings.
 module kcreep_app_summary
   use, intrinsic :: iso_fortran_env, only: output_unit, error_unit, real64
-  use kcreep, only: kcreep_version, patch_t
+  use kcreep, only: kcreep_version, patch_t, normalised_about
   use kcreep_namelist, only: config_t
   use kcreep_table, only: run_record_t
   use kcreep_contact_compare, only: comparison_lines, contact_spin_shift
@@ -23,6 +23,7 @@ contains
     character(len=3), parameter :: names(3) = ['C11', 'C22', 'C23']
     character(len=64) :: label, note
     integer :: i
+    real(real64) :: about_centroid(3)
 
     patch = record%patch
     write (output_unit, '(a)') 'kcreep '//kcreep_version//': '//input_path
@@ -75,10 +76,12 @@ contains
     end if
     write (output_unit, '(2x, a, 3es12.4)') 'FASTSIM L1 L2 L3:', record%fastsim
     if (patch%kind /= 'ellipse') then
+      ! the patch's C23 about its centroid, as Kalker's about the ellipse's centre
+      about_centroid = normalised_about(record%f, record%g, record%c, record%centroid - record%spin_centre)
       do i = 1, 2
         associate (e => record%ellipse(i))
           write (output_unit, '(2x, a, f7.4, a, 3f8.4, a, 3f7.2, a)') 'equivalent ellipse ('//trim(e%kind)// &
-            '): a/b =', e%semi_a / e%semi_b, ', Kalker C11 C22 C23 =', e%c, ' (', 100 * (e%c / record%cn - 1), ' %)'
+            '): a/b =', e%semi_a / e%semi_b, ', Kalker C11 C22 C23 =', e%c, ' (', 100 * (e%c / about_centroid - 1), ' %)'
           write (output_unit, '(4x, a, 3es12.4, a, 3f7.2, a)') 'its L1 L2 L3:', e%flex, ' (', &
             100 * (e%flex / record%fastsim - 1), ' % against the exact L)'
         end associate
@@ -136,6 +139,7 @@ contains
     type(run_record_t), intent(in) :: record
     character(len=300), allocatable :: lines(:)
     integer :: i
+    real(real64) :: about_centroid(3)
     lines = comparison_lines(cfg%contact, record%f, cfg%scheme%name == 'backward' .and. &
                              cfg%scheme%spin_shift == contact_spin_shift)
     do i = 1, size(lines)

@@ -41,7 +41,11 @@ kcreep_handle kcreep_new(void);                 /* default settings, no patch */
 void kcreep_delete(kcreep_handle *handle);      /* frees and sets *handle = NULL */
 int kcreep_get_message(kcreep_handle handle, char *buffer, int buffer_length);
 
-/* Settings (defaults: g = 1, nu = 0.25, scheme "collocation" alpha 0.5, method "auto"). */
+/* Settings (defaults: g = 1, nu = 0.25, scheme "backward" spin_shift 0, method "auto",
+ * the grid as given). Each setter checks its values (g 1e-100 to 1e100, nu 0 to 0.5;
+ * scheme "backward" or "collocation", -1 < alpha < 1, -1 <= spin_shift <= 1;
+ * method as below, tolerance 0 or 1e-15 to 1): a bad value returns
+ * KCREEP_BAD_INPUT with the message, and the handle keeps what it had. */
 int kcreep_set_material(kcreep_handle handle, double g, double nu);
 int kcreep_set_scheme(kcreep_handle handle, const char *name, double alpha, double spin_shift);
 /* Or the two bodies: Young's moduli and Poisson ratios, combined as CONTACT does. */

@@ -16,7 +16,8 @@ module kcreep
   use kcreep_status, only: status_t, fail, exit_bad_input, exit_numerical, exit_io
   use kcreep_patch, only: patch_t, ellipse_patch, mask_patch
   use kcreep_assembly, only: scheme_t, n_load_cases, load_case_names
-  use kcreep_solver_options, only: solver_options_t
+  use kcreep_solver_options, only: solver_options_t, validate_solver_options
+  use kcreep_dense, only: refine_modes
   use kcreep_threads, only: team_size, enter_team, leave_team, cells_per_thread_iterative, solve_started, &
                             solve_ended, max_threads
   use kcreep_verdict, only: verdict_ok, verdict_degenerate, verdict_nonphysical, verdict_alpha_edge, &
@@ -26,21 +27,27 @@ module kcreep
   use kcreep_problem, only: problem_t, result_t, default_problem, normal_problem_t
   use kcreep_normal_solve, only: normal_result_t, normal_options_t
   use kcreep_gap, only: gap_t, polynomial_gap_t, gap_from_array, gap_from_polynomial, auto_grid
-  use kcreep_check, only: check_problem
+  use kcreep_creep_matrix, only: normalised_about
+  use kcreep_check, only: check_problem, collocation_aspect_limit
   use kcreep_run, only: run_case, solve_cache_t
-  use kcreep_creep_curve, only: creep_request_t, creep_point_t, creep_map_t, creep_curve, source_names
-  use kcreep_fastsim_forces, only: fastsim_forces, fastsim_result_t, flexibility_weighted, flexibility_separate
+  use kcreep_creep_curve, only: creep_request_t, creep_point_t, creep_map_t, creep_curve, source_names, &
+                                source_flexibilities
+  use kcreep_fastsim_forces, only: fastsim_forces, fastsim_result_t, flexibility_weighted, flexibility_separate, &
+                                  flexibility_rule_name
   use kcreep_pressure_models, only: hertz_pressure, strip_parabolic_pressure
   use kcreep_equivalent_ellipse, only: equivalent_ellipse_t, equivalent_ellipses
-  use kcreep_extrapolation, only: run_extrapolated
-  use kcreep_error_run, only: run_controlled
+  use kcreep_extrapolation, only: run_extrapolated, memory_need
+  use kcreep_error_run, only: run_controlled, controlled_finest_patch
   use kcreep_error_control, only: default_target_error, nominal_ellipse_cells
+  use kcreep_normal_influence, only: compliance_from_e_nu, combined_g_nu_from_e_nu
   use kcreep_table_run, only: run_table, table_meets_target
   implicit none
   private
-  public :: kcreep_solve, kcreep_version, kcreep_version_number, max_threads
-  public :: creep_request_t, creep_point_t, creep_map_t, creep_curve, source_names
-  public :: fastsim_forces, fastsim_result_t, flexibility_weighted, flexibility_separate
+  public :: kcreep_solve, kcreep_memory_need, kcreep_version, kcreep_version_number, max_threads
+  public :: creep_request_t, creep_point_t, creep_map_t, creep_curve, source_names, source_flexibilities
+  public :: validate_solver_options, refine_modes, collocation_aspect_limit, normalised_about
+  public :: fastsim_forces, fastsim_result_t, flexibility_weighted, flexibility_separate, flexibility_rule_name
+  public :: compliance_from_e_nu, combined_g_nu_from_e_nu
   public :: hertz_pressure, strip_parabolic_pressure, equivalent_ellipse_t, equivalent_ellipses
   public :: normal_problem_t, normal_options_t, gap_t, polynomial_gap_t, gap_from_array, gap_from_polynomial, auto_grid
   public :: problem_t, result_t, default_problem, solve_cache_t, status_t, patch_t, scheme_t, solver_options_t
@@ -126,6 +133,50 @@ contains
     end subroutine solve_as_given
 
   end subroutine kcreep_solve
+
+  !> Bytes kcreep_solve(problem) needs at its peak and the solve path it takes
+  !> there ('dense', 'iterative' or 'table'): the dense subsystem matrix or
+  !> the iterative solver's storage, and the operator table, of the grid or
+  !> of the finest level error control or extrapolation may choose. The
+  !> program itself (code, OpenBLAS buffers) is not included.
+  subroutine kcreep_memory_need(problem, bytes, method, status)
+    type(problem_t), intent(in) :: problem
+    integer(int64), intent(out) :: bytes
+    character(len=:), allocatable, intent(out) :: method
+    type(status_t), intent(inout) :: status
+    type(problem_t) :: bounded
+    type(patch_t) :: bound
+    integer :: level
+    integer(int64) :: need
+
+    bytes = 0
+    method = 'table'
+    ! interpolation in the refined table: no operator, no system
+    if (problem%solve%method == 'table' .or. table_meets_target(problem)) return
+    bounded = problem
+    if (problem%normal%active) then
+      ! the contact area lies inside the interpenetration area {h < approach}
+      ! (the whole grid when the force is given): the tangential solve on that
+      ! bound, plus the normal solve's ~15 doubles per grid cell
+      associate (gap => problem%normal%gap)
+        if (problem%normal%force_given) then
+          call mask_patch(gap%h < huge(1.0_real64), gap%dx, gap%dy, gap%x0, gap%y0, 'gap', bound, status)
+        else
+          call mask_patch(gap%h < problem%normal%approach, gap%dx, gap%dy, gap%x0, gap%y0, 'gap', bound, status)
+        end if
+        bytes = 120 * int(gap%mx, int64) * gap%my
+      end associate
+      if (status%failed()) return
+      bounded%extrapolate = .false.
+    else
+      ! under error control: the finest level kcreep may choose
+      call controlled_finest_patch(problem, bound, status)
+      if (status%failed()) return
+    end if
+    bounded%patch = bound
+    call memory_need(bounded, need, method, level, status)
+    bytes = bytes + need
+  end subroutine kcreep_memory_need
 
   !> f13, f23, f31, f32, f33 refer to the spin centre: when it lies outside
   !> the patch's bounding box (a mask in profile coordinates, spun about a

@@ -7,7 +7,9 @@ import subprocess
 import sys
 import tempfile
 
-sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "python"))
+#: the repository (tests/ is one level down)
+REPO = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
+sys.path.insert(0, os.path.join(REPO, "python"))
 from kcreep import table  # noqa: E402  (standard library only)
 
 KCREEP = None
@@ -31,13 +33,35 @@ def copy_inputs(folder):
     repository's ../shared linked beside them as folder/shared, so that they
     run with their relative paths and write nothing into the source tree.
     Returns (the copied input folder, whether ../shared/contact-samples is there)."""
-    repo = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
+    repo = REPO
     shared = os.path.join(repo, "..", "shared")
     inputs = os.path.join(folder, "repo", "input")
     shutil.copytree(os.path.join(repo, "input"), inputs)
     if os.path.isdir(shared):
         os.symlink(os.path.abspath(shared), os.path.join(folder, "shared"))
     return inputs, os.path.isdir(os.path.join(shared, "contact-samples"))
+
+
+def copy_repository(repo, copy):
+    """Copy the tracked files of repo to copy (git), or the tree without
+    build*/, studies/ and caches (no git: a source archive)."""
+    try:
+        listed = subprocess.run(["git", "-C", repo, "ls-files", "-z", "--cached", "--others",
+                                 "--exclude-standard"], capture_output=True, check=True).stdout
+        files = [f for f in listed.decode().split("\0") if f]
+    except (OSError, subprocess.CalledProcessError):
+        files = []
+    if not files:
+        shutil.copytree(repo, copy, symlinks=True,
+                        ignore=shutil.ignore_patterns(".git", "build*", "studies", "__pycache__", "*.tab.partial"))
+        return
+    for rel in files:
+        source = os.path.join(repo, rel)
+        os.makedirs(os.path.dirname(os.path.join(copy, rel)), exist_ok=True)
+        try:
+            shutil.copy2(source, os.path.join(copy, rel), follow_symlinks=False)
+        except FileNotFoundError:  # deleted in the working tree since git listed it
+            continue
 
 
 def namelist(patch="", material="", solver="", output=""):

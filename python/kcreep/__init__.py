@@ -6,8 +6,9 @@
     r.c        # C11, C22, C23
     r.verdict  # 'ok' or what is wrong
 
-The solver is the shared library libkcreep (found in the build tree
-`build/`, beside an installed package, or where KCREEP_LIBRARY says);
+The solver is the shared library libkcreep: inside the package when it was
+installed with `pip install ./python` (which builds it), else the source
+tree's `build/`, or where KCREEP_LIBRARY says;
 `kcreep.table` reads kcreep's table files and `kcreep.contact_inp` the gap
 values of CONTACT's input files; both need nothing but Python.
 """

@@ -12,12 +12,12 @@ module kcreep_capi
   use, intrinsic :: ieee_arithmetic, only: ieee_value, ieee_quiet_nan
   use kcreep_kinds, only: wp
   use kcreep_status, only: status_t, fail, exit_bad_input
-  use kcreep_strings, only: itoa
+  use kcreep_strings, only: itoa, rtoa
+  use kcreep_limits, only: modulus_in_range
   use kcreep, only: kcreep_solve, kcreep_version_number, max_threads, problem_t, result_t, default_problem, solve_cache_t, &
-                    ellipse_patch, mask_patch, n_load_cases, gap_from_array, nominal_ellipse_cells
-  use kcreep_creep_curve, only: creep_request_t, creep_point_t, creep_map_t, creep_curve
-  use kcreep_fastsim_forces, only: flexibility_weighted, flexibility_separate
-  use kcreep_normal_influence, only: compliance_from_e_nu, combined_g_nu_from_e_nu
+                    ellipse_patch, mask_patch, n_load_cases, gap_from_array, nominal_ellipse_cells, &
+                    creep_request_t, creep_point_t, creep_map_t, creep_curve, flexibility_weighted, &
+                    flexibility_separate, compliance_from_e_nu, combined_g_nu_from_e_nu
   implicit none
   private
 
@@ -94,9 +94,17 @@ contains
     type(handle_t), pointer :: h
     c_set_material = begin(handle, h)
     if (c_set_material /= status_ok) return
-    h%problem%g = g
-    h%problem%nu = nu
-    h%problem%normal%compliance = 0   ! the normal problem's 1/E* from g, nu again
+    if (.not. modulus_in_range(real(g, wp))) then
+      call fail(h%last, exit_bad_input, 'kcreep_set_material: g = '//rtoa(real(g, wp))// &
+                ' (allowed: 1e-100 <= g <= 1e100, the combined shear modulus)')
+    else if (.not. (nu >= 0 .and. nu <= 0.5_wp)) then
+      call fail(h%last, exit_bad_input, 'kcreep_set_material: nu = '//rtoa(real(nu, wp))//' (allowed: 0 <= nu <= 0.5)')
+    else
+      h%problem%g = g
+      h%problem%nu = nu
+      h%problem%normal%compliance = 0   ! the normal problem's 1/E* from g, nu again
+    end if
+    c_set_material = finish(h)
   end function c_set_material
 
   !> Two bodies of Young's moduli e1, e2 and Poisson ratios nu1, nu2: the
@@ -140,6 +148,7 @@ contains
     type(c_ptr), value :: handle, name
     real(c_double), value :: alpha, spin_shift
     type(handle_t), pointer :: h
+    character(len=:), allocatable :: word
     c_set_scheme = begin(handle, h)
     if (c_set_scheme /= status_ok) return
     if (.not. c_associated(name)) then
@@ -147,9 +156,21 @@ contains
       c_set_scheme = finish(h)
       return
     end if
-    h%problem%scheme%name = from_c(name, 32)
-    h%problem%scheme%alpha = alpha
-    h%problem%scheme%spin_shift = spin_shift
+    word = from_c(name, 32)
+    if (word /= 'collocation' .and. word /= 'backward') then
+      call fail(h%last, exit_bad_input, 'kcreep_set_scheme: name = "'//word//'" (allowed: "backward", "collocation")')
+    else if (.not. (abs(alpha) < 1)) then
+      call fail(h%last, exit_bad_input, 'kcreep_set_scheme: alpha = '//rtoa(real(alpha, wp))// &
+                ' (allowed: -1 < alpha < 1; used by "collocation")')
+    else if (.not. (abs(spin_shift) <= 1)) then
+      call fail(h%last, exit_bad_input, 'kcreep_set_scheme: spin_shift = '//rtoa(real(spin_shift, wp))// &
+                ' (allowed: -1 <= spin_shift <= 1 cell; used by "backward")')
+    else
+      h%problem%scheme%name = word
+      h%problem%scheme%alpha = alpha
+      h%problem%scheme%spin_shift = spin_shift
+    end if
+    c_set_scheme = finish(h)
   end function c_set_scheme
 
   !> method: "auto", "dense" or "iterative"; tolerance of the iterative solver (0: default).
@@ -157,6 +178,7 @@ contains
     type(c_ptr), value :: handle, method
     real(c_double), value :: tolerance
     type(handle_t), pointer :: h
+    character(len=:), allocatable :: word
     c_set_solver = begin(handle, h)
     if (c_set_solver /= status_ok) return
     if (.not. c_associated(method)) then
@@ -164,11 +186,21 @@ contains
       c_set_solver = finish(h)
       return
     end if
-    h%problem%solve%method = from_c(method, 32)
-    if (tolerance > 0) then
-      h%problem%solve%tolerance = tolerance
-      h%problem%solve%tolerance_given = .true.
+    word = from_c(method, 32)
+    if (word /= 'auto' .and. word /= 'dense' .and. word /= 'iterative' .and. word /= 'table') then
+      call fail(h%last, exit_bad_input, 'kcreep_set_solver: method = "'//word// &
+                '" (allowed: "auto", "dense", "iterative", "table")')
+    else if (.not. (tolerance == 0 .or. (tolerance >= 1e-15_wp .and. tolerance < 1))) then
+      call fail(h%last, exit_bad_input, 'kcreep_set_solver: tolerance = '//rtoa(real(tolerance, wp))// &
+                ' (allowed: 0 for the default, or 1e-15 <= tolerance < 1)')
+    else
+      h%problem%solve%method = word
+      if (tolerance > 0) then
+        h%problem%solve%tolerance = tolerance
+        h%problem%solve%tolerance_given = .true.
+      end if
     end if
+    c_set_solver = finish(h)
   end function c_set_solver
 
   !> Threads of each solve on this handle: 0 automatic (the default: the CPUs

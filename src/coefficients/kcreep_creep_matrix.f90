@@ -10,7 +10,7 @@ module kcreep_creep_matrix
   use kcreep_patch, only: patch_t
   implicit none
   private
-  public :: creep_matrix, normalised, traction_coherence, centre_transfer
+  public :: creep_matrix, normalised, normalised_about, traction_coherence, centre_transfer
 
 contains
 
@@ -55,6 +55,16 @@ contains
     real(real64) :: cn(3)
     cn = [f(1, 1) / (g * c**2), f(2, 2) / (g * c**2), f(2, 3) / (g * c**3)]
   end function normalised
+
+  !> (C11, C22, C23) about the point d from the spin centre f refers to
+  !> (centre_transfer): Kalker's ellipses spin about their centre, so a
+  !> patch is compared with its equivalent ellipse about its centroid.
+  pure function normalised_about(f, g, c, d) result(cn)
+    real(real64), intent(in) :: f(3, 3), g, c, d(2)
+    real(real64) :: cn(3), t(3, 3)
+    t = centre_transfer(-d)
+    cn = normalised(matmul(transpose(t), matmul(f, t)), g, c)
+  end function normalised_about
 
   !> |sum p| / sum |p| of one traction component: 1 when the traction has one
   !> sign everywhere (the physical solution for a pure xi or eta load), near 0

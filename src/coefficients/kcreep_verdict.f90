@@ -54,7 +54,7 @@ module kcreep_verdict
   real(real64), parameter :: backward_error_limit = 1e-12_real64
   !> The iterative path's final relative residual above this: at the default
   !> tolerance 1e-11 the coefficients agree with the dense LU to <= 1.1e-10
-  !> (tests/test_solver_paths.py), so 1e-10 keeps them good to about 1e-9.
+  !> (tests/scenario/test_solver_paths.py), so 1e-10 keeps them good to about 1e-9.
   real(real64), parameter :: iterative_residual_limit = 1e-10_real64
 
 contains

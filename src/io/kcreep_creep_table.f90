@@ -3,9 +3,8 @@
 module kcreep_creep_table
   use, intrinsic :: iso_fortran_env, only: real64
   use kcreep_patch, only: patch_t
-  use kcreep_problem, only: result_t
-  use kcreep_creep_curve, only: creep_request_t, creep_point_t, creep_map_t, source_names, source_flexibilities
-  use kcreep_fastsim_forces, only: flexibility_rule_name
+  use kcreep, only: result_t, creep_request_t, creep_point_t, creep_map_t, source_names, source_flexibilities, &
+                    flexibility_rule_name
   implicit none
   private
   public :: creep_lines, creep_map_lines, creep_columns

@@ -9,7 +9,7 @@ module kcreep_namelist_scan
   use kcreep_strings, only: itoa, lower, printable
   implicit none
   private
-  public :: scan_namelist_text
+  public :: scan_namelist_text, diagnose_group
 
 contains
 
@@ -81,8 +81,7 @@ contains
         first = i
         call skip_line(text, i)
         call fail(status, exit_bad_input, label//', line '//itoa(line)//': text outside any namelist group ('''// &
-                  shorten(text(first:i))//'''); groups start with &patch, &material, &solver or &output, '// &
-                  'comments with !')
+                  shorten(text(first:i))//'''); groups start with '//known()//', comments with !')
         return
       end if
       word = lower(name_at(i + 1))
@@ -95,7 +94,7 @@ contains
       end do
       if (k == 0) then
         call fail(status, exit_bad_input, label//', line '//itoa(line)//': unknown namelist group &'// &
-                  shorten(word)//' (known: &patch, &material, &solver, &output)')
+                  shorten(word)//' (known: '//known()//')')
         return
       end if
       if (present(k)) then
@@ -112,6 +111,16 @@ contains
 
   contains
 
+    !> '&patch, &material, ...': the groups asked for.
+    pure function known() result(list)
+      character(len=:), allocatable :: list
+      integer :: j
+      list = '&'//trim(group_names(1))
+      do j = 2, size(group_names)
+        list = list//', &'//trim(group_names(j))
+      end do
+    end function known
+
     !> The name (letters, digits, '_') that starts at position pos.
     pure function name_at(pos) result(name)
       integer, intent(in) :: pos
@@ -126,6 +135,247 @@ contains
     end function name_at
 
   end subroutine scan_namelist_text
+
+  !> Why the namelist read of group failed, in the input's terms: a name that
+  !> is not one of the group's variables (listing them), or a value of the
+  !> wrong type (naming the variable and its type). variables: 'name kind',
+  !> kind integer, real, logical or character. Empty when nothing is found
+  !> (the caller keeps the compiler's message then).
+  pure function diagnose_group(text, group, variables) result(message)
+    character(len=*), intent(in) :: text, group
+    character(len=*), intent(in) :: variables(:)
+    character(len=:), allocatable :: message
+    character(len=:), allocatable :: body, name, kind, allowed
+    integer, allocatable :: first(:), last(:)
+    integer :: n, k, j, v, end_values
+
+    message = ''
+    body = group_body(text, group)
+    call split_tokens(body, first, last, n)
+    do k = 2, n
+      if (body(first(k):last(k)) /= '=') cycle
+      name = lower(body(first(k - 1):last(k - 1)))
+      if (index(name, '(') > 1) name = name(1:index(name, '(') - 1)
+      v = 0
+      do j = 1, size(variables)
+        if (word(variables(j), 1) == name) v = j
+      end do
+      if (v == 0) then
+        allowed = word(variables(1), 1)
+        do j = 2, size(variables)
+          allowed = allowed//', '//word(variables(j), 1)
+        end do
+        message = '&'//group//': '''//shorten(name)//''' is not a variable of &'//group//' (allowed: '//allowed//')'
+        return
+      end if
+      kind = word(variables(v), 2)
+      ! the values run up to the name before the next '='
+      end_values = n
+      do j = k + 1, n
+        if (body(first(j):last(j)) == '=') then
+          end_values = j - 2
+          exit
+        end if
+      end do
+      do j = k + 1, end_values
+        if (.not. fits(body(first(j):last(j)), kind)) then
+          message = '&'//group//' '//name//' = '//shorten(body(first(j):last(j)))//': '//name//' is '// &
+                    described(kind)
+          return
+        end if
+      end do
+    end do
+  end function diagnose_group
+
+  !> The text of group (after '&group', up to its closing '/' or '&end'),
+  !> comments blanked; empty when the group is not there.
+  pure function group_body(text, group) result(body)
+    character(len=*), intent(in) :: text, group
+    character(len=:), allocatable :: body
+    integer :: i, start
+    character :: quote
+    logical :: inside, comment
+
+    body = ''
+    inside = .false.
+    comment = .false.
+    quote = ' '
+    i = 0
+    do while (i < len(text))
+      i = i + 1
+      if (text(i:i) == achar(10)) comment = .false.
+      if (comment) cycle
+      if (quote /= ' ') then
+        if (text(i:i) == quote) quote = ' '
+        if (inside) body = body//text(i:i)
+        cycle
+      end if
+      if (text(i:i) == '!') then
+        comment = .true.
+        if (inside) body = body//' '
+        cycle
+      end if
+      if (.not. inside) then
+        if (text(i:i) == '&' .and. i + len(group) < len(text)) then
+          if (lower(text(i + 1:i + len(group))) == group) then
+            start = i + len(group) + 1
+            if (verify(text(start:start), ' ,'//achar(9)//achar(10)//achar(13)) == 0) then
+              inside = .true.
+              i = start - 1
+            end if
+          end if
+        end if
+        cycle
+      end if
+      if (text(i:i) == '/' .or. text(i:i) == '&') return
+      if (text(i:i) == '''' .or. text(i:i) == '"') quote = text(i:i)
+      body = body//text(i:i)
+    end do
+  end function group_body
+
+  !> Tokens of a group's text: quoted strings, '=', and runs of other
+  !> characters between blanks and commas (first(k):last(k) in text).
+  pure subroutine split_tokens(text, first, last, n)
+    character(len=*), intent(in) :: text
+    integer, allocatable, intent(out) :: first(:), last(:)
+    integer, intent(out) :: n
+    integer :: i, j
+    character(len=*), parameter :: separators = ' ,'//achar(9)//achar(10)//achar(13)
+
+    allocate (first(len(text) + 1), last(len(text) + 1))
+    n = 0
+    i = 1
+    do while (i <= len(text))
+      if (index(separators, text(i:i)) > 0) then
+        i = i + 1
+        cycle
+      end if
+      n = n + 1
+      first(n) = i
+      if (text(i:i) == '=') then
+        j = i
+      else if (text(i:i) == '''' .or. text(i:i) == '"') then
+        j = i + 1
+        do while (j <= len(text))
+          if (text(j:j) == text(i:i)) then
+            if (j < len(text)) then
+              if (text(j + 1:j + 1) == text(i:i)) then   ! a doubled quote inside
+                j = j + 2
+                cycle
+              end if
+            end if
+            exit
+          end if
+          j = j + 1
+        end do
+        j = min(j, len(text))
+      else
+        j = i
+        do while (j < len(text))
+          if (index(separators//'=', text(j + 1:j + 1)) > 0) exit
+          j = j + 1
+        end do
+      end if
+      last(n) = j
+      i = j + 1
+    end do
+  end subroutine split_tokens
+
+  !> A namelist value (r*value repeats allowed) can be read as kind.
+  pure logical function fits(token, kind)
+    character(len=*), intent(in) :: token, kind
+    character(len=:), allocatable :: v
+    integer :: star, i, digits, k
+    character(len=*), parameter :: numeral = '0123456789'
+
+    v = token
+    star = index(v, '*')
+    if (star > 1) then
+      if (verify(v(1:star - 1), numeral) == 0) v = v(star + 1:)
+    end if
+    fits = .true.
+    if (len(v) == 0) return                 ! a null value
+    select case (kind)
+    case ('character')
+      fits = v(1:1) == '''' .or. v(1:1) == '"'
+    case ('logical')
+      k = 1
+      if (v(1:1) == '.') k = 2
+      fits = .false.
+      if (k <= len(v)) fits = index('tTfF', v(k:k)) > 0
+    case ('integer')
+      k = 1
+      if (index('+-', v(1:1)) > 0) k = 2
+      fits = k <= len(v)
+      if (fits) fits = verify(v(k:), numeral) == 0
+    case ('real')
+      select case (lower(v))
+      case ('nan', 'inf', '+inf', '-inf', 'infinity', '+infinity', '-infinity')
+        return
+      end select
+      i = 1
+      if (index('+-', v(1:1)) > 0) i = 2
+      digits = 0
+      do while (i <= len(v))
+        if (index(numeral, v(i:i)) == 0) exit
+        digits = digits + 1
+        i = i + 1
+      end do
+      if (i <= len(v)) then
+        if (v(i:i) == '.') then
+          i = i + 1
+          do while (i <= len(v))
+            if (index(numeral, v(i:i)) == 0) exit
+            digits = digits + 1
+            i = i + 1
+          end do
+        end if
+      end if
+      fits = digits > 0
+      if (fits .and. i <= len(v)) then
+        fits = index('eEdD', v(i:i)) > 0
+        i = i + 1
+        if (fits .and. i <= len(v)) then
+          if (index('+-', v(i:i)) > 0) i = i + 1
+        end if
+        fits = fits .and. i <= len(v)
+        if (fits) fits = verify(v(i:), numeral) == 0
+      end if
+    end select
+  end function fits
+
+  !> What a variable of kind is and how to write one.
+  pure function described(kind) result(text)
+    character(len=*), intent(in) :: kind
+    character(len=:), allocatable :: text
+    select case (kind)
+    case ('integer')
+      text = 'an integer (a whole number, e.g. 60)'
+    case ('real')
+      text = 'a real number (e.g. 2, 0.25 or 1e-3)'
+    case ('logical')
+      text = 'a logical (.true. or .false.)'
+    case default
+      text = 'a text (in quotes, e.g. ''ellipse'')'
+    end select
+  end function described
+
+  !> Word k (1 or 2) of 'name kind'.
+  pure function word(entry, k) result(w)
+    character(len=*), intent(in) :: entry
+    integer, intent(in) :: k
+    character(len=:), allocatable :: w
+    integer :: blank
+    w = trim(adjustl(entry))
+    blank = index(w, ' ')
+    if (k == 1) then
+      if (blank > 0) w = w(1:blank - 1)
+    else if (blank > 0) then
+      w = trim(adjustl(w(blank + 1:)))
+    else
+      w = ''
+    end if
+  end function word
 
   !> Move pos to the last character before the next line end.
   pure subroutine skip_line(text, pos)

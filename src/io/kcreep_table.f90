@@ -5,7 +5,7 @@ module kcreep_table
   use, intrinsic :: iso_fortran_env, only: real64
   use kcreep_patch, only: patch_t
   use kcreep_assembly, only: load_case_names, n_load_cases
-  use kcreep_problem, only: result_t
+  use kcreep, only: result_t, normalised_about
   implicit none
   private
   public :: run_record_t, table_lines, table_row, traction_lines, table_columns, case_name, line_length
@@ -83,9 +83,11 @@ contains
       write (buf, '(3(1x, es23.15e3), 1x, i0, 1x, es10.3e3)') ieee_nan(), ieee_nan(), ieee_nan(), 0, ieee_nan()
     end if
     line = line//trim(buf)
+    ! (the patch's C23 about its centroid, as Kalker's about the ellipse's centre)
     do k = 1, 2
       write (buf, '(14(1x, es23.15e3))') r%ellipse(k)%semi_a, r%ellipse(k)%semi_b, r%ellipse(k)%c, &
-        r%ellipse(k)%flex, r%ellipse(k)%c / r%cn - 1, r%ellipse(k)%flex / r%fastsim - 1
+        r%ellipse(k)%flex, r%ellipse(k)%c / normalised_about(r%f, r%g, r%c, r%centroid - r%spin_centre) - 1, &
+        r%ellipse(k)%flex / r%fastsim - 1
       line = line//trim(buf)
     end do
     ! error estimates of c11 c22 c23 (kcreep_error_control), then the centroid

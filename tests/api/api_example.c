@@ -119,14 +119,27 @@ int main(int argc, char **argv) {
     expect(kcreep_set_ellipse(h, 1, 1, 0, 10) == KCREEP_BAD_INPUT, "mx = 0 refused");
     expect(kcreep_set_ellipse(h, NAN, 1, 10, 10) == KCREEP_BAD_INPUT, "NaN semi-axis refused");
     must(h, kcreep_set_ellipse(h, 1, 1, 20, 20), "kcreep_set_ellipse");
-    must(h, kcreep_set_material(h, 1.0, 0.7), "kcreep_set_material (checked at solve)");
-    expect(kcreep_solve(h) == KCREEP_BAD_INPUT, "nu = 0.7 refused at solve");
+    /* the setters check their values and say so in C terms; the handle keeps its last good values */
+    expect(kcreep_set_material(h, 1.0, 0.7) == KCREEP_BAD_INPUT, "nu = 0.7 refused by kcreep_set_material");
     kcreep_get_message(h, message, sizeof message);
     printf("errors nu %s\n", message);
+    expect(strstr(message, "kcreep_set_material") != NULL && strstr(message, "&") == NULL,
+           "the message names the C function, not a namelist group");
+    expect(kcreep_set_material(h, -1.0, 0.25) == KCREEP_BAD_INPUT, "g = -1 refused by kcreep_set_material");
+    expect(kcreep_set_material(h, NAN, 0.25) == KCREEP_BAD_INPUT, "g = NaN refused by kcreep_set_material");
     expect(kcreep_set_scheme(h, NULL, 0.5, 0) == KCREEP_BAD_INPUT, "NULL scheme name refused");
+    expect(kcreep_set_scheme(h, "upwind", 0.5, 0) == KCREEP_BAD_INPUT, "unknown scheme refused by kcreep_set_scheme");
+    kcreep_get_message(h, message, sizeof message);
+    printf("errors scheme %s\n", message);
+    expect(strstr(message, "kcreep_set_scheme") != NULL && strstr(message, "upwind") != NULL,
+           "the scheme message names the function and the value");
+    expect(kcreep_set_scheme(h, "collocation", 1.5, 0) == KCREEP_BAD_INPUT, "alpha = 1.5 refused by kcreep_set_scheme");
+    expect(kcreep_set_scheme(h, "backward", 0, 2) == KCREEP_BAD_INPUT, "spin_shift = 2 refused by kcreep_set_scheme");
+    expect(kcreep_set_solver(h, "fast", 0) == KCREEP_BAD_INPUT, "unknown method refused by kcreep_set_solver");
+    expect(kcreep_set_solver(h, "iterative", -1) == KCREEP_BAD_INPUT, "negative tolerance refused by kcreep_set_solver");
+    expect(kcreep_set_solver(h, "iterative", 1e-300) == KCREEP_BAD_INPUT, "tolerance 1e-300 refused by kcreep_set_solver");
+    must(h, kcreep_set_solver(h, "auto", 0), "kcreep_set_solver");
     must(h, kcreep_set_material(h, 1.0, 0.25), "kcreep_set_material");
-    must(h, kcreep_set_scheme(h, "upwind", 0.5, 0), "kcreep_set_scheme (checked at solve)");
-    expect(kcreep_solve(h) == KCREEP_BAD_INPUT, "unknown scheme refused at solve");
     must(h, kcreep_set_scheme(h, "backward", 0, 0), "kcreep_set_scheme");
     must(h, kcreep_solve(h), "kcreep_solve after errors");
     expect(kcreep_get_matrix(h, NULL) == KCREEP_BAD_INPUT, "NULL output array refused");

@@ -26,7 +26,7 @@ import sys
 
 import kctest as kc
 
-repo = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
+repo = kc.REPO
 sys.path.insert(0, os.path.join(repo, "scripts"))
 from richardson import read_table  # noqa: E402
 import make_report  # noqa: E402

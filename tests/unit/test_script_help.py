@@ -20,7 +20,7 @@ import subprocess
 import sys
 import tempfile
 
-sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), ".."))
 import kctest  # noqa: E402
 
 # A usage text is the script's own description, not its code: none of its
@@ -55,28 +55,6 @@ def scripts_of(repo):
     return found
 
 
-def copy_repository(repo, copy):
-    """Copy the tracked files of repo to copy (git), or the tree without
-    build*/, studies/ and caches (no git: a source archive)."""
-    try:
-        listed = subprocess.run(["git", "-C", repo, "ls-files", "-z", "--cached", "--others",
-                                 "--exclude-standard"], capture_output=True, check=True).stdout
-        files = [f for f in listed.decode().split("\0") if f]
-    except (OSError, subprocess.CalledProcessError):
-        files = []
-    if not files:
-        shutil.copytree(repo, copy, symlinks=True,
-                        ignore=shutil.ignore_patterns(".git", "build*", "studies", "__pycache__", "*.tab.partial"))
-        return
-    for rel in files:
-        source = os.path.join(repo, rel)
-        os.makedirs(os.path.dirname(os.path.join(copy, rel)), exist_ok=True)
-        try:
-            shutil.copy2(source, os.path.join(copy, rel), follow_symlinks=False)
-        except FileNotFoundError:  # deleted in the working tree since git listed it
-            continue
-
-
 def command_for(copy, rel):
     path = os.path.join(copy, rel)
     if rel.endswith(".py"):
@@ -91,7 +69,7 @@ def main():
     scratch = tempfile.mkdtemp(prefix="kcreep-test-help-")
     kctest.SCRATCH = scratch
     copy = os.path.join(scratch, "repo")
-    copy_repository(repo, copy)
+    kctest.copy_repository(repo, copy)
     scripts = scripts_of(copy)
     kctest.check(len(scripts) >= 20, f"found {len(scripts)} scripts under scripts/ and scripts/slurm/")
     for rel in scripts:
@@ -131,7 +109,7 @@ def main():
                          f"{os.listdir(cwd)[:3] + os.listdir(tmp)[:3]}")
             if changed:  # the next script must start from the original tree
                 shutil.rmtree(copy)
-                copy_repository(repo, copy)
+                kctest.copy_repository(repo, copy)
     kctest.finish()
 
 

@@ -11,7 +11,7 @@ import shutil
 import subprocess
 import sys
 
-sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), ".."))
 import kctest  # noqa: E402
 
 RUN_CASES = os.path.abspath(sys.argv[2]) if len(sys.argv) > 2 else None
@@ -105,7 +105,7 @@ def main():
                  f"({rows[0]['n'] if rows else None})")
 
     # CONTACT output: the .out and its .mat files are inputs as well.
-    samples = os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "shared", "contact-samples")
+    samples = os.path.join(kctest.REPO, "..", "shared", "contact-samples")
     sample = None
     if os.path.isdir(samples):
         for name in sorted(os.listdir(samples)):

@@ -25,7 +25,7 @@ import tablecmp
 
 SKIP = 77
 DEADLINE = time.time() + 270          # CTest's TIMEOUT for this test is 420 s
-repo = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
+repo = kc.REPO
 slurm_scripts = os.path.join(repo, "scripts", "slurm")
 local_cluster = os.path.join(slurm_scripts, "local_cluster.sh")
 run_cases = os.path.join(slurm_scripts, "run_cases_slurm.sh")

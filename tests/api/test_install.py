@@ -24,7 +24,18 @@ def run(*cmd, **kw):
     return proc
 
 
-kc.check(run("cmake", "--install", build_dir, "--prefix", prefix).returncode == 0, "cmake --install into a prefix")
+# installed in one place, used from another: the package is relocatable
+installed = os.path.join(folder, "installed")
+kc.check(run("cmake", "--install", build_dir, "--prefix", installed).returncode == 0, "cmake --install into a prefix")
+for dirpath, _, names in os.walk(installed):
+    for name in names:
+        if name.endswith(".cmake"):
+            text = open(os.path.join(dirpath, name)).read()
+            kc.check(installed not in text and "/usr/" not in text and build_dir not in text,
+                     f"{name}: no absolute paths (relocatable)")
+os.rename(installed, prefix)
+modules = sorted(n for _, _, names in os.walk(prefix) for n in names if n.endswith(".mod"))
+kc.check(modules == ["kcreep.mod"], f"one Fortran module installed, the facade's ({len(modules)}: {modules[:3]})")
 for path in ("include/kcreep.h", "include/kcreep/kcreep.mod", "lib/cmake/kcreep/kcreepConfig.cmake"):
     kc.check(os.path.exists(os.path.join(prefix, path)), f"installed {path}")
 libdir = next(d for d in ("lib", "lib64", "lib/x86_64-linux-gnu") if os.path.exists(os.path.join(prefix, d, "libkcreep.so")))
@@ -49,6 +60,23 @@ def c_values(mode):
         values[" ".join(words[:2])] = words[2:]
     return values
 
+
+# a project that enables C only links the static library (the Fortran runtime
+# and OpenMP come with the target)
+static = run(os.path.join(api_build, "api_example_static"), "ellipse")
+kc.check(static.returncode == 0 and "ellipse f" in static.stdout,
+         "C-only project linked to kcreep::kcreep_static runs")
+# a Fortran program needs kcreep.mod alone
+with open(os.path.join(folder, "use_kcreep.f90"), "w") as f:
+    f.write("program use_kcreep\n  use kcreep\n  implicit none\n  type(problem_t) :: p\n  type(result_t) :: r\n"
+            "  type(status_t) :: s\n  p = default_problem()\n  call ellipse_patch(2d0, 1d0, 20, 20, p%patch, s)\n"
+            "  call kcreep_solve(p, r, s)\n  print '(i0, es24.16)', s%code, r%f(1, 1)\nend program\n")
+fortran = run("gfortran", "-I", os.path.join(prefix, "include", "kcreep"), os.path.join(folder, "use_kcreep.f90"),
+              "-L", os.path.join(prefix, libdir), "-lkcreep", "-o", os.path.join(folder, "use_kcreep"))
+kc.check(fortran.returncode == 0, "a Fortran program built with the installed kcreep.mod alone")
+if fortran.returncode == 0:
+    out = run(os.path.join(folder, "use_kcreep"), env=env).stdout.split()
+    kc.check(len(out) == 2 and out[0] == "0" and float(out[1]) > 0, "and solves an ellipse")
 
 ldd = run("ldd", example, env=env).stdout
 kc.check(os.path.join(prefix, libdir) in ldd, "api_example loads the installed libkcreep")

@@ -5,7 +5,9 @@ table module, and `pip install ./python` into a scratch folder.
 
 usage: /usr/bin/python3 test_python_api.py KCREEP SOURCE_DIR   (needs numpy)
 """
+import glob
 import os
+import shutil
 import subprocess
 import sys
 
@@ -188,24 +190,28 @@ for call, words in ((lambda: ts.solve_ellipse(2.0, 1.0, 20, 20, tractions=True),
 rows = kcreep.table.read(os.path.join(folder, "circle.tab"))
 kc.check(len(rows) == 1 and rows[0]["case"] == "circle" and rows[0]["f11"] == row["f11"], "kcreep.table.read")
 
-# pip install ./python (Debian's setuptools, no network), then import it with KCREEP_LIBRARY
-# (from a copy: pip builds in the source folder, which must stay clean)
-import shutil  # noqa: E402
-target, package_copy = os.path.join(folder, "site"), os.path.join(folder, "python")
-shutil.copytree(os.path.join(source_dir, "python"), package_copy, ignore=shutil.ignore_patterns("__pycache__"))
+# pip install ./python (Debian's setuptools, no network) builds libkcreep.so into
+# the package: it imports from any folder with no setting, numpy its only
+# dependency (from a copy of the repository: pip builds in the source folder,
+# which must stay clean)
+copy, target = os.path.join(folder, "repo"), os.path.join(folder, "site")
+kc.copy_repository(source_dir, copy)
 proc = subprocess.run([sys.executable, "-m", "pip", "install", "--no-build-isolation", "--no-deps", "--no-index",
-                       "--target", target, package_copy], capture_output=True, text=True)
+                       "--target", target, os.path.join(copy, "python")], capture_output=True, text=True)
 kc.check(proc.returncode == 0, "pip install ./python" + ("" if proc.returncode == 0 else ": " + proc.stderr[-500:]))
-library = os.path.join(source_dir, "build", "libkcreep.so")
-if not os.path.exists(library):
-    library = os.path.join(os.path.dirname(os.path.abspath(sys.argv[1])), "libkcreep.so")
+kc.check(os.path.isfile(os.path.join(target, "kcreep", "libkcreep.so")), "the package carries libkcreep.so")
+requires = [line.split(":", 1)[1].strip() for meta in glob.glob(os.path.join(target, "kcreep-*-info", "METADATA"))
+            for line in open(meta) if line.startswith("Requires-Dist:")]
+kc.check(requires == ["numpy"], f"numpy its only dependency ({requires})")
 code = "import kcreep, sys; print(kcreep.__file__); print(kcreep.solve_ellipse(1, 1, mx=30, my=30, scheme='backward').f[0, 0])"
+env = {k: v for k, v in os.environ.items() if k not in ("KCREEP_LIBRARY", "LD_LIBRARY_PATH")}
+shutil.rmtree(copy)   # nothing of the source tree left to fall back on
 proc = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, cwd=folder,
-                      env=dict(os.environ, PYTHONPATH=target, KCREEP_LIBRARY=library))
+                      env=dict(env, PYTHONPATH=target))
 lines = proc.stdout.split()
 kc.check(proc.returncode == 0 and lines[0].startswith(target) and abs(float(lines[1]) - r.f[0, 0]) <= 1e-14 * r.f[0, 0],
-         "the installed package with KCREEP_LIBRARY gives the same f11" + ("" if proc.returncode == 0 else proc.stderr[-500:]))
+         "the installed package, no setting, another folder: the same f11" + ("" if proc.returncode == 0 else proc.stderr[-500:]))
 proc = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, cwd=folder,
-                      env=dict(os.environ, PYTHONPATH=target, KCREEP_LIBRARY=os.path.join(folder, "nowhere.so")))
+                      env=dict(env, PYTHONPATH=target, KCREEP_LIBRARY=os.path.join(folder, "nowhere.so")))
 kc.check(proc.returncode != 0 and "KCREEP_LIBRARY" in proc.stderr, "a wrong KCREEP_LIBRARY is named in the error")
 kc.finish()

@@ -12,7 +12,7 @@ import os
 import kctest as kc
 
 folder = kc.setup()
-repo = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
+repo = kc.REPO
 COEFFS = ("c11", "c22", "c23")
 
 
