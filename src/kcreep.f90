@@ -38,7 +38,7 @@ module kcreep
   use kcreep_equivalent_ellipse, only: equivalent_ellipse_t, equivalent_ellipses
   use kcreep_extrapolation, only: run_extrapolated, memory_need
   use kcreep_error_run, only: run_controlled, controlled_finest_patch
-  use kcreep_error_control, only: default_target_error, nominal_ellipse_cells
+  use kcreep_refine_estimate, only: default_target_error, nominal_ellipse_cells
   use kcreep_normal_influence, only: compliance_from_e_nu, combined_g_nu_from_e_nu
   use kcreep_table_run, only: run_table, table_meets_target
   implicit none

@@ -13,7 +13,7 @@ module kcreep_problem
   use kcreep_solver_options, only: solver_options_t
   use kcreep_verdict, only: verdict_ok, verdict_uncertain, message_length
   use kcreep_strings, only: rtoa
-  use kcreep_error_control, only: uncertain_flag, coefficient_targets, level_solver_tolerance, default_target_error
+  use kcreep_refine_estimate, only: uncertain_flag, coefficient_targets, level_solver_tolerance, default_target_error
   use kcreep_gap, only: gap_t, polynomial_gap_t
   use kcreep_normal_solve, only: normal_options_t
   use kcreep_equivalent_ellipse, only: equivalent_ellipse_t
@@ -59,7 +59,7 @@ module kcreep_problem
     logical :: refine_grid = .true.
     !> The most patch cells of a level kcreep chooses under error control
     !> (ellipse levels, mask splits, gap levels); 0: the defaults, a run-time
-    !> budget (kcreep_error_control level_cell_budget; masks and gaps 20,000).
+    !> budget (kcreep_refine_estimate level_cell_budget; masks and gaps 20,000).
     !> Raised for reference work, where minutes per case are acceptable.
     real(real64) :: cell_budget = 0
     !> With target_error = 0: still estimate the error of the given grid (one

@@ -20,7 +20,7 @@
 program test_table_interpolation
   use, intrinsic :: iso_fortran_env, only: real64, output_unit
   use kcreep, only: problem_t, result_t, default_problem, ellipse_patch, kcreep_solve, status_t
-  use kcreep_error_control, only: ellipse_level_grid
+  use kcreep_refine_estimate, only: ellipse_level_grid
   use kcreep_refined_table_data, only: refined_rows, refined_nu, refined_ratio, refined_c, refined_u
   use kcreep_table_interpolation, only: table_coefficients, interpolate_table
   use unit_checks, only: checker_t
