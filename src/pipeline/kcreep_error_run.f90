@@ -264,6 +264,9 @@ contains
     level_problem = problem
     call level_tolerance(level_problem)
     budget = cell_budget_or(problem, level_cell_budget(problem%target_error))
+    ! the fit amplifies the levels' solver error: a tighter residual (split_tolerance_share)
+    if (.not. problem%solve%tolerance_given) level_problem%solve%tolerance = &
+      min(level_problem%solve%tolerance, split_tolerance_share * problem%target_error)
     last = finest_split(problem%patch%n, budget)
     do k = 1, last
       if (k > 1) then

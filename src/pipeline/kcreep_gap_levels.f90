@@ -45,7 +45,8 @@ module kcreep_gap_levels
   use kcreep_verdict, only: message_length
   use kcreep_fastsim, only: fastsim_flexibilities
   use kcreep_refine_constants
-  use kcreep_refine_estimate, only: level_estimate, within_target, coefficient_targets, min_estimate_cells
+  use kcreep_refine_estimate, only: level_estimate, within_target, coefficient_targets, min_estimate_cells, &
+                                    level_cell_budget
   implicit none
   private
   public :: run_gap_patch, gap_single_estimate
@@ -168,7 +169,7 @@ contains
 
     allocate (done(0), cnorm(3, 3, 0), area(0), warnings(0))
     t = 0
-    budget = cell_budget_or(problem, real(max_gap_level_cells, real64))
+    budget = cell_budget_or(problem, level_cell_budget(problem%target_error))
     level_problem = problem
     call level_tolerance(level_problem)
     do refinement = 0, max_refinements
