@@ -20,6 +20,8 @@ module kcreep_app_cli
   use kcreep_app_summary, only: print_summary
   !$ use omp_lib, only: omp_set_num_threads
   use kcreep_app_fastsim, only: run_fastsim
+  use kcreep_app_wheel_rail, only: wheel_rail_mode
+  use kcreep_namelist, only: read_config
   implicit none
   private
   public :: command_t, parse_command, run_command, stop_with, follow_slurm_cpus
@@ -97,6 +99,12 @@ contains
     logical :: with_maps
     integer :: i, k, np
 
+    call read_config(input_path, cfg, status)
+    if (status%failed()) return
+    if (cfg%wheel_rail_on) then
+      call wheel_rail_mode(input_path, cfg, status)    ! a contact table over the shifts
+      return
+    end if
     call solve_input(input_path, .true., cfg, record, status)
     if (status%failed()) return
     with_maps = .false.

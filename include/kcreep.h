@@ -136,6 +136,29 @@ int kcreep_get_normal(kcreep_handle handle, double *fn, double *approach, double
 int kcreep_fastsim(kcreep_handle handle, double mu, int n, const double *creep, const double *pressure,
                    const char *rule, double *force, double *adhesion);
 
+/* Wheel and rail profiles to a contact table (docs/wheel_rail.md; the same
+ * table as the program's &wheel_rail). Profiles are read by
+ * kcreep_set_profiles (SIMPACK .prw/.prr, MiniProf .whl/.ban, else two
+ * columns y z in mm; mirror flags 0 or 1; smoothing >= 0, mm^3). The track
+ * (side "right" or "left", then mm and rad as &wheel_rail) defaults to
+ * "right", 1435, 14, 0, 1360, -70, 460 until kcreep_set_track. kcreep_wheel_rail
+ * runs n_shifts lateral shifts (mm) at yaw (rad) with exactly one of
+ * vertical_force (N) and approach (mm) > 0, the handle's material, solver
+ * and target error (0: the program's default 1e-3); *rows: the table's rows. */
+int kcreep_set_profiles(kcreep_handle handle, const char *wheel_file, const char *rail_file, int wheel_mirror,
+                        int rail_mirror, double smoothing);
+int kcreep_set_track(kcreep_handle handle, const char *side, double gauge_width, double gauge_height,
+                     double rail_cant, double flange_back_distance, double flange_back_position,
+                     double nominal_radius);
+int kcreep_wheel_rail(kcreep_handle handle, int n_shifts, const double *shifts, double yaw, double vertical_force,
+                      double approach, int *rows);
+/* The table row by row: table[r * KCREEP_WHEEL_RAIL_COLUMNS + k] (length >= rows * columns),
+ * columns named as below, the verdict as its bits (0: ok). */
+#define KCREEP_WHEEL_RAIL_COLUMNS 23
+#define KCREEP_WHEEL_RAIL_COLUMN_NAMES "shift yaw patch fn delta y_rail y_wheel r_wheel area length width " \
+  "c11 c22 c23 c33 err11 err22 err23 verdict l1 l2 l3 spin"
+int kcreep_get_wheel_rail(kcreep_handle handle, int length, double *table);
+
 #ifdef __cplusplus
 }
 #endif

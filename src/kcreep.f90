@@ -41,6 +41,8 @@ module kcreep
   use kcreep_refine_estimate, only: default_target_error, nominal_ellipse_cells
   use kcreep_normal_influence, only: compliance_from_e_nu, combined_g_nu_from_e_nu
   use kcreep_table_run, only: run_table, table_meets_target
+  use kcreep_wheel_rail_run, only: wheel_rail_setup_t, wheel_rail_row_t, run_wheel_rail, wheel_rail_columns, &
+                                   check_wheel_rail_setup, max_wheel_rail_shifts
   implicit none
   private
   public :: kcreep_solve, kcreep_memory_need, kcreep_version, kcreep_version_number, max_threads
@@ -55,6 +57,8 @@ module kcreep
   public :: exit_bad_input, exit_numerical, exit_io, default_target_error, nominal_ellipse_cells
   public :: verdict_ok, verdict_degenerate, verdict_nonphysical, verdict_alpha_edge, verdict_coarse, &
             verdict_ill_conditioned, verdict_inaccurate, verdict_uncertain, verdict_words
+  public :: kcreep_wheel_rail, wheel_rail_setup_t, wheel_rail_row_t, wheel_rail_columns, check_wheel_rail_setup, &
+            max_wheel_rail_shifts, default_target_error
 
   character(len=*), parameter :: kcreep_version = '0.2.0'
   !> The same as one number: 10000 major + 100 minor + patch.
@@ -133,6 +137,29 @@ contains
     end subroutine solve_as_given
 
   end subroutine kcreep_solve
+
+  !> The contact table of a wheel on a rail (docs/wheel_rail.md): for each
+  !> lateral shift of setup, every contact patch, its contact plane and gap, the
+  !> normal problem there and its error-controlled coefficients; one row per
+  !> shift and patch. base carries the material, the solver settings, the
+  !> target error and the normal solver's options; its patch is not used.
+  !> setup is checked first (profiles given, check_wheel_rail_setup).
+  subroutine kcreep_wheel_rail(setup, base, rows, status)
+    type(wheel_rail_setup_t), intent(in) :: setup
+    type(problem_t), intent(in) :: base
+    type(wheel_rail_row_t), allocatable, intent(out) :: rows(:)
+    type(status_t), intent(inout) :: status
+    if (.not. (allocated(setup%wheel_y) .and. allocated(setup%rail_y))) then
+      call fail(status, exit_bad_input, 'wheel/rail: no wheel or rail profile given')
+    else
+      call check_wheel_rail_setup(setup, 'wheel/rail: ', status)
+    end if
+    if (status%failed()) then
+      allocate (rows(0))
+      return
+    end if
+    call run_wheel_rail(setup, base, rows, status)
+  end subroutine kcreep_wheel_rail
 
   !> Bytes kcreep_solve(problem) needs at its peak and the solve path it takes
   !> there ('dense', 'iterative' or 'table'): the dense subsystem matrix or

@@ -5,6 +5,8 @@
     r.f        # 3 x 3 creep-force matrix, (Fx, Fy, Mz) = -f (xi, eta, phi)
     r.c        # C11, C22, C23
     r.verdict  # 'ok' or what is wrong
+    t = kcreep.wheel_rail("S1002.prw", "UIC60.prr", [0, 4, 8], g=82000.0, nu=0.28, vertical_force=80e3)
+    t["y_rail"], t["c11"]   # the contact table (as &wheel_rail), numpy arrays by column
 
 The solver is the shared library libkcreep: inside the package when it was
 installed with `pip install ./python` (which builds it), else the source
@@ -14,12 +16,14 @@ values of CONTACT's input files; both need nothing but Python.
 """
 from . import table  # noqa: F401  (standard library only)
 
-__all__ = ["solve_ellipse", "solve_mask", "Solver", "Result", "KcreepError", "version", "table"]
+__all__ = ["solve_ellipse", "solve_mask", "wheel_rail", "WHEEL_RAIL_COLUMNS", "Solver", "Result", "KcreepError",
+           "version", "table"]
 
 
 def __getattr__(name):
     # the bindings load numpy and the shared library only when first used
-    if name in ("solve_ellipse", "solve_mask", "Solver", "Result", "KcreepError", "version"):
+    if name in ("solve_ellipse", "solve_mask", "wheel_rail", "WHEEL_RAIL_COLUMNS", "Solver", "Result", "KcreepError",
+                "version"):
         from . import library
         return getattr(library, name)
     raise AttributeError(name)

@@ -82,7 +82,14 @@ _signatures = {
                            ctypes.POINTER(_i)], _i),
     "kcreep_fastsim": ([_h, _d, _i, _p, _p, ctypes.c_char_p, _p, _p], _i),
     "kcreep_get_diagnostics": ([_h, ctypes.POINTER(_i), ctypes.POINTER(_d), ctypes.POINTER(_d), ctypes.POINTER(_d)], _i),
+    "kcreep_set_profiles": ([_h, ctypes.c_char_p, ctypes.c_char_p, _i, _i, _d], _i),
+    "kcreep_set_track": ([_h, ctypes.c_char_p, _d, _d, _d, _d, _d, _d], _i),
+    "kcreep_wheel_rail": ([_h, _i, _p, _d, _d, _d, ctypes.POINTER(_i)], _i),
+    "kcreep_get_wheel_rail": ([_h, _i, _p], _i),
 }
+#: the columns of the wheel-rail contact table (KCREEP_WHEEL_RAIL_COLUMN_NAMES of kcreep.h)
+WHEEL_RAIL_COLUMNS = ("shift yaw patch fn delta y_rail y_wheel r_wheel area length width c11 c22 c23 c33 "
+                      "err11 err22 err23 verdict l1 l2 l3 spin").split()
 for _name, (_args, _res) in _signatures.items():
     _f = getattr(_lib, _name)
     _f.argtypes = _args
@@ -198,6 +205,33 @@ class Solver:
                                         rule.encode(), forces.ctypes.data, adhesion.ctypes.data))
         return forces, adhesion
 
+    def wheel_rail(self, wheel_file, rail_file, shifts, *, vertical_force=0.0, approach=0.0, yaw=0.0,
+                   side="right", gauge_width=1435.0, gauge_height=14.0, rail_cant=0.0, flange_back_distance=1360.0,
+                   flange_back_position=-70.0, nominal_radius=460.0, wheel_mirror=False, rail_mirror=False,
+                   smoothing=0.0):
+        """The contact table of a wheel on a rail over the lateral shifts (mm), as
+        the program's &wheel_rail (docs/wheel_rail.md): exactly one of
+        vertical_force (N) and approach (mm) > 0; this Solver's material,
+        solver settings and target_error (0: the program's default, 1e-3).
+        Returns a dict of numpy arrays, one per column of WHEEL_RAIL_COLUMNS (one
+        entry per shift and patch; 'patch' integers, 'verdict' the verdict bits)."""
+        s = np.ascontiguousarray(np.atleast_1d(shifts), dtype=np.float64)
+        self._check(_lib.kcreep_set_profiles(self._handle, os.fsencode(wheel_file), os.fsencode(rail_file),
+                                             int(bool(wheel_mirror)), int(bool(rail_mirror)), float(smoothing)))
+        self._check(_lib.kcreep_set_track(self._handle, side.encode(), gauge_width, gauge_height, rail_cant,
+                                          flange_back_distance, flange_back_position, nominal_radius))
+        rows = _i()
+        self._check(_lib.kcreep_wheel_rail(self._handle, s.size, s.ctypes.data, yaw, vertical_force, approach,
+                                           ctypes.byref(rows)))
+        n = len(WHEEL_RAIL_COLUMNS)
+        values = np.empty(rows.value * n)
+        self._check(_lib.kcreep_get_wheel_rail(self._handle, values.size, values.ctypes.data))
+        values = values.reshape(rows.value, n)
+        table = {name: values[:, k].copy() for k, name in enumerate(WHEEL_RAIL_COLUMNS)}
+        table["patch"] = table["patch"].astype(int)
+        table["verdict"] = table["verdict"].astype(int)
+        return table
+
     @property
     def reuse_count(self):
         count = _i()
@@ -257,3 +291,12 @@ def solve_mask(inside, dx, dy, *, x0=0.0, y0=0.0, nu=0.25, g=1.0, scheme="backwa
     target_error (refine_grid=False: the grid as given, judged)."""
     return Solver(nu=nu, g=g, scheme=scheme, alpha=alpha, method=method, target_error=target_error,
                   refine_grid=refine_grid, cell_budget=cell_budget).solve_mask(inside, dx, dy, x0, y0, tractions)
+
+
+def wheel_rail(wheel_file, rail_file, shifts, *, g, nu, target_error=1e-3, threads=0, **placement):
+    """The contact table of a wheel on a rail (Solver.wheel_rail) with material
+    g, nu at target_error (the program's default 1e-3): a dict of numpy arrays
+    by column. placement: vertical_force or approach, and the other keywords of
+    Solver.wheel_rail (yaw, side, gauge_width, ...)."""
+    return Solver(g=g, nu=nu, target_error=target_error, refine_grid=True, threads=threads).wheel_rail(
+        wheel_file, rail_file, shifts, **placement)

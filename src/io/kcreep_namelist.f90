@@ -1,7 +1,7 @@
 !> The namelist input: the file read group by group into the configuration,
 !> the checks between groups, the patch and the library's problem.
 !>
-!> Groups &patch, &material, &solver, &output, &normal, &fastsim, each
+!> Groups &patch, &material, &solver, &output, &normal, &fastsim, &wheel_rail, each
 !> optional and each in its own module (kcreep_nml_<group>: its variables,
 !> defaults and checks). Anything out of range or inconsistent is reported
 !> through status with the file, group, variable, value and what is
@@ -23,13 +23,15 @@ module kcreep_namelist
   use kcreep_nml_output, only: output_variables, output_group_t, read_output_group, apply_output_group
   use kcreep_nml_normal, only: normal_variables, normal_group_t, read_normal_group, apply_normal_group, load_gap
   use kcreep_nml_fastsim, only: fastsim_variables, fastsim_group_t, read_fastsim_group, apply_fastsim_group
+  use kcreep_nml_wheel_rail, only: wheel_rail_variables, wheel_rail_group_t, read_wheel_rail_group, &
+                                   apply_wheel_rail_group
   implicit none
   private
   public :: config_t, read_config, build_patch, problem_of, max_inline_rows, max_row_length, max_creepages
   public :: group_names, group_list
 
-  character(len=*), parameter :: group_names(6) = [character(len=8) :: 'patch', 'material', 'solver', 'output', &
-                                                    'normal', 'fastsim']
+  character(len=*), parameter :: group_names(7) = [character(len=10) :: 'patch', 'material', 'solver', 'output', &
+                                                     'normal', 'fastsim', 'wheel_rail']
 
 contains
 
@@ -62,6 +64,7 @@ contains
     type(output_group_t) :: output
     type(normal_group_t) :: normal
     type(fastsim_group_t) :: fastsim
+    type(wheel_rail_group_t) :: wheel_rail
     integer :: unit, ios
     logical :: present(size(group_names)), closed(size(group_names)), last_line_open
     character(len=512) :: msg
@@ -113,6 +116,11 @@ contains
       call read_fastsim_group(unit, fastsim, ios, msg)
       call check_read(6)
     end if
+    if (present(7)) then
+      rewind (unit)
+      call read_wheel_rail_group(unit, wheel_rail, ios, msg)
+      call check_read(7)
+    end if
     close (unit)
     if (status%failed()) return
 
@@ -122,6 +130,10 @@ contains
     if (.not. status%failed()) call apply_material_group(material, cfg, status)
     if (.not. status%failed()) call apply_output_group(output, cfg, status)
     if (.not. status%failed()) call apply_solver_group(solver, cfg, status)
+    ! &wheel_rail finds its patches from the profiles, each patch a normal problem
+    if (present(7) .and. any(present([1, 5])) .and. .not. status%failed()) call fail(status, exit_bad_input, &
+        input_where(cfg)//'&wheel_rail finds its patches from the profiles: &patch and &normal are not read with it')
+    if (.not. status%failed()) call apply_wheel_rail_group(wheel_rail, present(7), cfg, status)
     if (.not. status%failed()) call apply_fastsim_group(fastsim, present(6), cfg, status)
     if (.not. status%failed()) call apply_normal_group(normal, present(5), cfg, status)
     if (status%failed()) return
@@ -159,8 +171,10 @@ contains
           why = diagnose_group(text, 'output', output_variables)
         case (5)
           why = diagnose_group(text, 'normal', normal_variables)
-        case default
+        case (6)
           why = diagnose_group(text, 'fastsim', fastsim_variables)
+        case default
+          why = diagnose_group(text, 'wheel_rail', wheel_rail_variables)
         end select
         if (len(why) == 0) why = '&'//trim(group_names(k))//': '//trim(msg)
         call fail(status, exit_bad_input, 'input '''//path//''': namelist '//why)

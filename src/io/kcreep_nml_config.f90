@@ -1,9 +1,10 @@
 !> What a namelist file asks for, once read and checked: the configuration
 !> the group modules (kcreep_nml_patch, _material, _solver, _output, _normal,
-!> _fastsim) fill in and kcreep_namelist turns into the library's problem.
+!> _fastsim, _wheel_rail) fill in and kcreep_namelist turns into the library's problem.
 module kcreep_nml_config
   use, intrinsic :: iso_fortran_env, only: real64
-  use kcreep, only: scheme_t, n_load_cases, solver_options_t, creep_request_t, normal_problem_t, polynomial_gap_t
+  use kcreep, only: scheme_t, n_load_cases, solver_options_t, creep_request_t, normal_problem_t, polynomial_gap_t, &
+                    wheel_rail_setup_t
   use kcreep_contact_reader, only: contact_case_t
   implicit none
   private
@@ -64,6 +65,10 @@ module kcreep_nml_config
     real(real64) :: margin = 0.2_real64
     real(real64) :: e(2) = 0, poisson(2) = 0    !< per body, when given (e(1) > 0)
     type(normal_problem_t) :: normal            !< built by read_config
+    ! &wheel_rail (group absent: wheel_rail_on false): a contact table over lateral shifts
+    logical :: wheel_rail_on = .false.
+    type(wheel_rail_setup_t) :: wheel_rail
+    character(len=:), allocatable :: wheel_rail_file   !< &output wheel_rail_file [<input name>.wr]
   end type config_t
 
 contains

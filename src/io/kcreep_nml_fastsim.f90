@@ -233,6 +233,16 @@ contains
     cfg%fastsim%maps = grp%maps .or. len(cfg%creep_map_file) > 0
 
     cfg%pressure = lower(trim(adjustl(grp%pressure)))
+    if (cfg%wheel_rail_on) then
+      ! each patch of &wheel_rail is a normal problem: its pressure, its own geometric spin
+      if (cfg%pressure /= 'auto' .and. cfg%pressure /= 'normal') call fail(status, exit_bad_input, where// &
+          'pressure = '''//trim(grp%pressure)//''' with &wheel_rail (allowed: ''auto'' or ''normal'', each '// &
+          'patch''s normal pressure)')
+      if (grp%maps .or. len(cfg%creep_map_file) > 0) call fail(status, exit_bad_input, where// &
+          'maps with &wheel_rail: not available (the creep table has each patch''s forces)')
+      if (status%failed()) return
+      cfg%pressure = 'normal'
+    end if
     if (cfg%pressure == 'auto') then
       select case (cfg%shape)
       case ('ellipse')
@@ -253,7 +263,8 @@ contains
       if (cfg%shape /= 'contact') call fail(status, exit_bad_input, where//'pressure = ''contact'' needs '// &
           '&patch shape = ''contact''')
     case ('normal')
-      if (cfg%shape /= 'gap') call fail(status, exit_bad_input, where//'pressure = ''normal'' needs '// &
+      if (cfg%shape /= 'gap' .and. .not. cfg%wheel_rail_on) call fail(status, exit_bad_input, where// &
+          'pressure = ''normal'' needs '// &
           '&patch shape = ''gap'' (the normal problem gives the pressure)')
     case ('file')
       if (len(cfg%pressure_input_file) == 0) call fail(status, exit_bad_input, where//'pressure = ''file'' needs '// &

@@ -9,14 +9,15 @@ module kcreep_nml_output
 
   type :: output_group_t
     character(len=4096) :: table_file = '', traction_file = '', pressure_file = '', contact_mask_file = '', &
-                           creep_file = '', creep_map_file = ''
+                           creep_file = '', creep_map_file = '', wheel_rail_file = ''
   end type output_group_t
 
   !> The group's variables and their types, as in its namelist statement
   !> (kcreep_namelist_scan diagnose_group explains a failed read with them).
-  character(len=*), parameter :: output_variables(6) = [character(len=27) :: &
+  character(len=*), parameter :: output_variables(7) = [character(len=27) :: &
     'table_file character', 'traction_file character', 'pressure_file character', &
-    'contact_mask_file character', 'creep_file character', 'creep_map_file character']
+    'contact_mask_file character', 'creep_file character', 'creep_map_file character', &
+    'wheel_rail_file character']
 
 contains
 
@@ -25,8 +26,10 @@ contains
     type(output_group_t), intent(out) :: grp
     integer, intent(out) :: ios
     character(len=*), intent(inout) :: msg
-    character(len=4096) :: table_file, traction_file, pressure_file, contact_mask_file, creep_file, creep_map_file
-    namelist /output/ table_file, traction_file, pressure_file, contact_mask_file, creep_file, creep_map_file
+    character(len=4096) :: table_file, traction_file, pressure_file, contact_mask_file, creep_file, creep_map_file, &
+                           wheel_rail_file
+    namelist /output/ table_file, traction_file, pressure_file, contact_mask_file, creep_file, creep_map_file, &
+                      wheel_rail_file
 
     table_file = grp%table_file
     traction_file = grp%traction_file
@@ -34,6 +37,7 @@ contains
     contact_mask_file = grp%contact_mask_file
     creep_file = grp%creep_file
     creep_map_file = grp%creep_map_file
+    wheel_rail_file = grp%wheel_rail_file
     read (unit, nml=output, iostat=ios, iomsg=msg)
     grp%table_file = table_file
     grp%traction_file = traction_file
@@ -41,6 +45,7 @@ contains
     grp%contact_mask_file = contact_mask_file
     grp%creep_file = creep_file
     grp%creep_map_file = creep_map_file
+    grp%wheel_rail_file = wheel_rail_file
   end subroutine read_output_group
 
   !> The file names relative to the namelist's folder; the default table and
@@ -61,6 +66,8 @@ contains
     cfg%creep_file = resolve_path(trim(grp%creep_file), folder)
     if (len(cfg%creep_file) == 0) cfg%creep_file = default_output_name(cfg%input_path, '.creep')
     cfg%creep_map_file = resolve_path(trim(grp%creep_map_file), folder)
+    cfg%wheel_rail_file = resolve_path(trim(grp%wheel_rail_file), folder)
+    if (len(cfg%wheel_rail_file) == 0) cfg%wheel_rail_file = default_output_name(cfg%input_path, '.wr')
     if (cfg%shape /= 'gap' .and. (len(cfg%pressure_file) > 0 .or. len(cfg%contact_mask_file) > 0)) &
       call fail(status, exit_bad_input, input_where(cfg)//'&output pressure_file and contact_mask_file need '// &
                 '&patch shape = ''gap''')

@@ -37,6 +37,7 @@ module kcreep_gap_levels
   use kcreep_strings, only: itoa, rtoa
   use kcreep_patch, only: patch_t
   use kcreep_gap, only: gap_t, gap_resampled, gap_from_polynomial
+  use kcreep_wheel_rail_geometry, only: plane_gap_grid
   use kcreep_problem, only: problem_t, result_t, append_prefixed, level_tolerance, cell_budget_or
   use kcreep_normal_stage, only: normal_patch, store_normal
   use kcreep_normal_solve, only: normal_result_t
@@ -278,6 +279,8 @@ contains
     y0 = (box(3) + box(4)) / 2 - (my - 1) * h / 2
     if (problem%normal%poly_given) then
       call gap_from_polynomial(problem%normal%poly, mx, my, h, h, x0, y0, gap, status)
+    else if (allocated(problem%normal%plane)) then
+      call plane_gap_grid(problem%normal%plane, mx, my, h, h, x0, y0, gap)
     else
       gap = gap_resampled(problem%normal%gap, mx, my, h, h, x0, y0)
     end if

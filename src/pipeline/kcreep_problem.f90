@@ -15,6 +15,7 @@ module kcreep_problem
   use kcreep_strings, only: rtoa
   use kcreep_refine_estimate, only: uncertain_flag, coefficient_targets, level_solver_tolerance, default_target_error
   use kcreep_gap, only: gap_t, polynomial_gap_t
+  use kcreep_wheel_rail_geometry, only: plane_gap_t
   use kcreep_normal_solve, only: normal_options_t
   use kcreep_equivalent_ellipse, only: equivalent_ellipse_t
   implicit none
@@ -32,6 +33,9 @@ module kcreep_problem
     !> evaluates it on finer grids; otherwise it resamples gap.
     logical :: poly_given = .false.
     type(polynomial_gap_t) :: poly
+    !> The gap in a wheel-rail contact plane (kcreep_wheel_rail_geometry): when
+    !> allocated, error control evaluates it on the finer grids instead.
+    type(plane_gap_t), allocatable :: plane
     real(real64) :: compliance = 0              !< 1/E*; 0: (1 - nu)/g of the problem's material
     logical :: force_given = .false.            !< normal_force prescribed, else approach
     real(real64) :: approach = 0, normal_force = 0

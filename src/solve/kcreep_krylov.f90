@@ -207,7 +207,7 @@ contains
   !> h = V^T w: each thread sums whole blocks of rows, the blocks' sums are
   !> added in block order.
   subroutine project(v, w, h)
-    real(real64), intent(in) :: v(:, :), w(:)
+    real(real64), intent(in), contiguous :: v(:, :), w(:)
     real(real64), intent(out) :: h(:)
     real(real64), allocatable :: partial(:, :)
     integer :: b, k, nb
@@ -227,7 +227,7 @@ contains
   !> s(k) = the dot product of v(:, k) and w over block b of the rows, four
   !> columns at a time (four independent sums keep the adder busy).
   pure subroutine block_products(v, w, b, s)
-    real(real64), intent(in) :: v(:, :), w(:)
+    real(real64), intent(in), contiguous :: v(:, :), w(:)
     integer, intent(in) :: b
     real(real64), intent(out) :: s(:)
     real(real64) :: s1, s2, s3, s4
@@ -256,7 +256,7 @@ contains
   !> ||w||_2 summed like project's products (the vectors are O(1) here:
   !> no scaling against overflow needed).
   real(real64) function norm(w)
-    real(real64), intent(in) :: w(:)
+    real(real64), intent(in), contiguous :: w(:)
     real(real64), allocatable :: partial(:)
     integer :: b, nb
     nb = (size(w) + row_block - 1) / row_block
@@ -271,7 +271,7 @@ contains
 
   !> Block b (rows row_block (b - 1) + 1 ...) of the dot product of a and b.
   pure real(real64) function block_dot(a, c, b) result(s)
-    real(real64), intent(in) :: a(:), c(:)
+    real(real64), intent(in), contiguous :: a(:), c(:)
     integer, intent(in) :: b
     integer :: i
     s = 0
@@ -281,16 +281,29 @@ contains
     end do
   end function block_dot
 
-  !> w = w + V a, row blocks in parallel (each row's sum in column order).
+  !> w = w + V a, row blocks in parallel (each row's sum in column order),
+  !> four columns per pass over w (a pass per column cost twice the time:
+  !> w loaded and stored for every column).
   subroutine add_combination(v, a, w)
-    real(real64), intent(in) :: v(:, :), a(:)
-    real(real64), intent(inout) :: w(:)
-    integer :: b, k, lo, hi
-    !$omp parallel do private(k, lo, hi) schedule(static)
+    real(real64), intent(in), contiguous :: v(:, :), a(:)
+    real(real64), intent(inout), contiguous :: w(:)
+    integer :: b, k, i, lo, hi, nk
+    real(real64) :: a1, a2, a3, a4
+    nk = size(a)
+    !$omp parallel do private(k, i, lo, hi, a1, a2, a3, a4) schedule(static)
     do b = 1, (size(w) + row_block - 1) / row_block
       lo = (b - 1) * row_block + 1
       hi = min(b * row_block, size(w))
-      do k = 1, size(a)
+      do k = 1, nk - 3, 4
+        a1 = a(k)
+        a2 = a(k + 1)
+        a3 = a(k + 2)
+        a4 = a(k + 3)
+        do i = lo, hi
+          w(i) = w(i) + a1 * v(i, k) + a2 * v(i, k + 1) + a3 * v(i, k + 2) + a4 * v(i, k + 3)
+        end do
+      end do
+      do k = nk - mod(nk, 4) + 1, nk
         w(lo:hi) = w(lo:hi) + a(k) * v(lo:hi, k)
       end do
     end do

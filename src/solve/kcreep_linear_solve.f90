@@ -21,98 +21,89 @@ module kcreep_linear_solve
                           refine_threshold, solve_lapack_expert
   use kcreep_split, only: subsystem_t, plan_subsystems, assemble_subsystem, restrict_to, restrict_projected, &
                           expand_from, shares_transforms
-  use kcreep_fft_operator, only: fft_operator_t, create_fft_operator, destroy_fft_operator, apply_fft_operator, &
+  use kcreep_fft_operator, only: fft_operator_t, create_fft_operator, set_fft_cells, destroy_fft_operator, apply_fft_operator, &
                                  inverse_span
   use kcreep_preconditioner, only: strip_preconditioner_t, build_strip_preconditioner, apply_strip_preconditioner
   use kcreep_circulant_preconditioner, only: circulant_preconditioner_t, build_circulant_preconditioner, &
-                                            apply_circulant_preconditioner, destroy_circulant_preconditioner
+                                            set_circulant_cells, apply_circulant_preconditioner, &
+                                            destroy_circulant_preconditioner
   use kcreep_krylov, only: block_operator_t, gmres_result_t, gmres
+  use kcreep_block_operators, only: fft_block_t, circulant_block_t, strip_block_t
   use kcreep_solver_options, only: solver_options_t
   use kcreep_threads, only: team_size, enter_team, leave_team, serial_blas, cells_per_thread_dense, &
                             cells_per_thread_iterative
   implicit none
   private
-  public :: solve_load_cases, choose_method, solve_memory_bytes, solve_memory_plan
+  public :: solve_load_cases, choose_method, solve_memory_bytes, solve_memory_plan, solve_workspace_t, clear_workspace
 
-  !> GMRES works on the unknowns of the subsystems (system_split), one
-  !> subsystem per column, padded with zeros to the longest: a y-symmetric
-  !> patch thus needs half-length Krylov vectors and half the preconditioner
-  !> work. An operator on the full grid sees the expanded full traction
-  !> (mirror cells included) and its result is restricted back.
-  type, abstract, extends(block_operator_t) :: expanded_block_t
-    type(subsystem_t), allocatable :: subs(:)
-    integer, allocatable :: sub_of(:)     !< subsystem of each column
-    integer :: n = 0
-    !> Work arrays of whole tractions, kept between steps (allocating them
-    !> anew at every step cost as much kernel time as the FFTs took)
-    real(real64), allocatable :: full(:, :), zfull(:, :)
+  !> The block operators (fft_block_t, circulant_block_t, strip_block_t)
+  !> are kcreep_block_operators'.
+
+
+  !> What the solvers build for a grid and not for a patch: the FFT operator
+  !> (plans, work grids, kernel spectra) and the circulant preconditioner
+  !> (plans, inverse spectra). A caller solving patch after patch on one grid
+  !> (kcreep_run's solve_cache_t) keeps it, so that a new patch only moves
+  !> their cells (measured, moving 40 x 40 mask: building them took 0.55 ms
+  !> of the 5.4 ms a solve took). The kernel spectra are the operator
+  !> table's: the keeper clears the workspace when the table changes. Never
+  !> copied (it owns FFTW plans and memory); freed when it goes away.
+  type :: solve_workspace_t
+    private
+    logical :: has_operator = .false., has_circulant = .false.
+    integer :: mx = 0, my = 0, max_vectors = 0   !< the grid and block width planned for
+    real(real64) :: dx = 0, dy = 0, nu = 0
+    type(fft_block_t) :: a
+    type(circulant_block_t) :: circulant
   contains
-    procedure :: apply => apply_expanded
-    procedure(full_apply), deferred :: apply_full
-  end type expanded_block_t
+    final :: finalise_workspace
+  end type solve_workspace_t
 
-  abstract interface
-    !> z(:, k) = M full(:, k) on whole tractions (px(1:n), py(1:n)).
-    subroutine full_apply(self, full, z)
-      import :: expanded_block_t, real64
-      class(expanded_block_t), intent(inout) :: self
-      real(real64), intent(in) :: full(:, :)
-      real(real64), intent(out) :: z(:, :)
-    end subroutine full_apply
-  end interface
-
-  !> The system operator, applied with FFTs.
-  type, extends(expanded_block_t) :: fft_block_t
-    type(fft_operator_t) :: op
-  contains
-    procedure :: apply_full => apply_fft_full
-  end type fft_block_t
-
-  !> The circulant preconditioner on the full grid.
-  type, extends(expanded_block_t) :: circulant_block_t
-    type(circulant_preconditioner_t) :: p
-  contains
-    procedure :: apply_full => apply_circulant_full
-  end type circulant_block_t
-
-  !> The strip preconditioner on the representative cells (their mirror
-  !> rows have the same blocks, so the reduced preconditioner is the full
-  !> one restricted).
-  type, extends(block_operator_t) :: strip_block_t
-    type(strip_preconditioner_t) :: p
-    type(subsystem_t), allocatable :: subs(:)
-    integer, allocatable :: sub_of(:)
-    integer :: n = 0
-  contains
-    procedure :: apply => apply_strip_block
-  end type strip_block_t
-
-  !> Rates for the 'auto' choice, from scripts/bench.sh on the 2-core
-  !> development machine (shared, so rough): the split dense LU ran at about
-  !> 3e10 flop/s end to end. One lockstep GMRES step for the three load cases
-  !> (operator, circulant preconditioner, Gram-Schmidt) costs 6e-9 s on two
-  !> threads and 9e-9 s on one per (padded FFT grid cell x log2 of the grid
-  !> size) (the unit circle at 296 and 600 cells across, docs/performance.md
-  !> "The iterative path on two cores"); the rate used is twice that, for
-  !> the FFT path's fixed costs (plans, threads). The choice falls near
-  !> 40 x 40 cells, where either path takes a fraction of a second.
-  real(real64), parameter :: dense_rate = 3e10_real64
-  real(real64), parameter :: iterative_step_cost = 2e-8_real64
-  !> GMRES iterations assumed by the estimate (circulant preconditioner:
-  !> measured 22 at 48 x 48, 33 at 192 x 192, 39 at 384 x 384).
-  integer, parameter :: assumed_iterations = 35
+  !> Costs for the 'auto' choice, measured on one thread (OMP_NUM_THREADS=1,
+  !> the 2-core development machine, shared, so good to about 30 %), on
+  !> circles of n cells, whose y-symmetric halves are two systems of about n
+  !> unknowns. Dense, the split LU end to end (assembly, dgetrf, dgecon,
+  !> dgetrs, FFT residuals), per system of m unknowns 2/3 m^3 / dense_rate +
+  !> dense_entry_cost m^2 (the second term: assembly and the O(m^2) LAPACK
+  !> steps, and LU's low rate on small matrices): measured 0.55, 1.0, 2.2,
+  !> 5.0, 16, 86, 636, 2932 ms at n = 152, 196, 306, 442, 688, 1264, 2828,
+  !> 5024, modelled 0.74, 1.25, 3.1, 6.8, 18, 70, 740, 3590 ms (the LU
+  !> alone runs at 5.8e10 flop/s at n = 5024). Iterative, one lockstep GMRES
+  !> step of the three load cases (operator, circulant preconditioner,
+  !> Gram-Schmidt) on the padded FFT grid of G cells: iterative_step_fixed +
+  !> iterative_step_cost G log2(G); measured 55 us at 14 x 14 cells, 0.26 ms
+  !> at 40 x 40, 35 ms at 296 x 296 (modelled 60 us, 0.35 ms, 26 ms). Its
+  !> setup (FFTW plans, kernel and preconditioner spectra), when the solve
+  !> workspace does not hold them for the grid yet: iterative_setup_fixed +
+  !> iterative_setup_cost G log2(G) (measured 0.55 ms at 40 x 40, 25 ms at
+  !> 296 x 296). The choice falls near n = 170 cells, where either takes
+  !> about a millisecond (measured dense / iterative with the workspace
+  !> kept: 0.55 / 0.83 ms at n = 152, 1.0 / 0.76 ms at n = 196; the moving
+  !> 40 x 40 mask of tests/api/api_example.c: 43 / 4.6 ms).
+  real(real64), parameter :: dense_rate = 6e10_real64
+  real(real64), parameter :: dense_entry_cost = 1.5e-8_real64
+  real(real64), parameter :: iterative_step_fixed = 3e-5_real64, iterative_step_cost = 4e-9_real64
+  real(real64), parameter :: iterative_setup_fixed = 3e-4_real64, iterative_setup_cost = 4e-9_real64
+  !> GMRES iterations assumed by the estimate (circulant preconditioner,
+  !> tolerance 1e-11, circles: measured 15 to 17 near the choice (14 x 14 to
+  !> 24 x 24), 19 at 40 x 40, 23 at 96 x 96, 26 at 296 x 296).
+  integer, parameter :: assumed_iterations = 20
 
 contains
 
-  !> 'dense' or 'iterative' for these options and this patch.
-  function choose_method(opts, patch, subs, requested) result(method)
+  !> 'dense' or 'iterative' for these options and this patch. prepared: the
+  !> iterative path's setup is done (the solve workspace holds the grid's
+  !> FFT operator, as in a loop over patches on one grid); default false.
+  function choose_method(opts, patch, subs, requested, prepared) result(method)
     type(solver_options_t), intent(in) :: opts
     type(patch_t), intent(in) :: patch
     type(subsystem_t), intent(in) :: subs(:)
     logical, intent(in) :: requested(n_load_cases)
+    logical, intent(in), optional :: prepared
     character(len=:), allocatable :: method
-    real(real64) :: t_dense, t_iterative, grid
+    real(real64) :: t_dense, t_iterative, grid_log
     integer :: i
+    logical :: setup_done
     if (opts%method /= 'auto') then
       method = opts%method
       return
@@ -123,11 +114,15 @@ contains
     end if
     t_dense = 0
     do i = 1, size(subs)
-      t_dense = t_dense + 2 * real(subs(i)%m, real64)**3 / 3 / dense_rate
+      t_dense = t_dense + 2 * real(subs(i)%m, real64)**3 / 3 / dense_rate + dense_entry_cost * real(subs(i)%m, real64)**2
     end do
-    grid = 4 * real(patch%mx, real64) * patch%my
-    t_iterative = assumed_iterations * iterative_step_cost * grid * log(grid) / log(2.0_real64) &
+    grid_log = 4 * real(patch%mx, real64) * patch%my
+    grid_log = grid_log * log(grid_log) / log(2.0_real64)
+    t_iterative = assumed_iterations * (iterative_step_fixed + iterative_step_cost * grid_log) &
                   * max(1, count(requested)) / 3
+    setup_done = .false.
+    if (present(prepared)) setup_done = prepared
+    if (.not. setup_done) t_iterative = t_iterative + iterative_setup_fixed + iterative_setup_cost * grid_log
     method = merge('dense    ', 'iterative', t_dense <= t_iterative)
     method = trim(method)
   end function choose_method
@@ -171,7 +166,10 @@ contains
   !> initial: a guess of the tractions (2n, 3), e.g. the solution on the
   !> previous mask of a time-stepping loop; the iterative path starts from it
   !> (and stops at once when it already meets the tolerance), dense ignores it.
-  subroutine solve_load_cases(opts, scheme, nu, patch, table, requested, refine, traction, diag, status, initial)
+  !> workspace: kept by a caller that solves patches on the same grid with
+  !> the same table (solve_workspace_t); without it one is built and freed.
+  subroutine solve_load_cases(opts, scheme, nu, patch, table, requested, refine, traction, diag, status, initial, &
+                              workspace)
     type(solver_options_t), intent(in) :: opts
     type(scheme_t), intent(in) :: scheme
     real(real64), intent(in) :: nu
@@ -183,59 +181,138 @@ contains
     type(dense_diagnostics_t), intent(out) :: diag
     type(status_t), intent(inout) :: status
     real(real64), intent(in), optional :: initial(:, :)
-    type(subsystem_t), allocatable :: subs(:)
-    real(real64), allocatable :: rhs(:, :)
-    integer :: j, n, previous_team
-    logical :: fallback
+    type(solve_workspace_t), intent(inout), optional, target :: workspace
+    type(solve_workspace_t), target :: own
+    integer :: team, previous_team
 
-    n = patch%n
-    allocate (rhs(2 * n, n_load_cases), traction(2 * n, n_load_cases))
-    do j = 1, n_load_cases
-      call rigid_creepage(patch, scheme, j, rhs(:, j))
-    end do
-    traction = ieee_value(1.0_real64, ieee_quiet_nan)
-    subs = plan_subsystems(patch, nu, opts%split_systems, requested)
-    diag%method = choose_method(opts, patch, subs, requested)
-    ! the team for this solve, chosen now (kcreep_threads): a ladder of
-    ! levels re-judges the machine's load at every level
-    diag%threads = team_size(opts%threads, int(n, int64), &
-                             merge(cells_per_thread_dense, cells_per_thread_iterative, diag%method == 'dense'))
-    call enter_team(diag%threads, previous_team)
+    ! the team for this solve, chosen now (kcreep_threads): a ladder of levels
+    ! re-judges the machine's load at every level. 'auto' takes the dense LU
+    ! only for patches far below a thread's worth of work.
+    team = team_size(opts%threads, int(patch%n, int64), &
+                     merge(cells_per_thread_dense, cells_per_thread_iterative, opts%method == 'dense'))
+    call enter_team(team, previous_team)
     call serial_blas()
-    solve: block
-    if (diag%method == 'dense') then
-      if (.not. dense_fits(subs, opts%memory_limit)) then
-        call fail(status, exit_bad_input, 'method = ''dense'': the largest dense matrix ('// &
-                  itoa(maxval(subs%m))//' unknowns) needs '// &
-                  rtoa(8 * real(maxval(subs%m), real64)**2 / 2.0_real64**30)//' GiB, only '// &
-                  rtoa(real(opts%memory_limit, real64) / 2.0_real64**30)// &
-                  ' GiB are available (use method = ''iterative'' or ''auto'')')
-        exit solve
-      end if
-      if (refine == 'lapack') then
-        call solve_dense_expert(patch, table, requested, opts%memory_limit, rhs, traction, diag, status)
-      else
-        call solve_dense_split(patch, table, subs, requested, refine, rhs, traction, diag, status)
-      end if
+    if (present(workspace)) then
+      call solve_in(workspace)
     else
-      call check_iterative_memory(opts, patch, count(requested), status)
-      if (status%failed()) exit solve
-      call solve_iterative(resolved_preconditioner(opts, scheme), nu, patch, table, requested, rhs, traction, diag, &
-                           status, initial)
-      fallback = status%code == exit_numerical .and. opts%method == 'auto'
-      if (fallback) fallback = dense_fits(subs, opts%memory_limit)
-      if (fallback) then
-        ! auto promised an answer: GMRES stalls only on hard (near-degenerate)
-        ! systems, which the dense LU still solves and the verdict then judges
-        status = status_t()
-        diag%method = 'dense'
-        diag%iterations = 0
-        call solve_dense_split(patch, table, subs, requested, refine, rhs, traction, diag, status)
-      end if
+      call solve_in(own)
+      call clear_workspace(own)
     end if
-    end block solve
     call leave_team(previous_team)
+    diag%threads = team
+
+  contains
+
+    subroutine solve_in(ws)
+      type(solve_workspace_t), intent(inout), target :: ws
+      type(subsystem_t), allocatable :: subs(:)
+      real(real64), allocatable :: rhs(:, :)
+      integer :: j, n
+      logical :: fallback
+
+      n = patch%n
+      allocate (rhs(2 * n, n_load_cases), traction(2 * n, n_load_cases))
+      do j = 1, n_load_cases
+        call rigid_creepage(patch, scheme, j, rhs(:, j))
+      end do
+      traction = ieee_value(1.0_real64, ieee_quiet_nan)
+      subs = plan_subsystems(patch, nu, opts%split_systems, requested)
+      diag%method = choose_method(opts, patch, subs, requested, operator_ready(ws, patch, nu, count(requested)))
+      if (diag%method == 'dense') then
+        if (.not. dense_fits(subs, opts%memory_limit)) then
+          call fail(status, exit_bad_input, 'method = ''dense'': the largest dense matrix ('// &
+                    itoa(maxval(subs%m))//' unknowns) needs '// &
+                    rtoa(8 * real(maxval(subs%m), real64)**2 / 2.0_real64**30)//' GiB, only '// &
+                    rtoa(real(opts%memory_limit, real64) / 2.0_real64**30)// &
+                    ' GiB are available (use method = ''iterative'' or ''auto'')')
+          return
+        end if
+        if (refine == 'lapack') then
+          call solve_dense_expert(patch, table, requested, opts%memory_limit, rhs, traction, diag, status)
+        else
+          call solve_dense_split(ws, nu, patch, table, subs, requested, refine, rhs, traction, diag, status)
+        end if
+      else
+        call check_iterative_memory(opts, patch, count(requested), status)
+        if (status%failed()) return
+        call solve_iterative(ws, resolved_preconditioner(opts, scheme), nu, patch, table, requested, rhs, traction, &
+                             diag, status, initial)
+        fallback = status%code == exit_numerical .and. opts%method == 'auto'
+        if (fallback) fallback = dense_fits(subs, opts%memory_limit)
+        if (fallback) then
+          ! auto promised an answer: GMRES stalls only on hard (near-degenerate)
+          ! systems, which the dense LU still solves and the verdict then judges
+          status = status_t()
+          diag%method = 'dense'
+          diag%iterations = 0
+          call solve_dense_split(ws, nu, patch, table, subs, requested, refine, rhs, traction, diag, status)
+        end if
+      end if
+    end subroutine solve_in
+
   end subroutine solve_load_cases
+
+  !> The workspace holds the FFT operator of patch's grid for blocks of max_vectors.
+  logical function operator_ready(ws, patch, nu, max_vectors)
+    type(solve_workspace_t), intent(in) :: ws
+    type(patch_t), intent(in) :: patch
+    real(real64), intent(in) :: nu
+    integer, intent(in) :: max_vectors
+    operator_ready = ws%has_operator .and. ws%mx == patch%mx .and. ws%my == patch%my .and. ws%dx == patch%dx &
+                     .and. ws%dy == patch%dy .and. ws%nu == nu .and. ws%max_vectors == max_vectors
+  end function operator_ready
+
+  !> The workspace's FFT operator on patch's cells, built when it holds none
+  !> for this grid (and whatever it held freed).
+  subroutine prepare_operator(ws, nu, patch, table, max_vectors)
+    type(solve_workspace_t), intent(inout) :: ws
+    real(real64), intent(in) :: nu
+    type(patch_t), intent(in) :: patch
+    type(operator_table_t), intent(in) :: table
+    integer, intent(in) :: max_vectors
+    if (operator_ready(ws, patch, nu, max_vectors)) then
+      call set_fft_cells(ws%a%op, patch)
+      return
+    end if
+    call clear_workspace(ws)
+    call create_fft_operator(patch, table, max_vectors, ws%a%op)
+    ws%has_operator = .true.
+    ws%mx = patch%mx
+    ws%my = patch%my
+    ws%dx = patch%dx
+    ws%dy = patch%dy
+    ws%nu = nu
+    ws%max_vectors = max_vectors
+  end subroutine prepare_operator
+
+  !> The workspace's circulant preconditioner on patch's cells (after
+  !> prepare_operator, whose grid it shares), built on first use.
+  subroutine prepare_circulant(ws, nu, patch)
+    type(solve_workspace_t), intent(inout) :: ws
+    real(real64), intent(in) :: nu
+    type(patch_t), intent(in) :: patch
+    if (ws%has_circulant) then
+      call set_circulant_cells(ws%circulant%p, patch)
+    else
+      call build_circulant_preconditioner(patch, nu, ws%max_vectors, ws%circulant%p)
+      ws%has_circulant = .true.
+    end if
+  end subroutine prepare_circulant
+
+  !> Free what the workspace holds (the keeper calls this when the operator
+  !> table changes); it is then empty, as new.
+  subroutine clear_workspace(ws)
+    type(solve_workspace_t), intent(inout) :: ws
+    if (ws%has_operator) call destroy_fft_operator(ws%a%op)
+    if (ws%has_circulant) call destroy_circulant_preconditioner(ws%circulant%p)
+    ws%has_operator = .false.
+    ws%has_circulant = .false.
+  end subroutine clear_workspace
+
+  subroutine finalise_workspace(ws)
+    type(solve_workspace_t), intent(inout) :: ws
+    call clear_workspace(ws)
+  end subroutine finalise_workspace
 
   !> refine = 'lapack': the whole 2n x 2n system through dense_solver's dgesvx path.
   subroutine solve_dense_expert(patch, table, requested, memory_limit, rhs, traction, diag, status)
@@ -338,7 +415,9 @@ contains
     end if
   end subroutine solve_memory_plan
 
-  subroutine solve_dense_split(patch, table, subs, requested, refine, rhs, traction, diag, status)
+  subroutine solve_dense_split(ws, nu, patch, table, subs, requested, refine, rhs, traction, diag, status)
+    type(solve_workspace_t), intent(inout), target :: ws   !< its FFT operator gives the residuals
+    real(real64), intent(in) :: nu
     type(patch_t), intent(in) :: patch
     type(operator_table_t), intent(in) :: table
     type(subsystem_t), intent(in) :: subs(:)
@@ -348,7 +427,6 @@ contains
     real(real64), intent(inout) :: traction(:, :)
     type(dense_diagnostics_t), intent(inout) :: diag
     type(status_t), intent(inout) :: status
-    type(fft_operator_t) :: op
     real(real64), allocatable :: a(:, :), b(:, :), x(:, :), r(:, :), work(:)
     integer, allocatable :: ipiv(:), iwork(:), cases(:)
     integer :: i, j, m, nrhs, info, n, lda
@@ -357,7 +435,7 @@ contains
 
     n = patch%n
     call system_clock(t0, rate)
-    call create_fft_operator(patch, table, n_load_cases, op)
+    call prepare_operator(ws, nu, patch, table, count(requested))
     call system_clock(t1)
     diag%t_solve = real(t1 - t0, real64) / rate
     diag%rcond = huge(1.0_real64)
@@ -430,7 +508,6 @@ contains
         diag%t_solve = diag%t_solve + real(t1 - t0, real64) / rate
       end associate
     end do
-    call destroy_fft_operator(op)
 
   contains
 
@@ -446,7 +523,7 @@ contains
       do k = 1, size(x, 2)
         call expand_from(s, n, x(:, k), full(:, k))
       end do
-      call apply_fft_operator(op, full, ax)
+      call apply_fft_operator(ws%a%op, full, ax)
       do k = 1, size(x, 2)
         call restrict_to(s, n, ax(:, k), r(:, k))
         r(:, k) = b(:, k) - r(:, k)
@@ -470,7 +547,8 @@ contains
     norm_inf = maxval(row_sums)
   end subroutine norms_1_inf
 
-  subroutine solve_iterative(opts, nu, patch, table, requested, rhs, traction, diag, status, initial)
+  subroutine solve_iterative(ws, opts, nu, patch, table, requested, rhs, traction, diag, status, initial)
+    type(solve_workspace_t), intent(inout), target :: ws
     type(solver_options_t), intent(in) :: opts
     real(real64), intent(in) :: nu
     type(patch_t), intent(in) :: patch
@@ -481,10 +559,8 @@ contains
     type(dense_diagnostics_t), intent(inout) :: diag
     type(status_t), intent(inout) :: status
     real(real64), intent(in), optional :: initial(:, :)
-    type(fft_block_t) :: a
-    type(strip_block_t) :: strip
-    type(circulant_block_t) :: circulant
-    class(block_operator_t), allocatable :: m_inv
+    type(strip_block_t), target :: strip
+    class(block_operator_t), pointer :: m_inv
     type(gmres_result_t) :: result
     type(subsystem_t), allocatable :: subs(:)
     real(real64), allocatable :: x(:, :), b(:, :)
@@ -518,10 +594,10 @@ contains
     end do
 
     call system_clock(t0, rate)
-    call create_fft_operator(patch, table, nc, a%op)
-    a%subs = subs
-    a%sub_of = sub_of
-    a%n = n
+    call prepare_operator(ws, nu, patch, table, nc)
+    ws%a%subs = subs
+    ws%a%sub_of = sub_of
+    ws%a%n = n
     call system_clock(t1)
     diag%t_assemble = real(t1 - t0, real64) / rate
     t0 = t1
@@ -532,13 +608,13 @@ contains
       strip%subs = subs
       strip%sub_of = sub_of
       strip%n = n
-      allocate (m_inv, source=strip)
+      m_inv => strip
     case default
-      call build_circulant_preconditioner(patch, nu, nc, circulant%p)
-      circulant%subs = subs
-      circulant%sub_of = sub_of
-      circulant%n = n
-      allocate (m_inv, source=circulant)
+      call prepare_circulant(ws, nu, patch)
+      ws%circulant%subs = subs
+      ws%circulant%sub_of = sub_of
+      ws%circulant%n = n
+      m_inv => ws%circulant
     end select
     call system_clock(t1)
     diag%t_factor = real(t1 - t0, real64) / rate
@@ -550,14 +626,9 @@ contains
       if (present(initial)) call restrict_to(subs(sub_of(i)), n, initial(:, case_of(i)), x(1:subs(sub_of(i))%m, i))
       call restrict_to(subs(sub_of(i)), n, rhs(:, case_of(i)), b(1:subs(sub_of(i))%m, i))
     end do
-    call gmres(a, m_inv, b, x, opts%tolerance, opts%restart, opts%max_iterations, result)
+    call gmres(ws%a, m_inv, b, x, opts%tolerance, opts%restart, opts%max_iterations, result)
     call system_clock(t1)
     diag%t_solve = real(t1 - t0, real64) / rate
-    call destroy_fft_operator(a%op)
-    select type (m_inv)
-    type is (circulant_block_t)
-      call destroy_circulant_preconditioner(m_inv%p)
-    end select
     diag%rcond = ieee_value(1.0_real64, ieee_quiet_nan)   ! no factorisation to estimate it from
     diag%backward_error = maxval(result%relative_residual)
     diag%backward_error_initial = diag%backward_error
@@ -592,116 +663,5 @@ contains
 
   end subroutine solve_iterative
 
-  !> The block through the full-grid operator. Columns of the two parity
-  !> classes of a y-symmetric patch (kcreep_split shares_transforms) go in
-  !> pairs through one full vector: the operator keeps each class's
-  !> parities, so the result comes apart by projection, and the three load
-  !> cases cost the transforms of two (xi with eta, phi alone).
-  subroutine apply_expanded(self, x, y, columns)
-    class(expanded_block_t), intent(inout) :: self
-    real(real64), intent(in) :: x(:, :)
-    real(real64), intent(out) :: y(:, :)
-    integer, intent(in) :: columns(:)
-    integer :: c, m, nv, nf, f
-    integer :: vector_of(size(x, 2))   !< full vector of each column
-    logical :: shared(size(x, 2))      !< its vector holds another column too
-    nv = size(x, 2)
-    call pair_columns(self%subs, self%sub_of(columns), vector_of, shared)
-    nf = maxval(vector_of)
-    if (.not. allocated(self%full)) then
-      allocate (self%full(2 * self%n, nf), self%zfull(2 * self%n, nf))
-    else if (size(self%full, 2) < nf) then
-      deallocate (self%full, self%zfull)
-      allocate (self%full(2 * self%n, nf), self%zfull(2 * self%n, nf))
-    end if
-    ! vectors on threads: each is its own copy, so the result does not depend on them
-    !$omp parallel do private(c, m) schedule(static)
-    do f = 1, nf
-      self%full(:, f) = 0
-      do c = 1, nv
-        if (vector_of(c) /= f) cycle
-        m = self%subs(self%sub_of(columns(c)))%m
-        call expand_from(self%subs(self%sub_of(columns(c))), self%n, x(1:m, c), self%full(:, f))
-      end do
-    end do
-    !$omp end parallel do
-    call self%apply_full(self%full(:, 1:nf), self%zfull(:, 1:nf))
-    !$omp parallel do private(m) schedule(static)
-    do c = 1, nv
-      y(:, c) = 0
-      m = self%subs(self%sub_of(columns(c)))%m
-      if (shared(c)) then
-        call restrict_projected(self%subs(self%sub_of(columns(c))), self%n, self%zfull(:, vector_of(c)), y(1:m, c))
-      else
-        call restrict_to(self%subs(self%sub_of(columns(c))), self%n, self%zfull(:, vector_of(c)), y(1:m, c))
-      end if
-    end do
-    !$omp end parallel do
-  end subroutine apply_expanded
-
-  !> Full vectors for the columns of a block (subsystem subs(sub(c)) for
-  !> column c): each column shares one with the next unpaired column of the
-  !> other parity class (in column order); the rest have one each.
-  pure subroutine pair_columns(subs, sub, vector_of, shared)
-    type(subsystem_t), intent(in) :: subs(:)
-    integer, intent(in) :: sub(:)
-    integer, intent(out) :: vector_of(:)
-    logical, intent(out) :: shared(:)
-    integer :: c, d, nf
-    vector_of = 0
-    shared = .false.
-    nf = 0
-    do c = 1, size(sub)
-      if (vector_of(c) > 0) cycle
-      nf = nf + 1
-      vector_of(c) = nf
-      do d = c + 1, size(sub)
-        if (vector_of(d) == 0 .and. shares_transforms(subs(sub(c)), subs(sub(d)))) then
-          vector_of(d) = nf
-          shared([c, d]) = .true.
-          exit
-        end if
-      end do
-    end do
-  end subroutine pair_columns
-
-  subroutine apply_fft_full(self, full, z)
-    class(fft_block_t), intent(inout) :: self
-    real(real64), intent(in) :: full(:, :)
-    real(real64), intent(out) :: z(:, :)
-    call apply_fft_operator(self%op, full, z)
-  end subroutine apply_fft_full
-
-  subroutine apply_circulant_full(self, full, z)
-    class(circulant_block_t), intent(inout) :: self
-    real(real64), intent(in) :: full(:, :)
-    real(real64), intent(out) :: z(:, :)
-    call apply_circulant_preconditioner(self%p, full, z)
-  end subroutine apply_circulant_full
-
-  subroutine apply_strip_block(self, x, y, columns)
-    class(strip_block_t), intent(inout) :: self
-    real(real64), intent(in) :: x(:, :)
-    real(real64), intent(out) :: y(:, :)
-    integer, intent(in) :: columns(:)
-    real(real64), allocatable :: full(:, :), zfull(:, :)
-    integer :: c, u
-    allocate (full(2 * self%n, size(x, 2)), zfull(2 * self%n, size(x, 2)))
-    full = 0
-    do c = 1, size(x, 2)
-      associate (s => self%subs(self%sub_of(columns(c))))
-        do u = 1, s%m
-          full(s%comp(u) * self%n + s%cell(u), c) = x(u, c)
-        end do
-      end associate
-    end do
-    call apply_strip_preconditioner(self%p, full, zfull)
-    y = 0
-    do c = 1, size(x, 2)
-      associate (s => self%subs(self%sub_of(columns(c))))
-        call restrict_to(s, self%n, zfull(:, c), y(1:s%m, c))
-      end associate
-    end do
-  end subroutine apply_strip_block
 
 end module kcreep_linear_solve

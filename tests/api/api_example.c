@@ -2,9 +2,10 @@
  * ellipse, then a mask solved repeatedly; every status checked, and the
  * error paths (NULL handle, NULL arrays, bad values) exercised.
  *
- *   api_example [ellipse|mask|errors|bench N [ellipse|mask|moving [auto|dense|iterative]]]
+ *   api_example [ellipse|mask|errors|bench N [ellipse|mask|moving [auto|dense|iterative [estimate|steps]]]]
  * prints "key value..." lines that tests/test_install.py compares with the
- * command line and Python. */
+ * command line and Python; bench ... steps also prints each step's C11 C22
+ * C23 and GMRES iterations (to compare the solver paths step by step). */
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -189,6 +190,7 @@ int main(int argc, char **argv) {
     const char *shape = argc > 3 ? argv[3] : "ellipse";
     if (argc > 4) must(h, kcreep_set_solver(h, argv[4], 0), "kcreep_set_solver");
     /* the grid is judged once outside the loop; argv[5] = "estimate" keeps the per-call estimate */
+    int print_steps = argc > 5 && strcmp(argv[5], "steps") == 0;
     must(h, kcreep_set_error_control(h, 0, 0, argc > 5 && strcmp(argv[5], "estimate") == 0),
          "kcreep_set_error_control");
     int *inside = circle_mask(40);
@@ -219,6 +221,7 @@ int main(int argc, char **argv) {
       double residual, rcond, solve_seconds;
       must(h, kcreep_get_diagnostics(h, &iterations, &residual, &rcond, &solve_seconds), "kcreep_get_diagnostics");
       total_iterations += iterations;
+      if (print_steps) printf("step %d c %.15e %.15e %.15e iterations %d\n", r, c[0], c[1], c[2], iterations);
     }
     double first = times[0];
     qsort(times + 1, repeats - 1, sizeof(double), compare_double);

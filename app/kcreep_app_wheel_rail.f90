@@ -1,0 +1,97 @@
+!> kcreep INPUT.nml with &wheel_rail: the contact table over the lateral
+!> shifts, written to &output wheel_rail_file, and a summary on standard output.
+module kcreep_app_wheel_rail
+  use, intrinsic :: iso_fortran_env, only: real64, output_unit, error_unit
+  use kcreep_status, only: status_t
+  use kcreep_strings, only: rtoa, itoa
+  use kcreep, only: problem_t, patch_t, wheel_rail_row_t, kcreep_wheel_rail, creep_request_t, creep_point_t, &
+                    creep_map_t, creep_curve
+  use kcreep_namelist, only: config_t, problem_of
+  use kcreep_wheel_rail_table, only: wheel_rail_lines, line_length, wheel_rail_creep_header, wheel_rail_creep_rows
+  use kcreep_app_files, only: check_output_path, write_text_file
+  use kcreep_app_memory, only: memory_limit_bytes
+  implicit none
+  private
+  public :: wheel_rail_mode
+
+contains
+
+  subroutine wheel_rail_mode(input_path, cfg, status)
+    character(len=*), intent(in) :: input_path
+    type(config_t), intent(in) :: cfg
+    type(status_t), intent(inout) :: status
+    type(problem_t) :: base
+    type(patch_t) :: none
+    type(wheel_rail_row_t), allocatable :: rows(:)
+    integer :: k, j
+    real(real64) :: t0, t1
+
+    call check_output_path(cfg%wheel_rail_file, 'wheel_rail_file', status)
+    if (cfg%fastsim_on .and. .not. status%failed()) call check_output_path(cfg%creep_file, 'creep_file', status)
+    if (status%failed()) return
+    base = problem_of(cfg, none)
+    base%solve%memory_limit = memory_limit_bytes()
+    call cpu_time(t0)
+    call kcreep_wheel_rail(cfg%wheel_rail, base, rows, status)
+    call cpu_time(t1)
+    if (status%failed()) return
+    call write_text_file(cfg%wheel_rail_file, wheel_rail_lines(rows, cfg%wheel_rail, cfg%g, cfg%nu, cfg%target_error), &
+                         'wheel_rail_file', status)
+    if (status%failed()) return
+    if (cfg%fastsim_on) then
+      call write_text_file(cfg%creep_file, creep_lines_of(rows), 'creep_file', status)
+      if (status%failed()) return
+    end if
+    write (output_unit, '(a)') 'kcreep: '//input_path
+    write (output_unit, '(2x, a)') 'wheel/rail: '//itoa(size(cfg%wheel_rail%shifts))//' shifts, '//itoa(size(rows))// &
+      ' patches, side '//cfg%wheel_rail%side//'; table: '//cfg%wheel_rail_file
+    write (output_unit, '(2x, a)') '  shift patch        fn     delta   y_rail  y_wheel  r_wheel    c11    c22    c23'// &
+      '   err11   err22   err23 verdict'
+    do k = 1, size(rows)
+      associate (r => rows(k))
+        write (output_unit, '(2x, f7.2, i6, es10.3, f10.4, 3f9.3, 3f7.3, 3es8.1, 1x, a)') r%shift, r%patch, r%fn, &
+          r%delta, r%y_rail, r%y_wheel, r%r_wheel, r%c(1:3), r%err, trim(r%verdict)
+        if (allocated(r%result%warnings)) then
+          do j = 1, size(r%result%warnings)
+            write (error_unit, '(a)') 'kcreep: warning: shift '//rtoa(r%shift)//' patch '//itoa(r%patch)//': '// &
+              trim(r%result%warnings(j))
+          end do
+        end if
+      end associate
+    end do
+    if (cfg%fastsim_on) write (output_unit, '(2x, a)') 'FASTSIM on each patch (phi + its geometric spin): '// &
+      itoa(size(cfg%fastsim%creepages, 2))//' creepage points per patch; creep table: '//cfg%creep_file
+    write (output_unit, '(2x, a, f8.2)') 'time [s, CPU]:', t1 - t0
+
+  contains
+
+    !> FASTSIM on every patch with its normal pressure, each creepage's phi
+    !> plus the patch's geometric spin.
+    function creep_lines_of(table_rows) result(lines)
+      type(wheel_rail_row_t), intent(in) :: table_rows(:)
+      character(len=line_length), allocatable :: lines(:)
+      type(creep_request_t) :: request
+      type(creep_point_t), allocatable :: points(:)
+      type(creep_map_t), allocatable :: maps(:)
+      real(real64), allocatable :: pn(:, :)
+      integer :: r, c
+      lines = wheel_rail_creep_header(cfg%wheel_rail, cfg%fastsim)
+      do r = 1, size(table_rows)
+        associate (res => table_rows(r)%result, p => table_rows(r)%result%patch)
+          request = cfg%fastsim
+          request%maps = .false.
+          request%creepages(3, :) = request%creepages(3, :) + table_rows(r)%spin
+          allocate (pn(p%mx, p%my), source=0.0_real64)
+          do c = 1, p%n
+            pn(p%ix(c), p%iy(c)) = res%pressure(c)
+          end do
+          call creep_curve(res, pn, request, points, maps)
+          lines = [lines, wheel_rail_creep_rows(table_rows(r), request, points)]
+          deallocate (pn)
+        end associate
+      end do
+    end function creep_lines_of
+
+  end subroutine wheel_rail_mode
+
+end module kcreep_app_wheel_rail

@@ -1,0 +1,370 @@
+!> A wheel on a rail: placement in the track, contact search, contact planes and
+!> the undeformed distance in each contact plane.
+!>
+!> Coordinates are CONTACT's (module 1) for the right side: track frame x along
+!> the track, y lateral positive towards the field side, z downwards, origin in
+!> the track plane (the plane resting on the rails) at the track centre. The
+!> left side is computed as the mirrored right side by the caller.
+!>
+!> Rail: its profile is rotated by the cant (positive: the head leans towards
+!> the track centre, as a 1:40 inclination), shifted down to touch the track
+!> plane (smallest z = 0) and sideways so that its gauge point, the innermost
+!> point (smallest y) at most gauge_height below the track plane, lies at
+!> y = gauge_width / 2.
+!> Wheel: a body of revolution; its profile (y_w towards the field side, z_w
+!> downwards) has its origin at y = shift + (flange_back_distance / 2 -
+!> flange_back_position) from the track centre, at radius nominal_radius, so
+!> the radius at y_w is R(y_w) = nominal_radius + z_w(y_w). With yaw psi about
+!> the vertical axis through the wheelset centre, a track point (x, y) has the
+!> axial coordinate t = -x sin psi + (y - shift) cos psi and the horizontal
+!> distance u = x cos psi + (y - shift) sin psi from the axis, and the wheel's
+!> surface lies at z = w - nominal_radius + sqrt(R(t - origin)^2 - u^2), w the
+!> wheel's height (exact for any yaw).
+!>
+!> Contact search: d(y) = z_rail(y) - max_x z_wheel(x, y) on a fine y grid (the
+!> vertical clearance); the wheel is lowered until min d = 0 (touching) and then
+!> by the vertical approach dz; every interval of y where d < dz is one contact
+!> patch, at the minimum of d in it (so two minima joined by a ridge lower than
+!> dz make one non-elliptic patch, separate intervals separate patches).
+!> Contact plane: tangent to the rail at the contact point (the rail is
+!> straight along x), tilted about x by the contact angle delta = atan(-dz_r/dy)
+!> (positive towards the flange on the right side). Gap: for a point (xi, s) of
+!> the plane (xi along x, s along the tilted lateral axis), the distance between
+!> the two surfaces along the plane's normal (0, sin delta, cos delta), each found
+!> by Newton's method on the surface functions.
+module kcreep_wheel_rail_geometry
+  use, intrinsic :: iso_fortran_env, only: real64
+  use kcreep_status, only: status_t, fail, exit_bad_input
+  use kcreep_strings, only: rtoa
+  use kcreep_profile, only: profile_t, envelope_t, sample_profile, make_envelope, envelope_at, envelope_slope, &
+                            no_surface, sample_step
+  use kcreep_gap, only: gap_t, outside_gap
+  implicit none
+  private
+  public :: track_t, contact_t, plane_gap_t, place_track, clearance, find_contacts, plane_of, plane_gap_value, &
+            plane_gap_grid, wheel_surface, search_step
+
+  !> Lateral step of the contact search (mm).
+  real(real64), parameter :: search_step = 0.02_real64
+
+  !> The placed profiles of one side (right-side configuration).
+  type :: track_t
+    type(envelope_t) :: rail                 !< z_r(y) in track coordinates
+    type(envelope_t) :: wheel                !< z_w(y_w) in the wheel profile's coordinates
+    real(real64) :: cant = 0                 !< rotation of the rail profile (file's + rail_cant)
+    real(real64) :: rail_shift(2) = 0        !< track (y, z) = rotated profile point + rail_shift
+    real(real64) :: wheel_origin = 0         !< flange_back_distance / 2 - flange_back_position
+    real(real64) :: r_nom = 460
+    real(real64), allocatable :: rail_curve(:, :), wheel_curve(:, :)   !< (2, n) dense samples (rail: track coords)
+  end type track_t
+
+  !> One contact found at a shift.
+  type :: contact_t
+    real(real64) :: x = 0, y = 0, z = 0      !< the contact point on the rail, track coordinates
+    real(real64) :: delta = 0                !< contact angle (rad)
+    real(real64) :: separation = 0           !< vertical clearance of this minimum when the wheel touches (>= 0)
+    real(real64) :: y_lo = 0, y_hi = 0       !< the interval of y where d < dz (its interpenetration)
+    real(real64) :: y_wheel = 0, r_wheel = 0 !< contact point in the wheel profile's coordinates, radius there
+  end type contact_t
+
+  !> The undeformed distance in a contact plane.
+  type :: plane_gap_t
+    type(envelope_t) :: rail, wheel
+    real(real64) :: r_nom = 0, wheel_origin = 0, shift = 0, yaw = 0
+    real(real64) :: wheel_height = 0         !< w of the touching position
+    real(real64) :: p0(3) = 0, delta = 0     !< plane origin (contact point) and tilt
+    real(real64) :: s_lo = -huge(1.0_real64), s_hi = huge(1.0_real64)   !< beyond: outside the potential contact
+  end type plane_gap_t
+
+contains
+
+  !> Place the rail and the wheel (profiles already mirrored as asked).
+  subroutine place_track(rail, wheel, cant, gauge_width, gauge_height, fb_distance, fb_position, r_nom, track, status)
+    type(profile_t), intent(in) :: rail, wheel
+    real(real64), intent(in) :: cant, gauge_width, gauge_height, fb_distance, fb_position, r_nom
+    type(track_t), intent(out) :: track
+    type(status_t), intent(inout) :: status
+    real(real64), allocatable :: ys(:), zs(:), yr(:), zr(:)
+    logical, allocatable :: gauge_band(:)
+
+    call sample_profile(rail, sample_step, ys, zs)
+    yr = cos(cant) * ys - sin(cant) * zs
+    zr = sin(cant) * ys + cos(cant) * zs
+    track%cant = cant
+    track%rail_shift(2) = -minval(zr)
+    zr = zr + track%rail_shift(2)
+    gauge_band = zr <= gauge_height
+    track%rail_shift(1) = gauge_width / 2 - minval(yr, mask=gauge_band)
+    yr = yr + track%rail_shift(1)
+    call make_envelope(yr, zr, .false., track%rail)
+    track%rail_curve = reshape([yr, zr], [size(yr), 2])
+    track%rail_curve = transpose(track%rail_curve)
+    call sample_profile(wheel, sample_step, ys, zs)
+    if (.not. all(r_nom + zs > 0)) then
+      call fail(status, exit_bad_input, 'wheel profile: nominal_radius = '//rtoa(r_nom)//' makes a radius <= 0 '// &
+                '(the profile reaches z = '//rtoa(minval(zs))//' mm above its origin)')
+      return
+    end if
+    call make_envelope(ys, zs, .true., track%wheel)
+    track%wheel_curve = transpose(reshape([ys, zs], [size(ys), 2]))
+    track%wheel_origin = fb_distance / 2 - fb_position
+    track%r_nom = r_nom
+  end subroutine place_track
+
+  !> The wheel's surface z at track point (x, y) for wheel height w
+  !> (-no_surface where the wheel does not reach).
+  elemental real(real64) function wheel_surface(track_wheel, r_nom, origin, shift, yaw, w, x, y) result(z)
+    type(envelope_t), intent(in) :: track_wheel
+    real(real64), intent(in) :: r_nom, origin, shift, yaw, w, x, y
+    real(real64) :: t, u, zw, r
+    t = -x * sin(yaw) + (y - shift) * cos(yaw)
+    u = x * cos(yaw) + (y - shift) * sin(yaw)
+    zw = envelope_at(track_wheel, t - origin)
+    if (zw <= -no_surface) then
+      z = -no_surface
+      return
+    end if
+    r = r_nom + zw
+    if (abs(u) >= r) then
+      z = -no_surface
+      return
+    end if
+    z = w - r_nom + sqrt((r - u) * (r + u))
+  end function wheel_surface
+
+  !> The vertical clearance d(y) = z_rail - lowest wheel point at wheel height 0,
+  !> on the grid y(k) = y_first + (k - 1) search_step over the rail; xs: where
+  !> along x the wheel is lowest (0 without yaw); no_surface where either misses.
+  subroutine clearance(track, shift, yaw, ys, d, xs)
+    type(track_t), intent(in) :: track
+    real(real64), intent(in) :: shift, yaw
+    real(real64), allocatable, intent(out) :: ys(:), d(:), xs(:)
+    integer :: n, k
+    real(real64) :: zr, zl, xl
+    n = floor((size(track%rail%v) - 1) * track%rail%step / search_step)
+    allocate (ys(n), d(n), xs(n))
+    do k = 1, n
+      ys(k) = track%rail%y_first + (k - 1) * search_step
+      zr = envelope_at(track%rail, ys(k))
+      call lowest_wheel_point(ys(k), zl, xl)
+      xs(k) = xl
+      if (zr >= no_surface .or. zl <= -no_surface) then
+        d(k) = no_surface
+      else
+        d(k) = zr - zl
+      end if
+    end do
+
+  contains
+
+    !> max over x of the wheel's z at lateral track position y (golden section with yaw).
+    subroutine lowest_wheel_point(y, z, x)
+      real(real64), intent(in) :: y
+      real(real64), intent(out) :: z, x
+      real(real64), parameter :: g = (sqrt(5.0_real64) - 1) / 2
+      real(real64) :: a, b, c1, c2, f1, f2
+      integer :: it
+      x = 0
+      z = wheel_surface(track%wheel, track%r_nom, track%wheel_origin, shift, yaw, 0.0_real64, 0.0_real64, y)
+      if (yaw == 0) return
+      ! the lowest point lies within r |tan(flank)| |sin yaw| of x = 0: search +-3.5 r |sin yaw| + 1 mm
+      b = 3.5_real64 * track%r_nom * abs(sin(yaw)) + 1
+      a = -b
+      c1 = b - g * (b - a)
+      c2 = a + g * (b - a)
+      f1 = wheel_surface(track%wheel, track%r_nom, track%wheel_origin, shift, yaw, 0.0_real64, c1, y)
+      f2 = wheel_surface(track%wheel, track%r_nom, track%wheel_origin, shift, yaw, 0.0_real64, c2, y)
+      do it = 1, 60
+        if (f1 >= f2) then
+          b = c2
+          c2 = c1
+          f2 = f1
+          c1 = b - g * (b - a)
+          f1 = wheel_surface(track%wheel, track%r_nom, track%wheel_origin, shift, yaw, 0.0_real64, c1, y)
+        else
+          a = c1
+          c1 = c2
+          f1 = f2
+          c2 = a + g * (b - a)
+          f2 = wheel_surface(track%wheel, track%r_nom, track%wheel_origin, shift, yaw, 0.0_real64, c2, y)
+        end if
+        if (b - a < 1e-7_real64) exit
+      end do
+      x = (a + b) / 2
+      z = wheel_surface(track%wheel, track%r_nom, track%wheel_origin, shift, yaw, 0.0_real64, x, y)
+      if (z < max(f1, f2)) then
+        z = max(f1, f2)
+        x = merge(c1, c2, f1 >= f2)
+      end if
+    end subroutine lowest_wheel_point
+
+  end subroutine clearance
+
+  !> The contacts at vertical approach dz (beyond touching): one per interval of
+  !> d - min(d) < dz, at the interval's minimum (parabola through the three
+  !> samples around it). ys, d, xs from clearance.
+  pure subroutine find_contacts(track, shift, yaw, ys, d, xs, dz, contacts)
+    type(track_t), intent(in) :: track
+    real(real64), intent(in) :: shift, yaw, ys(:), d(:), xs(:), dz
+    type(contact_t), allocatable, intent(out) :: contacts(:)
+    real(real64) :: d0, a, b, c, t
+    integer :: k, k1, km, n
+    type(contact_t) :: one
+    allocate (contacts(0))
+    d0 = minval(d)
+    n = size(d)
+    k = 1
+    do while (k <= n)
+      if (d(k) - d0 >= dz) then
+        k = k + 1
+        cycle
+      end if
+      k1 = k
+      km = k
+      do while (k <= n)
+        if (d(k) - d0 >= dz) exit
+        if (d(k) < d(km)) km = k
+        k = k + 1
+      end do
+      one%y_lo = ys(k1)
+      one%y_hi = ys(k - 1)
+      t = 0
+      if (km > 1 .and. km < n) then
+        a = d(km - 1)
+        b = d(km)
+        c = d(km + 1)
+        if (a + c - 2 * b > 0) t = min(max((a - c) / (2 * (a + c - 2 * b)), -0.5_real64), 0.5_real64)
+      end if
+      one%y = ys(km) + t * search_step
+      one%x = xs(km)
+      one%separation = max(0.0_real64, b_value(km, t) - d0)
+      one%z = envelope_at(track%rail, one%y)
+      one%delta = atan(-envelope_slope(track%rail, one%y, 0.05_real64))
+      one%y_wheel = -one%x * sin(yaw) + (one%y - shift) * cos(yaw) - track%wheel_origin
+      one%r_wheel = track%r_nom + envelope_at(track%wheel, one%y_wheel)
+      contacts = [contacts, one]
+    end do
+
+  contains
+
+    pure real(real64) function b_value(k0, tt) result(v)
+      integer, intent(in) :: k0
+      real(real64), intent(in) :: tt
+      if (k0 > 1 .and. k0 < n) then
+        v = d(k0) + tt * (d(k0 + 1) - d(k0 - 1)) / 2 + tt**2 * (d(k0 + 1) + d(k0 - 1) - 2 * d(k0)) / 2
+      else
+        v = d(k0)
+      end if
+    end function b_value
+
+  end subroutine find_contacts
+
+  !> The gap object of a contact: plane through the contact point, wheel at its
+  !> touching height w0 (= min d).
+  pure function plane_of(track, shift, yaw, w0, contact) result(plane)
+    type(track_t), intent(in) :: track
+    real(real64), intent(in) :: shift, yaw, w0
+    type(contact_t), intent(in) :: contact
+    type(plane_gap_t) :: plane
+    plane%rail = track%rail
+    plane%wheel = track%wheel
+    plane%r_nom = track%r_nom
+    plane%wheel_origin = track%wheel_origin
+    plane%shift = shift
+    plane%yaw = yaw
+    plane%wheel_height = w0
+    plane%p0 = [contact%x, contact%y, contact%z]
+    plane%delta = contact%delta
+  end function plane_of
+
+  !> The undeformed distance at (xi, s) of the plane (outside_gap where a surface misses).
+  elemental real(real64) function plane_gap_value(plane, xi, s) result(h)
+    type(plane_gap_t), intent(in) :: plane
+    real(real64), intent(in) :: xi, s
+    real(real64) :: p(3), sd, cd, lr, lw
+    logical :: ok_r, ok_w
+    if (s < plane%s_lo .or. s > plane%s_hi) then
+      h = outside_gap
+      return
+    end if
+    sd = sin(plane%delta)
+    cd = cos(plane%delta)
+    p = plane%p0 + [xi, s * cd, -s * sd]
+    call root(.true., lr, ok_r)
+    call root(.false., lw, ok_w)
+    if (ok_r .and. ok_w) then
+      h = lr - lw
+    else
+      h = outside_gap
+    end if
+
+  contains
+
+    !> lambda where p + lambda n meets the rail (rail) or the wheel (Newton, difference quotients).
+    pure subroutine root(rail, lambda, ok)
+      logical, intent(in) :: rail
+      real(real64), intent(out) :: lambda
+      logical, intent(out) :: ok
+      real(real64) :: f0, f1, step
+      real(real64), parameter :: eps = 1e-4_real64
+      integer :: it
+      lambda = 0
+      ok = .false.
+      do it = 1, 30
+        f0 = residual(rail, lambda)
+        if (abs(f0) >= 1e20_real64) return
+        f1 = residual(rail, lambda + eps)
+        if (abs(f1) >= 1e20_real64) return
+        if (f1 == f0) return
+        step = -f0 * eps / (f1 - f0)
+        step = max(min(step, 5.0_real64), -5.0_real64)
+        lambda = lambda + step
+        if (abs(step) < 1e-12_real64) exit
+      end do
+      ok = abs(residual(rail, lambda)) < 1e-9_real64
+    end subroutine root
+
+    !> surface z minus the line's z at lambda
+    pure real(real64) function residual(rail, lambda) result(f)
+      logical, intent(in) :: rail
+      real(real64), intent(in) :: lambda
+      real(real64) :: y, z, zs
+      y = p(2) + lambda * sd
+      z = p(3) + lambda * cd
+      if (rail) then
+        zs = envelope_at(plane%rail, y)
+      else
+        zs = wheel_surface(plane%wheel, plane%r_nom, plane%wheel_origin, plane%shift, plane%yaw, &
+                           plane%wheel_height, p(1), y)
+      end if
+      if (abs(zs) >= no_surface) then
+        f = 1e30_real64
+      else
+        f = zs - z
+      end if
+    end function residual
+
+  end function plane_gap_value
+
+  !> The gap at the cell centres of a grid in the plane (x = xi, y = s).
+  pure subroutine plane_gap_grid(plane, mx, my, dx, dy, x0, y0, gap)
+    type(plane_gap_t), intent(in) :: plane
+    integer, intent(in) :: mx, my
+    real(real64), intent(in) :: dx, dy, x0, y0
+    type(gap_t), intent(out) :: gap
+    integer :: ix, iy
+    gap%mx = mx
+    gap%my = my
+    gap%dx = dx
+    gap%dy = dy
+    gap%x0 = x0
+    gap%y0 = y0
+    allocate (gap%h(mx, my))
+    do iy = 1, my
+      do ix = 1, mx
+        gap%h(ix, iy) = plane_gap_value(plane, x0 + (ix - 1) * dx, y0 + (iy - 1) * dy)
+      end do
+    end do
+  end subroutine plane_gap_grid
+
+end module kcreep_wheel_rail_geometry

@@ -1,0 +1,104 @@
+!> The contact table of &wheel_rail as text lines (&output wheel_rail_file):
+!> comment lines starting with '#', the last naming the columns, then one row
+!> per shift and patch (the facade's wheel_rail_columns). python/kcreep
+!> table.read reads it.
+module kcreep_wheel_rail_table
+  use, intrinsic :: iso_fortran_env, only: real64
+  use kcreep, only: wheel_rail_row_t, wheel_rail_setup_t, wheel_rail_columns, creep_request_t, creep_point_t, &
+                    source_names, flexibility_rule_name
+  use kcreep_strings, only: rtoa
+  implicit none
+  private
+  public :: wheel_rail_lines, line_length, wheel_rail_creep_header, wheel_rail_creep_rows, wheel_rail_creep_columns
+
+  !> The creep table of &fastsim with &wheel_rail: one block of rows per shift and patch.
+  character(len=*), parameter :: wheel_rail_creep_columns = 'shift yaw patch spin xi eta phi fx fy mz fn adhesion '// &
+                                                          'source fx_mufn fy_mufn'
+
+  integer, parameter :: line_length = 600
+
+contains
+
+  function wheel_rail_lines(rows, setup, g, nu, target_error) result(lines)
+    type(wheel_rail_row_t), intent(in) :: rows(:)
+    type(wheel_rail_setup_t), intent(in) :: setup
+    real(real64), intent(in) :: g, nu, target_error
+    character(len=line_length), allocatable :: lines(:)
+    integer :: k
+    allocate (lines(size(rows) + 8))
+    lines(1) = '# kcreep: contact table of a wheel on a rail over the lateral shift (side '//setup%side//')'
+    lines(2) = '# '//setup%wheel_name//' on '//setup%rail_name
+    lines(3) = '# gauge_width '//rtoa(setup%gauge_width)//' at gauge_height '//rtoa(setup%gauge_height)// &
+               ', rail_cant '//rtoa(setup%rail_cant)//', flange_back_distance '//rtoa(setup%flange_back_distance)// &
+               ', flange_back_position '//rtoa(setup%flange_back_position)//', nominal_radius '// &
+               rtoa(setup%nominal_radius)//', smoothing '//rtoa(setup%smoothing)
+    if (setup%force_given) then
+      lines(4) = '# load: vertical_force '//rtoa(setup%vertical_force)//' N (sum of fn cos(delta) over the patches)'
+    else
+      lines(4) = '# load: vertical approach '//rtoa(setup%approach)//' mm'
+    end if
+    lines(5) = '# material g '//rtoa(g)//', nu '//rtoa(nu)//'; target_error '//rtoa(target_error)// &
+               '; lengths mm, forces N, angles rad'
+    lines(6) = '# delta: contact angle; y_rail, y_wheel: contact point in each profile''s own coordinates; '// &
+               'r_wheel: rolling radius there; area = pi c^2, length x width: extent of the contact area'
+    lines(7) = '# c11 c22 c23 = f/(G c^2), f23/(G c^3), c33 = f33/(G c^4) about the contact point; err: '// &
+               'estimated relative errors; l1 l2 l3: FASTSIM flexibilities; spin = sin(delta)/r_wheel'
+    lines(8) = '# '//wheel_rail_columns
+    do k = 1, size(rows)
+      associate (r => rows(k))
+        write (lines(k + 8), '(2(es15.7), i4, 5(es16.8), 3(es14.6), 4(es15.7), 3(es10.2), 1x, a, 4(es14.6))') &
+          r%shift, r%yaw, r%patch, r%fn, r%delta, r%y_rail, r%y_wheel, r%r_wheel, r%area, r%length, r%width, &
+          r%c, r%err, trim(no_blanks(r%verdict)), r%l, r%spin
+      end associate
+    end do
+  end function wheel_rail_lines
+
+  !> The creep table's comment lines and column names.
+  function wheel_rail_creep_header(setup, request) result(lines)
+    type(wheel_rail_setup_t), intent(in) :: setup
+    type(creep_request_t), intent(in) :: request
+    character(len=line_length), allocatable :: lines(:)
+    allocate (lines(5))
+    lines(1) = '# kcreep FASTSIM creep forces on each patch of a wheel on a rail ('//setup%wheel_name//' on '// &
+               setup%rail_name//')'
+    write (lines(2), '(a, es12.5, a)') '# mu = ', request%mu, ', flexibility rule '// &
+      flexibility_rule_name(request%rule)//', pressure: each patch''s normal solve, L1 L2 L3 per patch'
+    lines(3) = '# spin: the patch''s geometric spin sin(delta)/r_wheel (1/mm); phi = the given phi + spin '// &
+               '(the creepage FASTSIM ran with)'
+    lines(4) = '# (Fx, Fy, Mz) = -f (xi, eta, phi) at small creepage; adhesion: fraction of the area in adhesion; '// &
+               'fx_mufn = fx / (mu fn)'
+    lines(5) = '# '//wheel_rail_creep_columns
+  end function wheel_rail_creep_header
+
+  !> The rows of one patch: its points (FASTSIM at phi + spin) prefixed by shift, yaw, patch, spin.
+  function wheel_rail_creep_rows(row, request, points) result(lines)
+    type(wheel_rail_row_t), intent(in) :: row
+    type(creep_request_t), intent(in) :: request
+    type(creep_point_t), intent(in) :: points(:)
+    character(len=line_length), allocatable :: lines(:)
+    real(real64) :: mufn
+    integer :: k
+    allocate (lines(size(points)))
+    do k = 1, size(points)
+      associate (p => points(k), f => points(k)%force)
+        mufn = request%mu * f%fn
+        write (lines(k), '(2(es15.7), i4, es15.7, 7(1x, es23.15e3), 1x, f8.6, 1x, a, 2(1x, es23.15e3))') &
+          row%shift, row%yaw, row%patch, row%spin, p%creep, f%fx, f%fy, f%mz, f%fn, f%adhesion, &
+          trim(source_names(p%source)), f%fx / mufn, f%fy / mufn
+      end associate
+    end do
+  end function wheel_rail_creep_rows
+
+  !> A verdict of several words as one column ('ok' or 'uncertain,coarse').
+  pure function no_blanks(text) result(out)
+    character(len=*), intent(in) :: text
+    character(len=len(text)) :: out
+    integer :: k
+    out = text
+    do k = 1, len_trim(out)
+      if (out(k:k) == ' ') out(k:k) = '_'
+    end do
+    if (len_trim(out) == 0) out = '-'
+  end function no_blanks
+
+end module kcreep_wheel_rail_table

@@ -1,0 +1,401 @@
+!> From wheel and rail profiles to a contact table: for each lateral shift of
+!> the wheelset, every contact patch with its contact plane, the normal problem
+!> in that plane and the error-controlled creep coefficients of its patch.
+!>
+!> Per shift (kcreep_wheel_rail_geometry for the geometry):
+!>  1. the vertical clearance d(y) of wheel and rail, the wheel lowered to touch;
+!>  2. the vertical approach dz: given (approach), or found for vertical_force
+!>     from normal solves on coarse grids of every patch (the sum of Fn cos(delta)
+!>     over the patches equal to the force; a patch's normal approach is
+!>     dz cos(delta), its gap holding its own clearance). The patches are the
+!>     intervals of d < dz, so a second contact enters when dz reaches it;
+!>  3. per patch: the normal problem with its force (the force split of step 2,
+!>     scaled to the vertical force exactly) or its approach, under kcreep's error
+!>     control of gap patches, the gap evaluated exactly in the contact plane on
+!>     every level (kcreep_gap_levels); then C11 C22 C23 with their estimates,
+!>     C33, FASTSIM's L1 L2 L3 and the geometric spin sin(delta) / r.
+!> Patches are independent (no elastic interaction between separate patches,
+!> which lie in different planes), as CONTACT treats them.
+module kcreep_wheel_rail_run
+  use, intrinsic :: iso_fortran_env, only: real64, int64
+  use kcreep_status, only: status_t, fail, exit_bad_input, exit_numerical
+  use kcreep_strings, only: itoa, rtoa
+  use kcreep_profile, only: profile_t, make_profile, no_surface
+  use kcreep_wheel_rail_geometry, only: track_t, contact_t, plane_gap_t, place_track, clearance, find_contacts, &
+                                        plane_of, plane_gap_value, plane_gap_grid, search_step
+  use kcreep_gap, only: gap_t, outside_gap
+  use kcreep_problem, only: problem_t, result_t
+  use kcreep_normal_solve, only: normal_result_t, solve_normal
+  use kcreep_normal_influence, only: compliance_from_g_nu
+  use kcreep_error_run, only: run_controlled
+  use kcreep_threads, only: team_size, enter_team, leave_team, solve_started, solve_ended, cells_per_thread_iterative
+  implicit none
+  private
+  public :: wheel_rail_setup_t, wheel_rail_row_t, prepare_track, run_wheel_rail, wheel_rail_columns, &
+            check_wheel_rail_setup, max_wheel_rail_shifts
+
+  !> The table's columns, in order (verdict a word).
+  character(len=*), parameter :: wheel_rail_columns = 'shift yaw patch fn delta y_rail y_wheel r_wheel area '// &
+                                 'length width c11 c22 c23 c33 err11 err22 err23 verdict l1 l2 l3 spin'
+  real(real64), parameter :: pi = acos(-1.0_real64)
+  !> At most this many shifts in one table.
+  integer, parameter :: max_wheel_rail_shifts = 10000
+  !> Cells across the larger side of a patch's potential contact area on the
+  !> coarse grids of the force iteration and the first solve of error control.
+  integer, parameter :: base_cells = 64
+
+  !> What &wheel_rail describes (the profiles already read).
+  type :: wheel_rail_setup_t
+    real(real64), allocatable :: wheel_y(:), wheel_z(:), rail_y(:), rail_z(:)   !< points as read (mm, z down)
+    character(len=:), allocatable :: wheel_name, rail_name                      !< for messages
+    logical :: wheel_mirror = .false., rail_mirror = .false.
+    real(real64) :: smoothing = 0
+    character(len=:), allocatable :: side                                       !< 'right' or 'left'
+    real(real64) :: gauge_width = 1435, gauge_height = 14, rail_cant = 0
+    real(real64) :: flange_back_distance = 1360, flange_back_position = -70, nominal_radius = 460
+    real(real64), allocatable :: shifts(:)
+    real(real64) :: yaw = 0
+    logical :: force_given = .true.
+    real(real64) :: vertical_force = 0, approach = 0
+  end type wheel_rail_setup_t
+
+  !> One row of the table: one patch at one shift.
+  type :: wheel_rail_row_t
+    real(real64) :: shift = 0, yaw = 0
+    integer :: patch = 0
+    real(real64) :: fn = 0, delta = 0, y_rail = 0, y_wheel = 0, r_wheel = 0, area = 0, length = 0, width = 0
+    real(real64) :: c(4) = 0                 !< C11 C22 C23 C33
+    real(real64) :: err(3) = 0
+    real(real64) :: l(3) = 0, spin = 0
+    real(real64) :: approach = 0             !< the vertical approach of the shift
+    real(real64) :: y_track = 0, z_track = 0 !< contact point in track coordinates (the side's own)
+    character(len=:), allocatable :: verdict
+    type(result_t) :: result                 !< everything kcreep_solve gives for the patch
+  end type wheel_rail_row_t
+
+contains
+
+  !> The setup's values in their ranges (the namelist group and the C API both
+  !> check with this): where starts each message ("input 'a.nml': &wheel_rail "
+  !> or "kcreep_wheel_rail: "), which names the variable, value and range.
+  subroutine check_wheel_rail_setup(setup, where, status)
+    type(wheel_rail_setup_t), intent(in) :: setup
+    character(len=*), intent(in) :: where
+    type(status_t), intent(inout) :: status
+    if (status%failed()) return
+    if (.not. allocated(setup%side)) then
+      call fail(status, exit_bad_input, where//'side is not set (allowed: ''right'', ''left'')')
+    else if (setup%side /= 'right' .and. setup%side /= 'left') then
+      call fail(status, exit_bad_input, where//'side = '''//setup%side//''' (allowed: ''right'', ''left'')')
+    end if
+    call check_range('gauge_width', setup%gauge_width, 100.0_real64, 5000.0_real64)
+    call check_range('gauge_height', setup%gauge_height, 0.0_real64, 100.0_real64)
+    call check_range('rail_cant', setup%rail_cant, -0.5_real64, 0.5_real64)
+    call check_range('flange_back_distance', setup%flange_back_distance, 100.0_real64, 5000.0_real64)
+    call check_range('flange_back_position', setup%flange_back_position, -1000.0_real64, 1000.0_real64)
+    call check_range('nominal_radius', setup%nominal_radius, 10.0_real64, 10000.0_real64)
+    call check_range('smoothing', setup%smoothing, 0.0_real64, 1e12_real64)
+    call check_range('yaw', setup%yaw, -0.1_real64, 0.1_real64)
+    if (setup%force_given) then
+      call check_range('vertical_force', setup%vertical_force, 1e-6_real64, 1e9_real64)
+    else
+      call check_range('approach', setup%approach, 1e-9_real64, 10.0_real64)
+    end if
+    if (status%failed()) return
+    if (.not. allocated(setup%shifts)) then
+      call fail(status, exit_bad_input, where//'shifts: none given')
+    else if (size(setup%shifts) < 1 .or. size(setup%shifts) > max_wheel_rail_shifts) then
+      call fail(status, exit_bad_input, where//'shifts: '//itoa(size(setup%shifts))//' values (allowed: 1 to '// &
+                itoa(max_wheel_rail_shifts)//')')
+    else if (.not. all(abs(setup%shifts) <= 200)) then
+      call fail(status, exit_bad_input, where//'shifts: a value beyond 200 mm in magnitude (or not a number)')
+    end if
+
+  contains
+
+    subroutine check_range(name, value, lo, hi)
+      character(len=*), intent(in) :: name
+      real(real64), intent(in) :: value, lo, hi
+      if (status%failed()) return
+      if (.not. (value >= lo .and. value <= hi)) call fail(status, exit_bad_input, where//name//' = '// &
+          rtoa(value)//' (allowed: '//rtoa(lo)//' to '//rtoa(hi)//')')
+    end subroutine check_range
+
+  end subroutine check_wheel_rail_setup
+
+  !> The profiles' splines and their placement in the track (right-side configuration).
+  subroutine prepare_track(setup, track, status)
+    type(wheel_rail_setup_t), intent(in) :: setup
+    type(track_t), intent(out) :: track
+    type(status_t), intent(inout) :: status
+    type(profile_t) :: wheel, rail
+    call make_profile(merge(-setup%wheel_y, setup%wheel_y, setup%wheel_mirror), setup%wheel_z, setup%smoothing, &
+                      setup%wheel_name, wheel, status)
+    if (status%failed()) return
+    call make_profile(merge(-setup%rail_y, setup%rail_y, setup%rail_mirror), setup%rail_z, setup%smoothing, &
+                      setup%rail_name, rail, status)
+    if (status%failed()) return
+    call place_track(rail, wheel, setup%rail_cant, setup%gauge_width, setup%gauge_height, &
+                     setup%flange_back_distance, setup%flange_back_position, setup%nominal_radius, track, status)
+  end subroutine prepare_track
+
+  !> The table: base carries the material, the solver settings and the target.
+  subroutine run_wheel_rail(setup, base, rows, status)
+    type(wheel_rail_setup_t), intent(in) :: setup
+    type(problem_t), intent(in) :: base
+    type(wheel_rail_row_t), allocatable, intent(out) :: rows(:)
+    type(status_t), intent(inout) :: status
+    type(track_t) :: track
+    real(real64), allocatable :: ys(:), d(:), xs(:)
+    type(contact_t), allocatable :: contacts(:)
+    type(gap_t), allocatable :: grids(:)
+    type(plane_gap_t), allocatable :: planes(:)
+    real(real64), allocatable :: forces(:)
+    real(real64) :: shift, yaw, dz, dz_start, sgn, w0
+    integer :: i, k, previous_team
+    type(wheel_rail_row_t) :: row
+    type(problem_t) :: problem
+    character(len=:), allocatable :: where
+
+    allocate (rows(0))
+    call prepare_track(setup, track, status)
+    if (status%failed()) return
+    sgn = merge(-1.0_real64, 1.0_real64, setup%side == 'left')
+    dz_start = 0.05_real64
+    call solve_started()
+    call enter_team(team_size(base%solve%threads, 10000_int64, cells_per_thread_iterative), previous_team)
+    do i = 1, size(setup%shifts)
+      ! the left side is the mirrored right side
+      shift = sgn * setup%shifts(i)
+      yaw = sgn * setup%yaw
+      where = '&wheel_rail shift = '//rtoa(setup%shifts(i))//' mm: '
+      call clearance(track, shift, yaw, ys, d, xs)
+      if (.not. any(d < no_surface)) then
+        call fail(status, exit_bad_input, where//'the wheel profile never meets the rail profile (no lateral '// &
+                  'overlap: check flange_back_distance, flange_back_position, gauge_width and the mirror flags)')
+        exit
+      end if
+      w0 = minval(d)
+      if (setup%force_given) then
+        call approach_for_force(dz_start, dz)
+        if (status%failed()) exit
+        dz_start = dz
+      else
+        dz = setup%approach
+        call patches_at(dz)
+        if (status%failed()) exit
+        if (allocated(forces)) deallocate (forces)
+        allocate (forces(size(contacts)), source=0.0_real64)
+      end if
+      do k = 1, size(contacts)
+        problem = base
+        problem%normal%active = .true.
+        problem%normal%gap = grids(k)
+        problem%normal%plane = planes(k)
+        problem%normal%poly_given = .false.
+        problem%normal%force_given = setup%force_given
+        problem%normal%normal_force = forces(k)
+        problem%normal%approach = dz * cos(contacts(k)%delta)
+        problem%refine_grid = .true.
+        if (setup%force_given .and. .not. forces(k) > 0) cycle    ! touches, carries nothing
+        call run_controlled(problem, row%result, status)
+        if (status%failed()) then
+          status%message = where//'patch '//itoa(k)//': '//status%message
+          exit
+        end if
+        call fill_row(contacts(k), k)
+        rows = [rows, row]
+      end do
+      if (status%failed()) exit
+    end do
+    call leave_team(previous_team)
+    call solve_ended()
+
+  contains
+
+    !> The contacts, their gap objects and coarse grids at vertical approach dz_now.
+    subroutine patches_at(dz_now)
+      real(real64), intent(in) :: dz_now
+      integer :: j
+      call find_contacts(track, shift, yaw, ys, d, xs, dz_now, contacts)
+      if (size(contacts) == 0) then
+        call fail(status, exit_bad_input, where//'approach = '//rtoa(dz_now)//' mm: no interpenetration (the '// &
+                  'approach must be > 0)')
+        return
+      end if
+      if (allocated(grids)) deallocate (grids, planes)
+      allocate (grids(size(contacts)), planes(size(contacts)))
+      do j = 1, size(contacts)
+        call potential_area(contacts(j), dz_now, planes(j), grids(j))
+      end do
+    end subroutine patches_at
+
+    !> The plane of a contact with the limits of its potential contact area in
+    !> s (twice its interpenetration depth, not into a neighbour's interval) and
+    !> a grid over that area in the plane (x: rolling, y: s).
+    subroutine potential_area(c, dz_now, plane, grid)
+      type(contact_t), intent(in) :: c
+      real(real64), intent(in) :: dz_now
+      type(plane_gap_t), intent(out) :: plane
+      type(gap_t), intent(out) :: grid
+      integer :: klo, khi, mx, my, line, step, k, ridge
+      real(real64) :: level, h0, a, s_lo, s_hi, x_lo, x_hi, cell, s, cd
+      plane = plane_of(track, shift, yaw, w0, c)
+      cd = cos(c%delta)
+      klo = nint((c%y_lo - ys(1)) / search_step) + 1
+      khi = nint((c%y_hi - ys(1)) / search_step) + 1
+      ! in s: where the gap on the line through the contact point stays below
+      ! twice the interpenetration (steps of 0.05 mm), but not beyond the ridge
+      ! of d towards a neighbouring patch's interval
+      a = dz_now * cd
+      h0 = plane_gap_value(plane, 0.0_real64, 0.0_real64)
+      level = h0 + 2 * max(a - h0, 0.0_real64)
+      s_lo = -huge(1.0_real64)
+      s_hi = huge(1.0_real64)
+      ridge = 0
+      do k = klo - 1, 1, -1
+        if (d(k) - w0 < dz_now) then
+          s_lo = (ys(ridge) - c%y) / cd
+          exit
+        end if
+        if (ridge == 0) ridge = k
+        if (d(k) > d(ridge)) ridge = k
+      end do
+      ridge = 0
+      do k = khi + 1, size(d)
+        if (d(k) - w0 < dz_now) then
+          s_hi = (ys(ridge) - c%y) / cd
+          exit
+        end if
+        if (ridge == 0) ridge = k
+        if (d(k) > d(ridge)) ridge = k
+      end do
+      plane%s_lo = s_lo
+      plane%s_hi = s_hi
+      do step = 1, 4000
+        if (plane_gap_value(plane, 0.0_real64, -step * 0.05_real64) >= level) exit
+      end do
+      s_lo = max(s_lo, -step * 0.05_real64)
+      do step = 1, 4000
+        if (plane_gap_value(plane, 0.0_real64, step * 0.05_real64) >= level) exit
+      end do
+      s_hi = min(s_hi, step * 0.05_real64)
+      s_lo = s_lo - 0.1_real64 * (s_hi - s_lo) - 0.05_real64
+      s_hi = s_hi + 0.1_real64 * (s_hi - s_lo) + 0.05_real64
+      plane%s_lo = max(plane%s_lo, s_lo)
+      plane%s_hi = min(plane%s_hi, s_hi)
+      ! along x: where the gap stays below twice the interpenetration, on 9 lines across s
+      x_lo = 0
+      x_hi = 0
+      do line = 0, 8
+        s = s_lo + (s_hi - s_lo) * (line + 0.5_real64) / 9
+        ! the largest |xi| each way with the gap below level (steps of 0.05 mm, up to 100 mm)
+        do step = 1, 2000
+          if (plane_gap_value(plane, step * 0.05_real64, s) >= level) exit
+          x_hi = max(x_hi, step * 0.05_real64)
+        end do
+        do step = 1, 2000
+          if (plane_gap_value(plane, -step * 0.05_real64, s) >= level) exit
+          x_lo = min(x_lo, -step * 0.05_real64)
+        end do
+      end do
+      x_lo = x_lo - 0.1_real64 * (x_hi - x_lo) - 0.05_real64
+      x_hi = x_hi + 0.1_real64 * (x_hi - x_lo) + 0.05_real64
+      cell = min(max(x_hi - x_lo, s_hi - s_lo) / base_cells, min(x_hi - x_lo, s_hi - s_lo) / 16)
+      mx = ceiling((x_hi - x_lo) / cell)
+      my = ceiling((s_hi - s_lo) / cell)
+      call plane_gap_grid(plane, mx, my, cell, cell, (x_lo + x_hi) / 2 - (mx - 1) * cell / 2, &
+                          (s_lo + s_hi) / 2 - (my - 1) * cell / 2, grid)
+    end subroutine potential_area
+
+    !> The vertical approach at which sum(Fn cos(delta)) is the vertical force
+    !> (coarse normal solves, Fn ~ dz^(3/2) updates), and each patch's Fn.
+    subroutine approach_for_force(dz_first, dz_out)
+      real(real64), intent(in) :: dz_first
+      real(real64), intent(out) :: dz_out
+      real(real64) :: total, dz_grid, compliance
+      type(normal_result_t) :: nres
+      integer :: it, j, n_before
+      compliance = base%normal%compliance
+      if (compliance <= 0) compliance = compliance_from_g_nu(base%g, base%nu)
+      dz_out = dz_first
+      dz_grid = -1
+      n_before = -1
+      do it = 1, 60
+        ! new grids when the approach outgrows them or the set of patches changes
+        if (dz_out > dz_grid) then
+          call patches_at(1.3_real64 * dz_out)
+          if (status%failed()) return
+          dz_grid = 1.3_real64 * dz_out
+        end if
+        call find_contacts(track, shift, yaw, ys, d, xs, dz_out, contacts)
+        if (size(contacts) /= size(grids)) then
+          call patches_at(dz_out)
+          if (status%failed()) return
+          dz_grid = dz_out
+        end if
+        if (allocated(forces)) deallocate (forces)
+        allocate (forces(size(contacts)))
+        total = 0
+        do j = 1, size(contacts)
+          forces(j) = 0
+          if (.not. any(grids(j)%h < dz_out * cos(contacts(j)%delta))) cycle
+          call solve_normal(grids(j)%h, grids(j)%dx, grids(j)%dy, compliance, base%normal%options, nres, status, &
+                            approach=dz_out * cos(contacts(j)%delta))
+          if (status%failed()) then
+            status%message = where//'finding the approach: '//status%message
+            return
+          end if
+          forces(j) = nres%fn
+          total = total + nres%fn * cos(contacts(j)%delta)
+        end do
+        if (abs(total / setup%vertical_force - 1) < 1e-6_real64 .and. size(contacts) == n_before) exit
+        n_before = size(contacts)
+        if (total > 0) then
+          dz_out = dz_out * (setup%vertical_force / total)**(2.0_real64 / 3)
+        else
+          dz_out = 2 * dz_out
+        end if
+      end do
+      if (.not. (total > 0)) then
+        call fail(status, exit_numerical, where//'no approach found for vertical_force = '//rtoa(setup%vertical_force))
+        return
+      end if
+      ! the final patches and grids at this approach; the forces scaled to the vertical force
+      forces = forces * setup%vertical_force / total
+    end subroutine approach_for_force
+
+    subroutine fill_row(c, patch)
+      type(contact_t), intent(in) :: c
+      integer, intent(in) :: patch
+      real(real64) :: yp, zp
+      associate (r => row%result)
+        row%shift = setup%shifts(i)
+        row%yaw = setup%yaw
+        row%patch = patch
+        row%fn = r%fn
+        row%delta = sgn * c%delta
+        yp = c%y - track%rail_shift(1)
+        zp = c%z - track%rail_shift(2)
+        row%y_rail = cos(track%cant) * yp + sin(track%cant) * zp
+        if (setup%rail_mirror) row%y_rail = -row%y_rail
+        row%y_wheel = merge(-c%y_wheel, c%y_wheel, setup%wheel_mirror)
+        row%r_wheel = c%r_wheel
+        row%area = pi * r%c**2
+        row%length = r%bbox(2) - r%bbox(1)
+        row%width = r%bbox(4) - r%bbox(3)
+        row%c(1:3) = r%cn
+        row%c(4) = r%f(3, 3) / (r%g * r%c**4)
+        row%err = r%err
+        row%verdict = r%verdict
+        row%l = r%fastsim
+        row%spin = sin(row%delta) / c%r_wheel
+        row%approach = dz
+        row%y_track = sgn * c%y
+        row%z_track = c%z
+      end associate
+    end subroutine fill_row
+
+  end subroutine run_wheel_rail
+
+end module kcreep_wheel_rail_run
