@@ -63,17 +63,21 @@ int kcreep_set_extrapolation(kcreep_handle handle, int levels, int ratio);   /* 
  * independent: several threads, each with its own handle, may solve at
  * once. Results do not depend on the count. */
 int kcreep_set_threads(kcreep_handle handle, int threads);
-/* Error control: relative target for C11, C22 (C23: 3 times it; 0: none);
- * refine_grid != 0 lets kcreep choose the grids (ellipse) or split cells (mask);
- * estimate 0 (with target 0) skips the estimate of a given grid, which costs
- * one more solve (default 1): for loops whose grid was judged once. */
+/* Error control: relative target for C11, C22 (C23: 3 times it; 0: none;
+ * default 1e-3, as the program's); refine_grid != 0 (the default) lets kcreep
+ * choose the grids (an ellipse set with mx = my = 0), split the cells (mask)
+ * or resample the gap; an ellipse set with its grid is solved as given and
+ * judged. estimate 0 (with target 0) skips the estimate of a given grid,
+ * which costs one more solve (default 1): for loops whose grid was judged
+ * once, with kcreep_set_error_control(h, 0, 0, 0). */
 int kcreep_set_error_control(kcreep_handle handle, double target_error, int refine_grid, int estimate);
 /* The most patch cells of a level kcreep chooses under error control (0: the
  * defaults, a run-time budget; 1e3 to 1e7, checked when solving): raised for
  * reference work, e.g. target_error 1e-4 to reach "ok". */
 int kcreep_set_cell_budget(kcreep_handle handle, double cells);
 
-/* Geometry: an ellipse on an mx x my grid over [-a, a] x [-b, b], or a mask
+/* Geometry: an ellipse on an mx x my grid over [-a, a] x [-b, b] (mx = my = 0:
+ * kcreep chooses the grids or answers from its refined table), or a mask
  * inside[iy * mx + ix] != 0 (rows in increasing y) with cell sizes dx, dy and
  * the centre (x0, y0) of cell (0, 0). */
 int kcreep_set_ellipse(kcreep_handle handle, double semi_a, double semi_b, int mx, int my);

@@ -9,7 +9,7 @@ import os
 import re
 import sys
 
-ORDER = ["core", "geometry", "discretisation", "solve", "coefficients", "pipeline", "facade", "io", "api", "app"]
+ORDER = ["core", "geometry", "discretisation", "solve", "coefficients", "refine", "pipeline", "facade", "io", "api", "app"]
 
 
 def graph(root):

@@ -39,9 +39,9 @@ module kcreep
   use kcreep_equivalent_ellipse, only: equivalent_ellipse_t, equivalent_ellipses
   use kcreep_extrapolation, only: run_extrapolated, memory_need
   use kcreep_error_run, only: run_controlled, controlled_finest_patch
+  use kcreep_refine_estimate, only: default_target_error, nominal_ellipse_cells
   use kcreep_normal_influence, only: compliance_from_e_nu, combined_g_nu_from_e_nu
   use kcreep_table_run, only: run_table, table_meets_target
-  use kcreep_error_control, only: default_target_error
   use kcreep_wheel_rail_run, only: wheel_rail_setup_t, wheel_rail_row_t, run_wheel_rail, wheel_rail_columns, &
                                    check_wheel_rail_setup, max_wheel_rail_shifts
   implicit none
@@ -55,7 +55,7 @@ module kcreep
   public :: normal_problem_t, normal_options_t, gap_t, polynomial_gap_t, gap_from_array, gap_from_polynomial, auto_grid
   public :: problem_t, result_t, default_problem, solve_cache_t, status_t, patch_t, scheme_t, solver_options_t
   public :: ellipse_patch, mask_patch, n_load_cases, load_case_names, message_length
-  public :: exit_bad_input, exit_numerical, exit_io
+  public :: exit_bad_input, exit_numerical, exit_io, default_target_error, nominal_ellipse_cells
   public :: verdict_ok, verdict_degenerate, verdict_nonphysical, verdict_alpha_edge, verdict_coarse, &
             verdict_ill_conditioned, verdict_inaccurate, verdict_uncertain, verdict_words
   public :: kcreep_wheel_rail, wheel_rail_setup_t, wheel_rail_row_t, wheel_rail_columns, check_wheel_rail_setup, &

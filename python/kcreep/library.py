@@ -126,7 +126,7 @@ class Solver:
 
     def __init__(self, *, nu=0.25, g=1.0, scheme="backward", alpha=0.5, spin_shift=0.0,
                  method="auto", tolerance=0.0, extrapolate_levels=0, refine_ratio=2,
-                 target_error=0.0, refine_grid=False, estimate_error=True, cell_budget=0.0, spin_centre=(0.0, 0.0),
+                 target_error=1e-3, refine_grid=True, estimate_error=True, cell_budget=0.0, spin_centre=(0.0, 0.0),
                  bodies=None, threads=0):
         self._handle = _h(_lib.kcreep_new())
         self._check(_lib.kcreep_set_threads(self._handle, int(threads)))
@@ -155,8 +155,12 @@ class Solver:
     def set_material(self, *, g, nu):
         self._check(_lib.kcreep_set_material(self._handle, g, nu))
 
-    def solve_ellipse(self, semi_a, semi_b, mx=60, my=60, tractions=False):
-        self._check(_lib.kcreep_set_ellipse(self._handle, semi_a, semi_b, mx, my))
+    def solve_ellipse(self, semi_a, semi_b, mx=None, my=None, tractions=False):
+        """mx, my None: kcreep chooses the grids (or answers from its refined
+        table) as the program does; given: that grid, solved as given and judged."""
+        if (mx is None) != (my is None):
+            raise KcreepError(2, "solve_ellipse: give both mx and my, or neither (kcreep chooses the grids)")
+        self._check(_lib.kcreep_set_ellipse(self._handle, semi_a, semi_b, int(mx or 0), int(my or 0)))
         self._check(_lib.kcreep_solve(self._handle))
         return self._result(tractions)
 
@@ -269,19 +273,24 @@ class Solver:
         return r
 
 
-def solve_ellipse(semi_a, semi_b, *, nu=0.25, g=1.0, mx=60, my=60, scheme="backward", alpha=0.5,
-                  method="auto", tractions=False):
-    """Coefficients of the ellipse with semi-axes semi_a (along x, rolling) and semi_b."""
-    return Solver(nu=nu, g=g, scheme=scheme, alpha=alpha, method=method).solve_ellipse(
-        semi_a, semi_b, mx, my, tractions)
+def solve_ellipse(semi_a, semi_b, *, nu=0.25, g=1.0, mx=None, my=None, scheme="backward", alpha=0.5,
+                  method="auto", target_error=1e-3, cell_budget=0.0, tractions=False):
+    """Coefficients of the ellipse with semi-axes semi_a (along x, rolling) and
+    semi_b: without mx, my as the program's default run (kcreep chooses the
+    grids, or answers from its refined table, within target_error); with
+    them that grid as given, with its estimated error and verdict."""
+    return Solver(nu=nu, g=g, scheme=scheme, alpha=alpha, method=method, target_error=target_error,
+                  cell_budget=cell_budget).solve_ellipse(semi_a, semi_b, mx, my, tractions)
 
 
 def solve_mask(inside, dx, dy, *, x0=0.0, y0=0.0, nu=0.25, g=1.0, scheme="backward", alpha=0.5,
-               method="auto", tractions=False):
+               method="auto", target_error=1e-3, refine_grid=True, cell_budget=0.0, tractions=False):
     """Coefficients of the patch inside (2-D boolean array, rows in increasing y)
-    with cell sizes dx, dy and the centre (x0, y0) of cell [0, 0]."""
-    return Solver(nu=nu, g=g, scheme=scheme, alpha=alpha, method=method).solve_mask(
-        inside, dx, dy, x0, y0, tractions)
+    with cell sizes dx, dy and the centre (x0, y0) of cell [0, 0]: as the
+    program's default run, every cell split until the estimates meet
+    target_error (refine_grid=False: the grid as given, judged)."""
+    return Solver(nu=nu, g=g, scheme=scheme, alpha=alpha, method=method, target_error=target_error,
+                  refine_grid=refine_grid, cell_budget=cell_budget).solve_mask(inside, dx, dy, x0, y0, tractions)
 
 
 def wheel_rail(wheel_file, rail_file, shifts, *, g, nu, target_error=1e-3, threads=0, **placement):

@@ -1,6 +1,6 @@
 #!/usr/bin/env python3
 """How often kcreep's error estimate bounds the true error (the calibration behind
-kcreep_error_control), from the levels in docs/data/error_calibration_levels.dat.
+kcreep_refine_estimate), from the levels in docs/data/error_calibration_levels.dat.
 
     error_calibration.py [--reference-levels 56,64,96,128]
 

@@ -33,7 +33,7 @@ POWERS = {"c11": 2, "c22": 2, "c23": 3, "c33": 4, "c32": 3}
 
 
 def student_t95(dof):
-    """Two-sided 95 % Student factor, as kcreep_error_control.student_t95 (dof >= 1)."""
+    """Two-sided 95 % Student factor, as kcreep_refine_estimate.student_t95 (dof >= 1)."""
     table = (12.706, 4.303, 3.182, 2.776, 2.571, 2.447, 2.365, 2.306, 2.262, 2.228)
     return table[dof - 1] if dof <= len(table) else 1.96 + 2.5 / dof
 
@@ -42,7 +42,7 @@ def square_grid(ratio, cells, grid="near-square"):
     """(mx, my) with `cells` cells across the shorter axis: near-square cells,
     or with grid = 'box' on an ellipse long in y (ratio < 1) cells x cells,
     the cells long in y (as kcreep's levels for tight targets,
-    kcreep_error_control.ellipse_cells_long_in_y)."""
+    kcreep_refine_estimate.ellipse_cells_long_in_y)."""
     if ratio >= 1:
         return int(round(cells * ratio)), cells
     if grid == "box":

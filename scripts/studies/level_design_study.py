@@ -12,7 +12,7 @@ cells across; see scripts/studies/level_noise_study.py) and asks two questions:
    the fit f0 + K h + L h^2 + B harmonic4 through the stored levels from 256
    cells across *without* the design's own J (at least 6 levels left, the
    finest at least 1.3 J). Estimators:
-   - kcreep's (kcreep_error_control.ellipse_level_estimate): the finest 8
+   - kcreep's (kcreep_refine_estimate.ellipse_level_estimate): the finest 8
      levels, f0 + K h + B harmonic4, t95 x SE + 0.1 |f0 - f(finest)|;
    - a weighted fit with the h^2 term, f0 + K h + L h^2 + B harmonic4,
      weights N^2 (the noise falls as 1/N, section 6.1), t95 x SE only,

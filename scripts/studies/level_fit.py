@@ -42,7 +42,7 @@ def fit_levels(levels, ns, coeff, quadratic=False, weighted=False, extra=()):
 
 
 def kcreep_estimate(levels, ns, coeff, extra=()):
-    """kcreep's estimate (kcreep_error_control.ellipse_level_estimate): the
+    """kcreep's estimate (kcreep_refine_estimate.ellipse_level_estimate): the
     straight line through the last 8 of the levels ns, t95 x SE
     plus 0.1 |f0 - f(finest)|, the finest level's extra columns taken off it.
     Returns (f0, relative estimate)."""

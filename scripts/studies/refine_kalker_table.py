@@ -21,7 +21,7 @@ docs/data/kalker_refined.dat is then rebuilt from all levels present:
     u      max(t95 * standard error of f0, |f0 - f0'|) + 0.1 |f0 - f(finest)|,
            f0' the fit of f0 + K h + L h^2 + B harmonic4: the scatter of the
            levels (the staircase noise) or the model error, whichever is larger,
-           plus the order's uncertainty (kcreep_error_control order_margin); absolute units
+           plus the order's uncertainty (kcreep_refine_estimate order_margin); absolute units
 
 The fit uses the levels from --fit-from cells across up (the coarser ones
 carry more staircase noise). Cases with fewer than 5 such levels are left
@@ -139,7 +139,7 @@ def lstsq_columns(columns, fs):
 
 
 #: the share of the extrapolation f0 - f(finest) counted as the order's
-#: uncertainty (as kcreep_error_control order_margin)
+#: uncertainty (as kcreep_refine_estimate order_margin)
 ORDER_MARGIN = 0.1
 
 

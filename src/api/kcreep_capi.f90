@@ -15,7 +15,7 @@ module kcreep_capi
   use kcreep_strings, only: itoa, rtoa
   use kcreep_limits, only: modulus_in_range
   use kcreep, only: kcreep_solve, kcreep_version_number, max_threads, problem_t, result_t, default_problem, solve_cache_t, &
-                    ellipse_patch, mask_patch, n_load_cases, gap_from_array, &
+                    ellipse_patch, mask_patch, n_load_cases, gap_from_array, nominal_ellipse_cells, &
                     creep_request_t, creep_point_t, creep_map_t, creep_curve, flexibility_weighted, &
                     flexibility_separate, compliance_from_e_nu, combined_g_nu_from_e_nu, &
                     kcreep_wheel_rail, wheel_rail_setup_t, wheel_rail_row_t, wheel_rail_columns, &
@@ -33,6 +33,11 @@ module kcreep_capi
     type(result_t) :: result
     type(solve_cache_t) :: cache
     logical :: solved = .false.
+    !> kcreep_set_error_control's refine_grid (default on, as the program's)
+    logical :: refine_grid = .true.
+    !> the ellipse was set with its grid (mx, my > 0): solved as given, as the
+    !> namelist's ellipse with mx, my
+    logical :: ellipse_grid_given = .false.
     type(status_t) :: last
     ! kcreep_wheel_rail: profiles and track (kcreep_set_profiles, kcreep_set_track), the last table
     type(wheel_rail_setup_t) :: wheel_rail
@@ -268,7 +273,7 @@ contains
       call fail(h%last, exit_bad_input, 'kcreep_set_error_control: target_error must be in [0, 1)')
     else
       h%problem%target_error = target_error
-      h%problem%refine_grid = refine_grid /= 0
+      h%refine_grid = refine_grid /= 0
       h%problem%estimate_error = estimate /= 0
     end if
     c_set_error_control = finish(h)
@@ -300,7 +305,10 @@ contains
     values = h%result%err
   end function c_get_relative_error
 
-  !> The ellipse of semi-axes a (along x, rolling) and b on an mx x my grid over [-a, a] x [-b, b].
+  !> The ellipse of semi-axes a (along x, rolling) and b on an mx x my grid
+  !> over [-a, a] x [-b, b], solved as given; mx = my = 0: kcreep chooses the
+  !> grids (or answers from its refined table), as the program does for an
+  !> ellipse without mx, my.
   integer(c_int) function c_set_ellipse(handle, semi_a, semi_b, mx, my) bind(c, name='kcreep_set_ellipse')
     type(c_ptr), value :: handle
     real(c_double), value :: semi_a, semi_b
@@ -310,10 +318,18 @@ contains
     if (c_set_ellipse /= status_ok) return
     if (.not. (semi_a > 0 .and. semi_b > 0 .and. semi_a < huge(1.0_wp) .and. semi_b < huge(1.0_wp))) then
       call fail(h%last, exit_bad_input, 'kcreep_set_ellipse: semi_a, semi_b must be finite and > 0')
-    else if (mx < 1 .or. my < 1) then
-      call fail(h%last, exit_bad_input, 'kcreep_set_ellipse: mx, my must be >= 1')
+    else if (.not. ((mx >= 1 .and. my >= 1) .or. (mx == 0 .and. my == 0))) then
+      call fail(h%last, exit_bad_input, 'kcreep_set_ellipse: mx, my must be >= 1 (the grid as given) '// &
+                'or both 0 (kcreep chooses the grids)')
+    else if (mx == 0) then
+      call ellipse_patch(real(semi_a, wp), real(semi_b, wp), nominal_ellipse_cells, nominal_ellipse_cells, &
+                         h%problem%patch, h%last)
+      h%ellipse_grid_given = .false.
+      h%problem%normal%active = .false.
     else
       call ellipse_patch(real(semi_a, wp), real(semi_b, wp), int(mx), int(my), h%problem%patch, h%last)
+      h%ellipse_grid_given = .true.
+      h%problem%normal%active = .false.
     end if
     c_set_ellipse = finish(h)
   end function c_set_ellipse
@@ -342,6 +358,8 @@ contains
       call c_f_pointer(inside, cells, [mx, my])
       call mask_patch(cells /= 0, real(dx, wp), real(dy, wp), real(x0, wp), real(y0, wp), 'kcreep_set_mask', &
                       h%problem%patch, h%last)
+      h%ellipse_grid_given = .false.
+      h%problem%normal%active = .false.   ! a gap set before is replaced by this patch
     end if
     c_set_mask = finish(h)
   end function c_set_mask
@@ -354,6 +372,8 @@ contains
     c_solve = begin(handle, h)
     if (c_solve /= status_ok) return
     h%solved = .false.
+    ! kcreep chooses the grids unless turned off, or an ellipse's grid was given
+    h%problem%refine_grid = h%refine_grid .and. (h%problem%normal%active .or. .not. h%ellipse_grid_given)
     call kcreep_solve(h%problem, h%result, h%last, h%cache)
     h%solved = .not. h%last%failed()
     c_solve = finish(h)

@@ -11,7 +11,7 @@ module kcreep_namelist
   use kcreep_status, only: status_t, fail, exit_bad_input
   use kcreep_strings, only: rtoa, itoa
   use kcreep, only: patch_t, ellipse_patch, mask_patch, problem_t, collocation_aspect_limit
-  use kcreep_error_control, only: default_target_error
+  use kcreep_refine_estimate, only: default_target_error
   use kcreep_mask_file, only: read_mask_file, parse_mask_rows
   use kcreep_contact_reader, only: read_contact_case, combined_material
   use kcreep_file_checks, only: read_input_file

@@ -38,7 +38,7 @@ module kcreep_nml_config
     type(scheme_t) :: scheme
     logical :: requested(n_load_cases) = .true.
     logical :: extrapolate = .false.            !< Richardson in the mesh size (mesh_extrapolation)
-    real(real64) :: target_error = 0            !< &solver target_error (kcreep_error_control)
+    real(real64) :: target_error = 0            !< &solver target_error (kcreep_refine_estimate)
     real(real64) :: cell_budget = 0             !< &solver cell_budget (problem_t%cell_budget; 0: the defaults)
     logical :: refine_grid = .false.            !< kcreep chooses the grids (ellipse without mx, my; mask)
     integer :: extrapolate_levels = 3, refine_ratio = 2

@@ -5,11 +5,12 @@ module kcreep_nml_patch
   use kcreep_strings, only: itoa, rtoa, lower, resolve_path, folder_of
   use kcreep_limits, only: check_grid_size, length_in_range, offset_in_range
   use kcreep_nml_config, only: config_t, input_where, unset, unset_int, max_inline_rows, max_row_length
+  use kcreep, only: nominal_ellipse_cells
   implicit none
   private
   public :: patch_variables, patch_group_t, read_patch_group, apply_patch_group
 
-  integer, parameter :: default_cells = 60   !< an ellipse's cells across when mx, my are left out
+  integer, parameter :: default_cells = nominal_ellipse_cells   !< an ellipse's cells across when mx, my are left out
 
   !> The group as written (unset: not given).
   type :: patch_group_t

@@ -5,7 +5,7 @@ module kcreep_nml_solver
   use kcreep_strings, only: itoa, rtoa, lower
   use kcreep_limits, only: offset_in_range
   use kcreep, only: solver_options_t, validate_solver_options, refine_modes, load_case_names, n_load_cases
-  use kcreep_error_control, only: cell_budget_allowed, cell_budget_range
+  use kcreep_refine_estimate, only: cell_budget_allowed, cell_budget_range
   use kcreep_table_interpolation, only: table_ratio_range
   use kcreep_contact_compare, only: contact_spin_shift
   use kcreep_nml_config, only: config_t, input_where, unset, unset_int

@@ -90,7 +90,7 @@ contains
         r%ellipse(k)%flex / r%fastsim - 1
       line = line//trim(buf)
     end do
-    ! error estimates of c11 c22 c23 (kcreep_error_control), then the centroid
+    ! error estimates of c11 c22 c23 (kcreep_refine_estimate), then the centroid
     write (buf, '(3(1x, es10.3e3))') r%err
     line = line//trim(buf)
     write (buf, '(2(1x, es23.15e3))') r%centroid

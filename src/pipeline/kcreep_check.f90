@@ -10,7 +10,7 @@ module kcreep_check
   use kcreep_solver_options, only: validate_solver_options
   use kcreep_dense, only: refine_modes
   use kcreep_problem, only: problem_t
-  use kcreep_error_control, only: cell_budget_allowed, cell_budget_range
+  use kcreep_refine_estimate, only: cell_budget_allowed, cell_budget_range
   implicit none
   private
   public :: check_problem, collocation_aspect_limit

@@ -1,5 +1,5 @@
 !> Runs under error control (&solver target_error): the levels of
-!> kcreep_error_control, the extrapolated coefficients and their error
+!> kcreep_refine_estimate, the extrapolated coefficients and their error
 !> estimates, or the estimate of a single given grid.
 !>
 !> target > 0 on an ellipse without a given grid: kcreep chooses near-square
@@ -12,12 +12,14 @@
 !>   staircase's four-fold harmonic, ellipse_level_estimate) through the finest
 !>   8 levels, as long as the next level stays within the cell budget of the
 !>   target (level_cell_budget).
-!> target > 0 on a mask: every cell is split into k x k subcells, k = 1, 2, 3, 4
-!>   (the staircase is the patch the user gave; it is not smoothed).
+!> target > 0 on a mask: every cell is split into k x k subcells, k = 1, 2,
+!>   3, ... while the estimates miss the target and the split patch keeps to
+!>   the cell budget (run_mask_levels; the staircase is the patch the user
+!>   gave, it is not smoothed).
 !> a given grid (ellipse with mx, my; CONTACT's grid) or target = 0: the grid
 !>   as given, and as estimate the difference to the grid with twice the cell
 !>   size (ellipse) or half the cell size (mask, CONTACT), see
-!>   kcreep_error_control single_grid_estimate, split_grid_estimate.
+!>   kcreep_refine_estimate single_grid_estimate, split_grid_estimate.
 module kcreep_error_run
   use, intrinsic :: iso_fortran_env, only: real64
   use, intrinsic :: ieee_arithmetic, only: ieee_value, ieee_quiet_nan, ieee_is_nan
@@ -30,25 +32,15 @@ module kcreep_error_run
   use kcreep_extrapolation, only: refined_patch
   use kcreep_verdict, only: message_length
   use kcreep_fastsim, only: fastsim_flexibilities
-  use kcreep_error_control
+  use kcreep_refine_estimate
+  use kcreep_refine_constants
   use kcreep_staircase_normalisation, only: ellipse_normalised, staircase_harmonic4
   use kcreep_gap_levels, only: run_gap_patch
   use kcreep_grid_transfer, only: transferred_traction
   implicit none
   private
-  public :: run_controlled, controlled_finest_patch, max_level_cells, base_levels, mask_factors
+  public :: run_controlled, controlled_finest_patch
 
-  !> Base levels on an ellipse (cells across the shorter axis).
-  integer, parameter :: base_levels(5) = [56, 64, 72, 84, 96]
-  !> The base levels of a long ellipse are scaled down to its cell budget, to no fewer than this.
-  integer, parameter :: min_base_cells = 32
-  !> The share of an ellipse's bounding grid inside it (pi/4), for its patch cells.
-  real(real64), parameter :: ellipse_fill = 0.79_real64
-  !> Patch cells of the finest split of a mask or of a single grid's
-  !> auxiliary grid (the ellipse levels use level_cell_budget).
-  integer, parameter :: max_level_cells = 20000
-  !> Split factors of a mask.
-  integer, parameter :: mask_factors(4) = [1, 2, 3, 4]
   !> The f entries of C11, C22, C23.
   integer, parameter :: entry_of(2, 3) = reshape([1, 1, 2, 2, 2, 3], [2, 3])
 
@@ -238,48 +230,66 @@ contains
         call ellipse_patch(a, b, mx, my, finest, status)
       end associate
     else
-      used = mask_splits_used(problem%patch%n, cell_budget_or(problem, real(max_level_cells, real64)))
-      if (mask_factors(used) > 1) call refined_patch(problem%patch, mask_factors(used), finest, status)
+      used = finest_split(problem%patch%n, cell_budget_or(problem, level_cell_budget(problem%target_error)))
+      call refined_patch(problem%patch, used, finest, status)
     end if
   end subroutine controlled_finest_patch
 
-  !> How many of mask_factors a mask of n cells is split by: the first three
-  !> always, a finer one while the split patch keeps to the budget.
-  pure integer function mask_splits_used(n, budget) result(used)
+  !> The finest split a patch of n cells may get: the largest k with n k^2
+  !> within the budget, at least split_min_levels (the fewest the fit needs).
+  pure integer function finest_split(n, budget) result(k)
     integer, intent(in) :: n
     real(real64), intent(in) :: budget
-    used = 3
-    do while (used < size(mask_factors))
-      if (n * mask_factors(used + 1)**2 > budget) exit
-      used = used + 1
-    end do
-  end function mask_splits_used
+    k = max(split_min_levels, floor(sqrt(budget / max(n, 1))))
+  end function finest_split
 
-  !> Mask levels: every cell split into k x k subcells.
+  !> Levels of a split patch: every cell split into k x k subcells, k = 1,
+  !> 2, 3, ... (the staircase is the patch the user gave; it is not
+  !> smoothed), each fit (split_level_estimate) through the finest
+  !> split_fit_width levels from split_min_levels on, until the estimates
+  !> meet the target or the next split would exceed the cell budget.
   subroutine run_mask_levels(problem, result, status)
     type(problem_t), intent(in) :: problem
     type(result_t), intent(out) :: result
     type(status_t), intent(inout) :: status
     type(problem_t) :: level_problem
-    real(real64), allocatable :: fnorm(:, :, :)
+    real(real64), allocatable :: fnorm(:, :, :), guess(:, :)
     character(len=message_length), allocatable :: warnings(:)
-    integer :: k, used
-    real(real64) :: t(4)
+    character(len=message_length) :: line
+    integer :: k, last, first, j
+    real(real64) :: t(4), budget
 
     allocate (fnorm(3, 3, 0), warnings(0))
     t = 0
     level_problem = problem
     call level_tolerance(level_problem)
-    used = mask_splits_used(problem%patch%n, cell_budget_or(problem, real(max_level_cells, real64)))
-    do k = 1, used
-      if (mask_factors(k) > 1) then
-        call refined_patch(problem%patch, mask_factors(k), level_problem%patch, status)
+    budget = cell_budget_or(problem, level_cell_budget(problem%target_error))
+    ! the fit amplifies the levels' solver error: a tighter residual (split_tolerance_share)
+    if (.not. problem%solve%tolerance_given) level_problem%solve%tolerance = &
+      min(level_problem%solve%tolerance, split_tolerance_share * problem%target_error)
+    last = finest_split(problem%patch%n, budget)
+    do k = 1, last
+      if (k > 1) then
+        call refined_patch(problem%patch, k, level_problem%patch, status)
         if (status%failed()) return
+        ! the last level's tractions carried over: GMRES starts closer
+        guess = transferred_traction(result%patch, result%traction, level_problem%patch)
       end if
-      call run_level(level_problem, mask_factors(k), result, fnorm, warnings, t, status)
+      call run_level(level_problem, k, result, fnorm, warnings, t, status, guess)
       if (status%failed()) return
+      if (k >= split_min_levels) then
+        first = max(1, k - split_fit_width + 1)
+        call fit_levels([(1.0_real64 / j, j = first, k)], fnorm(:, :, first:k), result, split=.true.)
+        if (within_target(result%err, coefficient_targets(problem%target_error))) exit
+        if (k == last) then
+          line = 'error control: splitting every cell in '//itoa(k + 1)//' x '//itoa(k + 1)//' would exceed '// &
+                 'the budget of '//itoa(nint(budget))//' patch cells at target_error '// &
+                 rtoa(problem%target_error)//', stopped at '//itoa(k)//' x '//itoa(k)// &
+                 ' (&solver cell_budget raises it)'
+          warnings = [warnings, line]
+        end if
+      end if
     end do
-    call fit_levels(1.0_real64 / mask_factors(1:used), fnorm, result, smooth=.true.)
     call finish_result(result, t)
     result%warnings = warnings
   end subroutine run_mask_levels
@@ -313,10 +323,10 @@ contains
   end subroutine run_level
 
   !> The fit of every f entry: the result gets the limits, err those of C11, C22, C23.
-  subroutine fit_levels(h, fnorm, result, smooth, shape)
+  subroutine fit_levels(h, fnorm, result, split, shape)
     real(real64), intent(in) :: h(:), fnorm(:, :, :)
     type(result_t), intent(inout) :: result
-    logical, intent(in), optional :: smooth   !< levels without staircase noise (mask splits)
+    logical, intent(in), optional :: split   !< levels of a split patch (split_level_estimate)
     real(real64), intent(in), optional :: shape(:)   !< an ellipse's staircase harmonic per level (ellipse_level_estimate)
     real(real64) :: limit, rel
     integer :: i, j
@@ -327,8 +337,8 @@ contains
           result%f(i, j) = ieee_value(1.0_real64, ieee_quiet_nan)
           cycle
         end if
-        if (present(smooth)) then
-          call smooth_level_estimate(h, fnorm(i, j, :), limit, rel)
+        if (present(split)) then
+          call split_level_estimate(h, fnorm(i, j, :), limit, rel)
         else if (present(shape)) then
           call ellipse_level_estimate(h, fnorm(i, j, :), shape, limit, rel)
         else

@@ -15,6 +15,9 @@
 !>             one level coarser).
 !>   2 levels: p = 1 (the measured order); error estimate |f0 - f_finest|,
 !>             the size of the correction itself (no third level to judge it).
+!> The rows reported (f, C11 C22 C23) are the finest level's; their estimated
+!> error err is |C - C0| + the limit's error, relative to C0, and the verdict
+!> is 'uncertain' when it misses target_error, as on every other path.
 module kcreep_extrapolation
   use, intrinsic :: iso_fortran_env, only: real64, int64
   use kcreep_status, only: status_t, fail, exit_bad_input
@@ -22,7 +25,7 @@ module kcreep_extrapolation
   use kcreep_patch, only: patch_t, ellipse_patch, mask_patch, place_like
   use kcreep_linear_solve, only: solve_memory_plan
   use kcreep_verdict, only: message_length
-  use kcreep_problem, only: problem_t, result_t, append_prefixed
+  use kcreep_problem, only: problem_t, result_t, append_prefixed, add_uncertain
   use kcreep_run, only: run_case
   implicit none
   private
@@ -202,7 +205,12 @@ contains
         warnings = [warnings, line]
       end if
     end do
+    ! the rows reported are the finest level's: their own error is their
+    ! distance to the limit plus the limit's uncertainty (before: 0, and 'ok')
+    result%err = (abs(result%cn - result%ext) + result%ext_error) / abs(result%ext)
     result%warnings = warnings
+    call add_uncertain(result, problem%target_error, 'the finest level''s estimated relative errors', &
+                       'leave extrapolate out (error control)')
   end subroutine run_extrapolated
 
 end module kcreep_extrapolation

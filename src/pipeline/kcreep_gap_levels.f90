@@ -20,7 +20,7 @@
 !> f_ij follows it (measured on a Hertzian gap: this removes 95 % of the
 !> scatter about the first-order line, docs/accuracy.md). Each C_ij and the
 !> area are fitted by f0 + K h (order fixed at 1) and estimated as in
-!> kcreep_error_control level_estimate; the result has c = sqrt(A0 / pi) of
+!> kcreep_refine_estimate level_estimate; the result has c = sqrt(A0 / pi) of
 !> the fitted area A0 and f_ij = G c^p C_ij. err(1:3) are the estimates of
 !> C11, C22, C23; the f_ij carry in addition p/2 times the area's relative
 !> error (the contact area itself converges slowly: about 1 % at 50 cells
@@ -45,24 +45,13 @@ module kcreep_gap_levels
   use kcreep_run, only: run_case, solve_cache_t
   use kcreep_verdict, only: message_length
   use kcreep_fastsim, only: fastsim_flexibilities
-  use kcreep_error_control, only: level_estimate, within_target, coefficient_targets, min_estimate_cells
+  use kcreep_refine_constants
+  use kcreep_refine_estimate, only: level_estimate, within_target, coefficient_targets, min_estimate_cells, &
+                                    level_cell_budget
   implicit none
   private
-  public :: run_gap_patch, gap_single_estimate, gap_base_levels, max_gap_level_cells, gap_level_margin
+  public :: run_gap_patch, gap_single_estimate
 
-  !> At most this many doublings of the levels (56 -> 112 -> 224 across).
-  integer, parameter :: max_refinements = 2
-  !> Levels: cells across the contact area's hydraulic diameter (contact_diameter).
-  integer, parameter :: gap_base_levels(8) = [24, 28, 32, 36, 40, 44, 48, 56]
-  !> The finest level's contact area has at most about this many cells (a
-  !> run-time budget, as for ellipses: a circle at 112 across is 9,900 cells,
-  !> at 224 across 39,000; the two lobes of input/wheel_rail.nml at 56 across
-  !> 6,000, at 112 across 24,000).
-  integer, parameter :: max_gap_level_cells = 20000
-  !> The level grids cover the contact area's bounding box on the given grid
-  !> widened by this fraction of its size on every side (and by two cells of
-  !> the given grid): the contact area moves by less than a cell between levels.
-  real(real64), parameter :: gap_level_margin = 0.2_real64
   !> Power of c in f_ij = G c^p C_ij.
   integer, parameter :: c_power(3, 3) = reshape([2, 2, 3, 2, 2, 3, 3, 3, 4], [3, 3])
   real(real64), parameter :: pi = acos(-1.0_real64)
@@ -113,7 +102,6 @@ contains
     type(gap_t) :: coarse
     character(len=message_length) :: line
     real(real64) :: across, box(4), h
-    real(real64), parameter :: factors(2) = [1.5_real64, 2.0_real64]
     integer :: i, k
 
     call solve_gap(problem, problem%normal%gap, result, status, cache)
@@ -133,7 +121,7 @@ contains
       box = level_box(gap, result%bbox)
     end associate
     do k = 1, 2
-      call level_gap(problem, box, factors(k) * h, coarse, status)
+      call level_gap(problem, box, gap_single_sizes(k) * h, coarse, status)
       if (status%failed()) return
       call solve_gap(problem, coarse, aux(k), status)
       if (status%failed()) return
@@ -155,7 +143,7 @@ contains
   !> grid alone bounded 88, this rule 97; docs/accuracy.md).
   pure real(real64) function gap_single_estimate(f_h, f_15h, f_2h) result(rel_error)
     real(real64), intent(in) :: f_h, f_15h, f_2h
-    rel_error = 3 * max(abs(f_h - f_2h), 2 * abs(f_h - f_15h)) / abs(f_h)
+    rel_error = gap_single_factor * max(abs(f_h - f_2h), 2 * abs(f_h - f_15h)) / abs(f_h)
   end function gap_single_estimate
 
   !> Levels of finer geometry, refined until the estimates meet the target.
@@ -182,7 +170,7 @@ contains
 
     allocate (done(0), cnorm(3, 3, 0), area(0), warnings(0))
     t = 0
-    budget = cell_budget_or(problem, real(max_gap_level_cells, real64))
+    budget = cell_budget_or(problem, level_cell_budget(problem%target_error))
     level_problem = problem
     call level_tolerance(level_problem)
     do refinement = 0, max_refinements

@@ -13,7 +13,7 @@ module kcreep_problem
   use kcreep_solver_options, only: solver_options_t
   use kcreep_verdict, only: verdict_ok, verdict_uncertain, message_length
   use kcreep_strings, only: rtoa
-  use kcreep_error_control, only: uncertain_flag, coefficient_targets, level_solver_tolerance
+  use kcreep_refine_estimate, only: uncertain_flag, coefficient_targets, level_solver_tolerance, default_target_error
   use kcreep_gap, only: gap_t, polynomial_gap_t
   use kcreep_wheel_rail_geometry, only: plane_gap_t
   use kcreep_normal_solve, only: normal_options_t
@@ -53,14 +53,17 @@ module kcreep_problem
     logical :: extrapolate = .false.            !< Richardson extrapolation in the mesh size
     integer :: extrapolate_levels = 3, refine_ratio = 2
     !> Relative error aimed at for C11 and C22 (C23: 3 times it); 0: no target,
-    !> the grid as given (an error estimate is still made). kcreep_error_control.
-    real(real64) :: target_error = 0
-    !> kcreep may choose the grids (ellipse: near-square cells) or split the
-    !> cells (mask) to meet target_error; false: the grid is solved as given.
-    logical :: refine_grid = .false.
+    !> the grid as given (an error estimate is still made). The same default
+    !> (default_target_error, 1e-3) for the program, the library, C and Python.
+    real(real64) :: target_error = default_target_error
+    !> kcreep may choose the grids (ellipse: near-square cells), split the
+    !> cells (mask) or resample the gap to meet target_error; false: the grid
+    !> is solved as given (and judged). The C API and Python turn it off for
+    !> an ellipse whose grid the caller gives, as the namelist does.
+    logical :: refine_grid = .true.
     !> The most patch cells of a level kcreep chooses under error control
     !> (ellipse levels, mask splits, gap levels); 0: the defaults, a run-time
-    !> budget (kcreep_error_control level_cell_budget; masks and gaps 20,000).
+    !> budget (kcreep_refine_estimate level_cell_budget; masks and gaps 20,000).
     !> Raised for reference work, where minutes per case are acceptable.
     real(real64) :: cell_budget = 0
     !> With target_error = 0: still estimate the error of the given grid (one
@@ -147,9 +150,10 @@ contains
   pure function default_problem() result(problem)
     type(problem_t) :: problem
     problem%scheme%name = 'backward'
-    ! the library takes the grid it is given (target 0: estimate made, never
-    ! 'uncertain'); the command line's namelist default is default_target_error
-    problem%target_error = 0
+    ! the same error control as the command line: target_error 1e-3, kcreep
+    ! chooses the grids (refine_grid)
+    problem%target_error = default_target_error
+    problem%refine_grid = .true.
     problem%solve%method = 'auto'
     problem%refine = 'auto'
   end function default_problem

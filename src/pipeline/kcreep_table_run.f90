@@ -21,7 +21,7 @@ module kcreep_table_run
   use kcreep_verdict, only: verdict_ok
   use kcreep_table_interpolation, only: table_coefficients
   use kcreep_problem, only: problem_t, result_t, add_uncertain
-  use kcreep_error_control, only: coefficient_targets, within_target
+  use kcreep_refine_estimate, only: coefficient_targets, within_target
   implicit none
   private
   public :: run_table, table_matrix, table_meets_target

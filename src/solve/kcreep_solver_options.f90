@@ -13,7 +13,7 @@ module kcreep_solver_options
     character(len=:), allocatable :: method      !< 'dense', 'iterative' or 'auto'
     real(real64) :: tolerance = 1e-11_real64     !< iterative: relative residual ||b - A x|| / ||b||
     !> The caller set tolerance. When not, the levels of error control stop
-    !> GMRES at a residual chosen from the target (kcreep_error_control
+    !> GMRES at a residual chosen from the target (kcreep_refine_estimate
     !> level_solver_tolerance) and the verdict judges the residual against it.
     logical :: tolerance_given = .false.
     integer :: max_iterations = 1000             !< iterative: total GMRES iterations per load case

@@ -84,8 +84,11 @@ int main(int argc, char **argv) {
   } else if (strcmp(mode, "mask") == 0) {
     int *inside = circle_mask(40);
     must(h, kcreep_solve_mask(h, 40, 40, inside, 0.05, 0.05, -0.975, -0.975), "kcreep_solve_mask");
-    print_result(h, "mask");
-    /* the in-loop case: same grid, new mask -> the operator table is reused */
+    print_result(h, "mask");   /* the defaults: target 1e-3, the cells split */
+    /* the in-loop case: grids solved as given and not judged (error control off);
+       same grid, new mask -> the operator table is reused */
+    must(h, kcreep_set_error_control(h, 0.0, 0, 0), "kcreep_set_error_control");
+    must(h, kcreep_solve_mask(h, 40, 40, inside, 0.05, 0.05, -0.975, -0.975), "kcreep_solve_mask as given");
     inside[0 * 40 + 20] = 0;
     must(h, kcreep_solve_mask(h, 40, 40, inside, 0.05, 0.05, -0.975, -0.975), "kcreep_solve_mask again");
     int reused = -1;

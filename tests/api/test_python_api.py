@@ -24,7 +24,10 @@ os.environ.pop("KCREEP_LIBRARY", None)
 r = kcreep.solve_ellipse(1.0, 1.0, nu=0.25, g=1.0, mx=30, my=30, scheme="backward")
 kc.check(isinstance(r.f, np.ndarray) and r.f.shape == (3, 3), "Result.f is a 3 x 3 numpy array")
 kc.check(r.c.shape == (3,) and np.allclose(r.c, [r.f[0, 0], r.f[1, 1], r.f[1, 2]]), "c = (C11, C22, C23), c = 1, g = 1")
-kc.check(r.verdict == "ok" and r.verdict_flags == 0, f"verdict ok ({r.verdict})")
+# a grid given as is, judged against the default target 1e-3: 30 cells across is
+# about 0.5-1 % off (docs/accuracy.md), so its estimate misses the target and the
+# verdict says so (before, the library's target was 0 and this said 'ok')
+kc.check(r.verdict == "uncertain" and np.all(r.err > 1e-3), f"given 30 x 30 grid: verdict {r.verdict}, err {r.err}")
 kc.check(kcreep.version().count(".") == 2, f"version {kcreep.version()}")
 
 # the same patch through the command line: the same numbers
@@ -36,14 +39,14 @@ kc.check(np.max(np.abs(cli - r.f)) <= 1e-14 * np.max(np.abs(cli)), "Python f == 
 y, x = np.mgrid[0:24, 0:36]
 inside = ((x - 17.5) / 18) ** 2 + ((y - 11.5) / 12) ** 2 <= 1
 m = kcreep.solve_mask(inside, 1.0 / 12, 1.0 / 12, x0=-1.5 + 1 / 24, y0=-1 + 1 / 24, nu=0.3, g=2.0,
-                      scheme="backward", tractions=True)
+                      scheme="backward", refine_grid=False, tractions=True)
 kc.check(m.n == inside.sum(), f"cells in the patch: {m.n}")
 kc.check(m.traction.shape == (m.n, 2, 3), "traction: n x (px, py) x (xi, eta, phi)")
 # f11 is minus the sum of px over the cells times the cell area (the table's definition)
 kc.close(-m.traction[:, 0, 0].sum() * (1 / 12) ** 2, m.f[0, 0], 1e-12, "f11 from the tractions")
 kc.check(m.ix.min() >= 1 and m.ix.max() <= 36 and m.iy.max() <= 24, "cell indices 1-based on the grid")
 transposed = kcreep.solve_mask(inside.T, 1.0 / 12, 1.0 / 12, x0=-1 + 1 / 24, y0=-1.5 + 1 / 24, nu=0.3, g=2.0,
-                               scheme="backward")
+                               scheme="backward", refine_grid=False)
 kc.check(abs(transposed.f[0, 0] - m.f[0, 0]) > 1e-3 * m.f[0, 0], "rows are y: the transposed patch differs")
 
 # errors carry kcreep's message and status
@@ -59,7 +62,7 @@ for call, words in ((lambda: kcreep.solve_ellipse(1, 1, nu=0.7), ["nu", "0.5"]),
         kc.check(e.code == 2 and all(w in str(e) for w in words), f"KcreepError {e.code}: {e}")
 
 # one Solver, the in-loop case: new masks on the same grid reuse the operator table
-s = kcreep.Solver(nu=0.25, g=1.0, scheme="backward")
+s = kcreep.Solver(nu=0.25, g=1.0, scheme="backward", refine_grid=False)
 first = s.solve_mask(inside, 1.0 / 12, 1.0 / 12)
 inside[0, 17] = False
 second = s.solve_mask(inside, 1.0 / 12, 1.0 / 12)
@@ -68,7 +71,7 @@ kc.check(s.reuse_count == 1 and second.n == first.n - 1, f"operator table reused
 # tolerance as a cold one: coefficients agree to the solver's accuracy (the
 # iterative path agrees with dense LU to ~1e-10 at tolerance 1e-11, see
 # test_solver_paths; 1e-9 leaves room)
-iterative = dict(nu=0.25, g=1.0, scheme="backward", method="iterative")
+iterative = dict(nu=0.25, g=1.0, scheme="backward", method="iterative", refine_grid=False)
 warm_solver = kcreep.Solver(**iterative)
 warm_solver.solve_mask(~inside[::-1], 1.0 / 12, 1.0 / 12)      # another patch on the same grid first
 warm = warm_solver.solve_mask(inside, 1.0 / 12, 1.0 / 12)
@@ -125,7 +128,7 @@ except kcreep.KcreepError as e:
 gy, gx = np.mgrid[0:64, 0:64]
 xs, ys = -1.6 + (gx + 0.5) * 0.05, -1.6 + (gy + 0.5) * 0.05
 quadratic = xs ** 2 / (2 * 10.0) + ys ** 2 / (2 * 10.0)
-hs = kcreep.Solver(nu=0.28, g=82000.0, scheme="backward")
+hs = kcreep.Solver(nu=0.28, g=82000.0, scheme="backward", refine_grid=False)
 rg = hs.solve_gap(quadratic, 0.05, 0.05, -1.6 + 0.025, -1.6 + 0.025, normal_force=5000.0)
 kc.close(rg.fn, 5000.0, 1e-8, "normal_force prescribed through Python")
 # Hertz: a = (3 F R / (4 E*))^(1/3), R = 10 the relative radius of the gap, E* = g / (1 - nu)
@@ -146,9 +149,9 @@ except kcreep.KcreepError as e:
 
 # the spin centre: about (xs, ys) the phi column is f(:, 3) - xs f(:, 2) + ys f(:, 1) (the
 # rigid slip xi - phi (y - ys), eta + phi (x - xs)); the same discrete operator, so to round-off
-about = kcreep.Solver(nu=0.25, spin_centre=(0.3, -0.2)).solve_mask(inside, 1.0 / 12, 1.0 / 12, x0=-1.5 + 1 / 24,
+about = kcreep.Solver(nu=0.25, spin_centre=(0.3, -0.2), refine_grid=False).solve_mask(inside, 1.0 / 12, 1.0 / 12, x0=-1.5 + 1 / 24,
                                                                      y0=-1 + 1 / 24)
-origin = kcreep.Solver(nu=0.25).solve_mask(inside, 1.0 / 12, 1.0 / 12, x0=-1.5 + 1 / 24, y0=-1 + 1 / 24)
+origin = kcreep.Solver(nu=0.25, refine_grid=False).solve_mask(inside, 1.0 / 12, 1.0 / 12, x0=-1.5 + 1 / 24, y0=-1 + 1 / 24)
 expected = origin.f[:2, 2] - 0.3 * origin.f[:2, 1] + (-0.2) * origin.f[:2, 0]
 kc.check(np.max(np.abs(about.f[:2, 2] - expected)) <= 1e-9 * np.max(np.abs(origin.f)),
          f"spin centre (0.3, -0.2): f13, f23 {about.f[:2, 2]} vs {expected}")

@@ -108,7 +108,7 @@ if ref_rows:
     r = kc.run(nml(patch, solver="target_error=1e-4"), folder, "e02_tight")[3][0]
     kc.check(r["n"] > 0, f"a/b = 0.2, target 1e-4: solved, not the table ({r['n']} cells)")
     # tighter than the default: N x N cells over the bounding box, long in y
-    # (kcreep_error_control.ellipse_cells_long_in_y); measured: ok at 452 x 452 in about 3.5 s,
+    # (kcreep_refine_estimate.ellipse_cells_long_in_y); measured: ok at 452 x 452 in about 3.5 s,
     # errors against independent references of 0.001-0.007 % (docs/accuracy.md section 6.4)
     kc.check(r["mx"] == r["my"] and r["verdict"] == "ok",
              f"a/b = 0.2, target 1e-4: cells long in y, ok ({r['mx']} x {r['my']}, {r['verdict']})")
@@ -121,7 +121,7 @@ r = kc.run(nml("semi_a=1, semi_b=1", solver="target_error=0.01, method='iterativ
 kc.check(r["verdict"] == "ok" and r["mx"] == 96, f"circle, target 1 %: ok on the base levels ({r['mx']} x {r['my']})")
 
 # the levels' GMRES stops at min(1e-2 x target, 1e-5) when no tolerance is given
-# (kcreep_error_control level_solver_tolerance; 1e-5 at this target): fewer iterations
+# (kcreep_refine_estimate level_solver_tolerance; 1e-5 at this target): fewer iterations
 # (circle at 1e-2: measured 17 against 29 on its finest level), the same coefficients
 # to a small part of the target (measured at target 1e-2: C23 moved by 4.4e-6;
 # allowed 1e-3 x target = 1e-5),

@@ -1,10 +1,10 @@
-!> Unit checks of kcreep_error_control: grid choice, level sequence, the
+!> Unit checks of kcreep_refine_estimate: grid choice, level sequence, the
 !> first-order regression and its 95 % error estimate, the verdict; and of
 !> kcreep_staircase_normalisation (an ellipse's staircase referred to the ellipse).
 program test_error_control
   use, intrinsic :: iso_fortran_env, only: real64
   use, intrinsic :: ieee_arithmetic, only: ieee_value, ieee_quiet_nan
-  use kcreep_error_control
+  use kcreep_refine_estimate
   use kcreep_staircase_normalisation
   use kcreep_patch, only: patch_t, ellipse_patch
   use kcreep_status, only: status_t
@@ -62,9 +62,15 @@ program test_error_control
   call basis_fit(h, f, 1, f0, se)
   ! normal equations square the condition number: round-off of the residual ~ 1e-11 (measured 5.6e-12)
   call t%check(abs(f0 - 2) < 1e-11_real64 .and. se < 1e-9_real64, 'basis_fit: exact f0 + K h + L h^1.5')
-  call smooth_level_estimate(h, f, limit, rel)
+  call split_level_estimate(h, f, limit, rel)
   call t%check(abs(limit - 2) < 1e-12_real64 .and. rel > 1e-3_real64, &
-               'smooth_level_estimate: limit exact, model uncertainty counted')
+               'split_level_estimate: limit exact, model uncertainty counted')
+  ! levels that follow another order within the model's range (h^(4/3), the
+  ! staircase's re-entrant corners): the estimate still bounds the limit's error
+  f = 2 + h + 0.3_real64 * h**(4.0_real64 / 3)
+  call split_level_estimate(h, f, limit, rel)
+  call t%check(abs(limit / 2 - 1) <= rel .and. rel < 0.05_real64, &
+               'split_level_estimate: an h^(4/3) term is within the estimate')
   call t%check(abs(student_t95(2) - 4.303_real64) < 1e-3_real64 .and. abs(student_t95(30) - 2.042_real64) < 0.02_real64, &
                'student_t95: 4.303 at 2 dof, about 2.04 at 30')
 

@@ -20,7 +20,7 @@
 program test_table_interpolation
   use, intrinsic :: iso_fortran_env, only: real64, output_unit
   use kcreep, only: problem_t, result_t, default_problem, ellipse_patch, kcreep_solve, status_t
-  use kcreep_error_control, only: ellipse_level_grid
+  use kcreep_refine_estimate, only: ellipse_level_grid
   use kcreep_refined_table_data, only: refined_rows, refined_nu, refined_ratio, refined_c, refined_u
   use kcreep_table_interpolation, only: table_coefficients, interpolate_table
   use unit_checks, only: checker_t
@@ -177,6 +177,9 @@ contains
     integer :: mx, my
     problem = default_problem()
     problem%nu = nu
+    ! this grid as given, unjudged (the library's default would choose the grids)
+    problem%target_error = 0
+    problem%refine_grid = .false.
     problem%estimate_error = .false.
     call ellipse_level_grid(sqrt(ratio), 1 / sqrt(ratio), cells, mx, my)
     call ellipse_patch(sqrt(ratio), 1 / sqrt(ratio), mx, my, problem%patch, status)

@@ -16,59 +16,21 @@
 !> docs/accuracy.md sections 3 and 6 (45 of 45 and 18 of 18 bounded).
 !>
 !> Everything here is pure: the driver runs the levels and calls these.
-module kcreep_error_control
+module kcreep_refine_estimate
   use, intrinsic :: iso_fortran_env, only: real64
   use, intrinsic :: ieee_arithmetic, only: ieee_value, ieee_quiet_nan
   use kcreep_strings, only: rtoa
   use kcreep_patch, only: near_square_cells
+  use kcreep_refine_constants
   implicit none
   private
-  public :: default_target_error, c23_target_factor, min_estimate_cells
+  public :: default_target_error, c23_target_factor, min_estimate_cells, nominal_ellipse_cells
   public :: coefficient_targets, ellipse_level_grid, ellipse_cells_long_in_y, next_level, level_cell_budget, student_t95
   public :: cell_budget_allowed, cell_budget_range, level_solver_tolerance
-  public :: first_order_fit, level_estimate, ellipse_level_estimate, smooth_level_estimate, basis_fit
+  public :: first_order_fit, level_estimate, ellipse_level_estimate, split_level_estimate, basis_fit
   public :: single_grid_estimate, ellipse_fit_min, ellipse_fit_width
   public :: split_grid_estimate, within_target, uncertain_flag
 
-  !> &solver target_error when not given: the relative error aimed at for C11 and C22.
-  real(real64), parameter :: default_target_error = 1e-3_real64
-  !> C23 (and f23, f32) get this multiple of target_error: it is the slowest to
-  !> converge (its discretisation error is 2-3 times that of C11 at the same grid).
-  real(real64), parameter :: c23_target_factor = 3
-  !> Fewer cells than this across the shorter axis on the coarsest level used:
-  !> the level is outside the first-order range (errors of 10-50 %, the sign of the
-  !> error still changes); no estimate is made from it.
-  integer, parameter :: min_estimate_cells = 12
-  !> An ellipse's levels: the fewest in a fit (ellipse_level_estimate, 3
-  !> coefficients), and the finest this many in one fit (Student's factor 2.57).
-  integer, parameter :: ellipse_fit_min = 5, ellipse_fit_width = 8
-  !> Cells long in y (ellipse_level_grid) are at most this many times as long
-  !> as wide: the estimate was checked on a/b = 0.1 to 0.5 with cells up to
-  !> 10 times as long (27 of 27 bounded, docs/accuracy.md section 6.4); at
-  !> a/b = 0.02 on cells 50 times as long it missed C23 (0.025 % against an
-  !> estimate of 0.017 %).
-  real(real64), parameter :: max_cell_aspect = 10
-  !> The share of an ellipse's extrapolation (f0 - f(finest level)) counted
-  !> as the uncertainty of its order (ellipse_level_estimate).
-  real(real64), parameter :: order_margin = 0.1_real64
-  !> Patch cells of the finest level kcreep may choose at target_error = 1e-3
-  !> (level_cell_budget). A run-time budget: on the iterative path on two
-  !> threads of the 2-core development machine a level of 40,000 cells takes
-  !> about 0.8 s, and a run whose finest level has N cells costs about 4 such
-  !> levels (the levels below it add up to about 3 N). Looser targets scale it
-  !> by (1e-3 / target)**(1/4); tighter ones by 8 for each factor 10, so that
-  !> the accurate mode (1e-4, 320,000 cells) stops within 10 s over a/b = 0.1
-  !> to 10: 2.2 to 8.8 s on the two cores (docs/accuracy.md section 6), with
-  !> the load cases paired on the transforms and each level started from the
-  !> last one's tractions (docs/performance.md).
-  real(real64), parameter :: cells_at_default_target = 40000
-  real(real64), parameter :: tight_target_budget_growth = 8
-  !> The range of a cell budget the caller gives (&solver cell_budget): below
-  !> the minimum no ellipse reaches its base levels (32 cells across is 800
-  !> cells); the maximum, 10 million patch cells, needs about 3 GB on the
-  !> iterative path (the circle at 2048 cells across, 3.3 million cells, took
-  !> 5 minutes on one core of the development machine).
-  real(real64), parameter :: min_cell_budget = 1000, max_cell_budget = 1e7_real64
 
 contains
 
@@ -127,7 +89,7 @@ contains
   !> multiple of 4 (48, 56, 64, 72, 84, 96, 112, 128, 148, 172, ...).
   pure integer function next_level(finest) result(cells)
     integer, intent(in) :: finest
-    cells = max(finest + 4, 4 * nint(1.15_real64 * finest / 4))
+    cells = max(finest + 4, 4 * nint(next_level_growth * finest / 4))
   end function next_level
 
   !> A cell budget the caller may give: 0 (the defaults) or within the range.
@@ -153,7 +115,7 @@ contains
   !> and never above 1e-5.
   pure real(real64) function level_solver_tolerance(target) result(tolerance)
     real(real64), intent(in) :: target
-    tolerance = min(1e-2_real64 * target, 1e-5_real64)
+    tolerance = min(level_tolerance_share * target, max_level_tolerance)
   end function level_solver_tolerance
 
   !> The most patch cells a level kcreep chooses may have for this target.
@@ -310,21 +272,27 @@ contains
     end if
   end subroutine limit_fit
 
-  !> Levels without staircase noise (a mask whose cells are split: the same
-  !> patch on every level): the convergence is smooth but not straight (the
-  !> slope grows like h^0.5 or log h; measured on a rectangle, splits 1 to 12).
-  !> Limit: the fit f0 + K h + L h^1.5; error: its distance to the fit
-  !> f0 + K h + L h log h (the model uncertainty) plus the 95 % statistical
-  !> part when levels are left over (at least 4 levels).
-  pure subroutine smooth_level_estimate(h, f, limit, rel_error)
+  !> Levels of a split patch (a mask or CONTACT's grid, every cell split
+  !> k x k: the same staircase on every level, no level-to-level noise). The
+  !> staircase's re-entrant corners bend the convergence: f0 + K h + L h^p
+  !> with p between 4/3 and 3/2 (docs/accuracy.md section 3). Limit: the fit
+  !> with p = split_order; estimate: the largest change of f0 when p is one
+  !> of split_order_range instead (the model's uncertainty) plus t95 x the
+  !> standard error of f0 (what the model does not take out). At least 4
+  !> levels (one degree of freedom).
+  pure subroutine split_level_estimate(h, f, limit, rel_error)
     real(real64), intent(in) :: h(:), f(:)
     real(real64), intent(out) :: limit, rel_error
-    real(real64) :: other, se, se_other
-    call basis_fit(h, f, 1, limit, se)
-    call basis_fit(h, f, 2, other, se_other)
-    rel_error = abs(limit - other) / abs(limit)
-    if (se == se) rel_error = rel_error + student_t95(size(h) - 3) * se / abs(limit)
-  end subroutine smooth_level_estimate
+    real(real64) :: other, se, se_other, spread
+    integer :: i
+    call three_column_fit(h, f, h**split_order, limit, se)
+    spread = 0
+    do i = 1, size(split_order_range)
+      call three_column_fit(h, f, h**split_order_range(i), other, se_other)
+      spread = max(spread, abs(other - limit))
+    end do
+    rel_error = (spread + student_t95(size(h) - 3) * se) / abs(limit)
+  end subroutine split_level_estimate
 
   !> The error of a coefficient computed on one grid (target_error = 0), from a
   !> second grid with twice the cell size: first order gives f(h) - f0 = f(2h) - f(h);
@@ -333,7 +301,7 @@ contains
   !> the coefficient refers to and the staircase (0 for masks), added in full.
   pure real(real64) function single_grid_estimate(f_h, f_2h, area_error) result(rel_error)
     real(real64), intent(in) :: f_h, f_2h, area_error
-    rel_error = 2 * abs(f_h - f_2h) / abs(f_h) + abs(area_error)
+    rel_error = single_grid_factor * abs(f_h - f_2h) / abs(f_h) + abs(area_error)
   end function single_grid_estimate
 
   !> The error of a coefficient computed on one grid (target_error = 0) from the
@@ -342,7 +310,7 @@ contains
   !> and the same factor 2 as single_grid_estimate.
   pure real(real64) function split_grid_estimate(f_h, f_half) result(rel_error)
     real(real64), intent(in) :: f_h, f_half
-    rel_error = 4 * abs(f_h - f_half) / abs(f_h)
+    rel_error = split_grid_factor * abs(f_h - f_half) / abs(f_h)
   end function split_grid_estimate
 
   !> Every estimate at or below its target (NaN estimates are not within).
@@ -362,4 +330,4 @@ contains
     end if
   end function uncertain_flag
 
-end module kcreep_error_control
+end module kcreep_refine_estimate

@@ -1,0 +1,132 @@
+!> Every constant of kcreep's refinement engine (error control), with the
+!> measurement behind it: targets, budgets, level ladders, fit widths and
+!> the estimator's margins. docs/accuracy.md gives the evidence in full;
+!> `ctest -L calibration` re-measures the ones marked (calibration) against
+!> the reference levels kept in docs/data/ (tests/calibration/).
+module kcreep_refine_constants
+  use, intrinsic :: iso_fortran_env, only: real64
+  implicit none
+  public
+
+  ! ---- targets ----
+  !> &solver target_error when not given: the relative error aimed at for C11 and C22.
+  real(real64), parameter :: default_target_error = 1e-3_real64
+  !> The grid an ellipse is set on when kcreep chooses its grids (the
+  !> namelist's ellipse without mx, my; the C API's mx = my = 0): only its
+  !> place and the ellipse matter, and a given-grid estimate would use it.
+  integer, parameter :: nominal_ellipse_cells = 60
+  !> C23 (and f23, f32) get this multiple of target_error: it is the slowest to
+  !> converge (its discretisation error is 2-3 times that of C11 at the same grid).
+  real(real64), parameter :: c23_target_factor = 3
+
+  ! ---- ellipses (levels of cells across the shorter axis) ----
+  !> Fewer cells than this across the shorter axis on the coarsest level used:
+  !> the level is outside the first-order range (errors of 10-50 %, the sign of the
+  !> error still changes); no estimate is made from it.
+  integer, parameter :: min_estimate_cells = 12
+  !> An ellipse's levels: the fewest in a fit (ellipse_level_estimate, 3
+  !> coefficients), and the finest this many in one fit (Student's factor 2.57).
+  integer, parameter :: ellipse_fit_min = 5, ellipse_fit_width = 8
+  !> Cells long in y (ellipse_level_grid) are at most this many times as long
+  !> as wide: the estimate was checked on a/b = 0.1 to 0.5 with cells up to
+  !> 10 times as long (27 of 27 bounded, docs/accuracy.md section 6.4); at
+  !> a/b = 0.02 on cells 50 times as long it missed C23 (0.025 % against an
+  !> estimate of 0.017 %).
+  real(real64), parameter :: max_cell_aspect = 10
+  !> The share of an ellipse's extrapolation (f0 - f(finest level)) counted
+  !> as the uncertainty of its order (ellipse_level_estimate).
+  real(real64), parameter :: order_margin = 0.1_real64
+  !> Patch cells of the finest level kcreep may choose at target_error = 1e-3
+  !> (level_cell_budget). A run-time budget: on the iterative path on two
+  !> threads of the 2-core development machine a level of 40,000 cells takes
+  !> about 0.8 s, and a run whose finest level has N cells costs about 4 such
+  !> levels (the levels below it add up to about 3 N). Looser targets scale it
+  !> by (1e-3 / target)**(1/4); tighter ones by 8 for each factor 10, so that
+  !> the accurate mode (1e-4, 320,000 cells) stops within 10 s over a/b = 0.1
+  !> to 10: 2.2 to 8.8 s on the two cores (docs/accuracy.md section 6), with
+  !> the load cases paired on the transforms and each level started from the
+  !> last one's tractions (docs/performance.md).
+  real(real64), parameter :: cells_at_default_target = 40000
+  real(real64), parameter :: tight_target_budget_growth = 8
+  !> The range of a cell budget the caller gives (&solver cell_budget): below
+  !> the minimum no ellipse reaches its base levels (32 cells across is 800
+  !> cells); the maximum, 10 million patch cells, needs about 3 GB on the
+  !> iterative path (the circle at 2048 cells across, 3.3 million cells, took
+  !> 5 minutes on one core of the development machine).
+  real(real64), parameter :: min_cell_budget = 1000, max_cell_budget = 1e7_real64
+
+
+  ! ---- masks and CONTACT's grid: every cell split k x k (the same patch on every level) ----
+  !> Levels of a split patch: k = 1, 2, 3, ... while the split patch keeps to
+  !> the cell budget (level_cell_budget: 40,000 cells at 1e-3, 320,000 at
+  !> 1e-4), at least split_min_levels of them whatever the budget; the fit
+  !> runs through the finest split_fit_width. (calibration) Measured on the
+  !> seven shipped masks against references from splits up to 11-56
+  !> (docs/data/mask_split_levels.dat, every window of splits coarser than
+  !> the reference's): 4 levels bound 111 of 111 coefficient cases (median
+  !> estimate / error 3.8), 5 levels 88 of 90 (90 allowing the reference's
+  !> u; median 3.1). scripts/mask_accuracy_check.py --calibrate.
+  integer, parameter :: split_min_levels = 4, split_fit_width = 5
+  !> The staircase's re-entrant corners make the split levels converge as
+  !> f0 + K h + L h^p with p between 4/3 and 3/2 (the slope grows as h
+  !> falls): the fit uses split_order; the estimate adds the largest change
+  !> of f0 when p is one of split_order_range instead (the model's
+  !> uncertainty) to t95 x the standard error of f0. (calibration) The range
+  !> [4/3, 2] bounded 90 of 90 at a median of 3.75; [4/3, 5/3] only 81.
+  real(real64), parameter :: split_order = 1.5_real64
+  !> GMRES's relative residual on split levels (caller gave none): at most
+  !> split_tolerance_share x the target. A three-term fit through 4-5
+  !> levels amplifies the levels' solver error: the superellipse at 1e-3
+  !> (levels to GMRES 1e-5) estimated C23 at 0.0054 % with an error of
+  !> 0.0085 %; at 1e-6 and below its estimate is 0.028 %, as with 1e-8.
+  real(real64), parameter :: split_tolerance_share = 1e-3_real64
+  real(real64), parameter :: split_order_range(2) = [1.25_real64, 1.75_real64]
+  !> The error of a grid given as is, from one more grid: an ellipse's grid
+  !> with twice the cell size, estimate single_grid_factor |f(h) - f(2h)| / f
+  !> (first order gives 1; the factor 2 covers the noise and the h log h
+  !> term of collocation: 185 of 189 bounded, docs/accuracy.md); a mask split
+  !> in 2 x 2, split_grid_factor |f(h) - f(h/2)| / f (first order 2, times 2).
+  real(real64), parameter :: single_grid_factor = 2, split_grid_factor = 4
+  !> GMRES's relative residual on the levels when the caller gave no
+  !> tolerance: level_tolerance_share x the target, at most
+  !> max_level_tolerance. Measured on the unit circle (f11, f22, f23 against
+  !> residual 1e-11): a residual r moves them by up to about r (1e-4: C23 by
+  !> 9.5e-5; 1e-5: 3e-6; 1e-6: 7e-7 at 296 and 448 cells across), with 21-23
+  !> iterations at 1e-6 instead of 37-41 at 1e-11.
+  real(real64), parameter :: level_tolerance_share = 1e-2_real64, max_level_tolerance = 1e-5_real64
+
+  ! ---- ellipses, solved (continued) ----
+  !> Base levels on an ellipse (cells across the shorter axis); then one
+  !> level next_level_growth finer at a time, a multiple of 4 cells across
+  !> (112, 128, 148, 172, ...).
+  real(real64), parameter :: next_level_growth = 1.15_real64
+  integer, parameter :: base_levels(5) = [56, 64, 72, 84, 96]
+  !> The base levels of a long ellipse are scaled down to its cell budget, to no fewer than this.
+  integer, parameter :: min_base_cells = 32
+  !> The share of an ellipse's bounding grid inside it (pi/4), for its patch cells.
+  real(real64), parameter :: ellipse_fill = 0.79_real64
+  !> Patch cells of a single grid's auxiliary grid (every cell split in 2 x 2):
+  !> above it the given grid gets no estimate (a run-time bound).
+  integer, parameter :: max_level_cells = 20000
+
+  ! ---- patches from a gap function (the geometry sampled on finer grids) ----
+  !> At most this many doublings of the levels (56 -> 112 -> 224 across).
+  integer, parameter :: max_refinements = 2
+  !> Levels: cells across the contact area's hydraulic diameter (contact_diameter).
+  integer, parameter :: gap_base_levels(8) = [24, 28, 32, 36, 40, 44, 48, 56]
+  !> The finest level's contact area has at most about this many cells (a
+  !> run-time budget, as for ellipses: a circle at 112 across is 9,900 cells,
+  !> at 224 across 39,000; the two lobes of input/wheel_rail.nml at 56 across
+  !> 6,000, at 112 across 24,000).
+  integer, parameter :: max_gap_level_cells = 20000
+  !> The level grids cover the contact area's bounding box on the given grid
+  !> widened by this fraction of its size on every side (and by two cells of
+  !> the given grid): the contact area moves by less than a cell between levels.
+  real(real64), parameter :: gap_level_margin = 0.2_real64
+  !> A gap's grid given as is: the geometry on cells gap_single_sizes times
+  !> the size, estimate gap_single_factor max(|C(h) - C(2h)|, 2 |C(h) -
+  !> C(1.5h)|) / C(h) (the contact boundary moves between the grids: 97 of
+  !> 99 bounded on Hertzian gaps, where the ellipses' rule bounded 88).
+  real(real64), parameter :: gap_single_sizes(2) = [1.5_real64, 2.0_real64], gap_single_factor = 3
+
+end module kcreep_refine_constants
