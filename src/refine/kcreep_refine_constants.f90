@@ -65,7 +65,7 @@ module kcreep_refine_constants
   !> (docs/data/mask_split_levels.dat, every window of splits coarser than
   !> the reference's): 4 levels bound 111 of 111 coefficient cases (median
   !> estimate / error 3.8), 5 levels 88 of 90 (90 allowing the reference's
-  !> u; median 3.1). scripts/mask_accuracy_check.py --calibrate.
+  !> u; median 3.1). scripts/studies/mask_accuracy_check.py --calibrate.
   integer, parameter :: split_min_levels = 4, split_fit_width = 5
   !> The staircase's re-entrant corners make the split levels converge as
   !> f0 + K h + L h^p with p between 4/3 and 3/2 (the slope grows as h
