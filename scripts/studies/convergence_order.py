@@ -38,7 +38,7 @@ def series(rows):
     """{(ratio, grid, scheme): {M: row}} of the sweep_n table's rows."""
     out = {}
     for r in rows:
-        ratio, grid, scheme, m = r["case"].split("_")
+        ratio, grid, scheme, m = os.path.basename(r["case"]).split("_")
         out.setdefault((float(ratio[1:]), grid, scheme), {})[int(m[1:])] = r
     return out
 

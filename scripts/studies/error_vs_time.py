@@ -67,7 +67,7 @@ def main():
     rows = read_table(args[0])
     runs = {}
     for row in rows:
-        scheme, rep, m = row["case"].split("_")
+        scheme, rep, m = os.path.basename(row["case"]).split("_")
         runs.setdefault((scheme, int(m[1:])), []).append(row)
     order = ("collocation", "backward") + CONTROLLED
     schemes = sorted({s for s, _ in runs}, key=lambda s: order.index(s) if s in order else len(order))

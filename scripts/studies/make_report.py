@@ -95,7 +95,7 @@ def alpha_section(values):
     rows = read_table(os.path.join(DATA, "sweep_alpha.dat"))
     series = {}
     for r in rows:
-        ratio, grid, al = r["case"].split("_")
+        ratio, grid, al = os.path.basename(r["case"]).split("_")
         ref = ref_of(float(ratio[1:]))
         key = (float(ratio[1:]), grid)
         series.setdefault(key, {"mx": r["mx"], "my": r["my"], "pts": []})

@@ -87,7 +87,7 @@ def main():
 
     series = {}
     for row in read_table(args.table):
-        name = row["case"]
+        name = os.path.basename(row["case"])
         key, _, m = name.rpartition("_m")
         if not key or not m.isdigit():
             continue

@@ -10,7 +10,7 @@ folder = kc.setup()
 patch = "semi_a=1, semi_b=1, mx=30, my=30"
 rows, outs = {}, {}
 for mode in ("auto", "always", "never", "lapack"):
-    code, out, err, table = kc.run(kc.namelist(patch, "nu=0.25", f"alpha=0.5, refine='{mode}'"), folder, mode)
+    code, out, err, table = kc.run(kc.namelist(patch, "nu=0.25", f"alpha=0.5, method='dense', refine='{mode}'"), folder, mode)
     rows[mode], outs[mode] = table[0], out
     kc.check(table[0]["verdict"] == "ok", f"refine = {mode}: verdict ok")
     kc.check(table[0]["berr"] <= 1e-15, f"refine = {mode}: berr {table[0]['berr']:.1e} <= 1e-15")
