@@ -241,6 +241,30 @@ try:
     ratio = redo_rows[2]["c"] ** 2 if redo_rows else None       # c^2 = a b = 0.5 now
     kc.check(ratio is not None and abs(ratio - 0.5) < 1e-9, f"the gathered row is the new case's (c^2 = {ratio})")
     compare(local_rows[:2] + local_rows[3:], redo_rows[:2] + redo_rows[3:], "the other cases after the rerun")
+
+    # --- defect 1 of issue 31: the mask file of a case changes (contents only, its
+    # mtime set back): the input fingerprint (kcreep --fingerprint) sees it
+    def mask_text(cells):
+        rows = ["".join("1" if 12 * j + i < cells else "0" for i in range(12)) for j in range(12)]
+        return "12 12 0.1 0.1 0 0\n" + "\n".join(rows) + "\n"
+
+    mask_path = os.path.join(folder, "fp.mask")
+    with open(mask_path, "w") as f:
+        f.write(mask_text(100))
+    with open(changed, "w") as f:
+        f.write("&patch shape='mask', mask_file='fp.mask' /\n&solver method='dense', target_error=0 /\n")
+    first = run([run_cases, "sweep.list", "full.tab", "--chunk", "2", "--wait"], env=env, cwd=folder, timeout=150)
+    cells = [r["n"] for r in kc.read_table(os.path.join(folder, "full.tab"))][2:3]
+    kc.check(first.returncode == 5 and cells == [100], f"the case now reads a mask: 100 cells ({cells})")
+    old = os.path.getmtime(mask_path)
+    with open(mask_path, "w") as f:
+        f.write(mask_text(80))
+    os.utime(mask_path, (old - 3600, old - 3600))
+    redo = run([run_cases, "sweep.list", "full.tab", "--chunk", "2", "--wait"], env=env, cwd=folder, timeout=150)
+    cells = [r["n"] for r in kc.read_table(os.path.join(folder, "full.tab"))][2:3]
+    kc.check(redo.returncode == 5 and "submitted 1 array task(s)" in redo.stdout
+             and "chunk 2: its cases' inputs changed" in redo.stdout and cells == [80],
+             f"its mask file rewritten: its chunk alone runs again, 80 cells ({cells}) {redo.stdout.strip()[-200:]}")
 finally:
     stop = subprocess.run([local_cluster, "stop", cluster], capture_output=True, text=True, timeout=90)
     if stop.returncode != 0:
