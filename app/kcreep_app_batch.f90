@@ -7,8 +7,12 @@
 !> order through the same path as a single run (case_driver); each finished
 !> row is appended and flushed to OUT_TABLE.partial, so a batch that is
 !> killed keeps every row it had finished, and running the same command
-!> again resumes after the last complete row. At the end the table is
-!> written whole to OUT_TABLE (temporary file and rename) and the partial
+!> again resumes: a row is kept when the input fingerprint of its case
+!> (kcreep_app_fingerprint: the program, the namelist and every file it
+!> reads), written beside it as '# fingerprint K HEX', is still the case's;
+!> a case whose inputs changed since is named and run again, as is every
+!> case without a row. At the end the table is
+!> written whole to OUT_TABLE, rows in list order (temporary file and rename) and the partial
 !> file is removed. A case that fails gets a row all the same: NaN numbers
 !> and the verdict error:bad-input, error:numerical or error:io; its
 !> message goes to standard error and into the table's comments, and the
@@ -23,12 +27,15 @@ module kcreep_app_batch
   use kcreep_namelist, only: config_t
   use kcreep_app_case, only: solve_input, load_input, case_memory_bytes
   use kcreep_strings, only: folder_of, resolve_path
-  use kcreep_table, only: run_record_t, table_lines, table_row, traction_lines, case_name, table_columns, pressure_lines, &
+  use kcreep_table, only: run_record_t, table_lines, table_row, traction_lines, case_name, pressure_lines, &
                           contact_mask_lines, line_length
   use kcreep_app_files, only: write_text_file, check_output_path
   use kcreep_app_fastsim, only: run_fastsim
   use kcreep_app_lock, only: lock_exclusive, truncate_locked, real_path
   use kcreep_namelist, only: read_config
+  use kcreep_app_fingerprint, only: program_digest, case_fingerprint
+  use kcreep_app_partial, only: text_t, fingerprint_mark, keep_unchanged, block_numbers, case_order, is_row, &
+                                count_rows, count_error_rows
   use, intrinsic :: iso_c_binding, only: c_int
   implicit none
   private
@@ -36,11 +43,6 @@ module kcreep_app_batch
 
   !> Exit status of a batch that finished but in which some cases failed.
   integer, parameter, public :: exit_cases_failed = 5
-
-  !> A line of text of any length.
-  type :: text_t
-    character(len=:), allocatable :: s
-  end type text_t
 
 contains
 
@@ -51,8 +53,9 @@ contains
     character(len=*), intent(in) :: list_path, out_path
     integer, intent(out) :: n_failed
     type(status_t), intent(inout) :: status
-    type(text_t), allocatable :: cases(:), partial(:), names(:)
-    character(len=:), allocatable :: partial_path, signature
+    type(text_t), allocatable :: cases(:), partial(:), names(:), prints(:)
+    character(len=:), allocatable :: partial_path, signature, program
+    logical, allocatable :: done(:)
     integer :: n_done, k, unit, ios
     integer(c_int) :: lock_fd
     logical :: held
@@ -81,7 +84,16 @@ contains
     end if
     call resume_partial(partial_path, lock_fd, signature, size(cases), partial, status)
     if (status%failed()) return
-    n_done = count_rows(partial)
+    ! the rows whose cases are unchanged since they were written, the others dropped
+    program = program_digest()
+    allocate (prints(size(cases)))
+    do k = 1, size(cases)
+      prints(k)%s = case_fingerprint(program, cases(k)%s)
+    end do
+    call keep_unchanged(partial, cases, prints, done, k)
+    if (k > 0) call rewrite_locked(partial_path, lock_fd, partial, status)
+    if (status%failed()) return
+    n_done = count(done)
     n_failed = count_error_rows(partial)
     if (n_done > 0) write (output_unit, '(a)') 'kcreep: resuming '''//partial_path//''': '// &
       itoa(n_done)//' of '//itoa(size(cases))//' cases already done'
@@ -92,8 +104,9 @@ contains
       call fail(status, exit_io, 'batch table '''//partial_path//''': cannot append ('//trim(msg)//')')
       return
     end if
-    do k = n_done + 1, size(cases)
-      call run_one(k, size(cases), cases(k)%s, names(k)%s, unit, n_failed, status)
+    do k = 1, size(cases)
+      if (done(k)) cycle
+      call run_one(k, size(cases), cases(k)%s, names(k)%s, prints(k)%s, unit, n_failed, status)
       if (status%failed()) then
         close (unit)
         return
@@ -104,10 +117,11 @@ contains
     call finish_table(partial_path, out_path, list_path, size(cases), n_failed, status)
   end subroutine run_batch
 
-  !> Solve case k and append its row (and any comments) to the partial table.
-  subroutine run_one(k, n, input_path, name, unit, n_failed, status)
+  !> Solve case k and append its row (after its comments and its input
+  !> fingerprint) to the partial table.
+  subroutine run_one(k, n, input_path, name, fingerprint, unit, n_failed, status)
     integer, intent(in) :: k, n, unit
-    character(len=*), intent(in) :: input_path, name
+    character(len=*), intent(in) :: input_path, name, fingerprint
     integer, intent(inout) :: n_failed
     type(status_t), intent(inout) :: status
     type(config_t) :: cfg
@@ -155,6 +169,7 @@ contains
       end do
     end if
     record%case_name = name
+    if (ios == 0) write (unit, '(a)', iostat=ios, iomsg=msg) fingerprint_mark//itoa(k)//' '//fingerprint
     if (ios == 0) write (unit, '(a)', iostat=ios, iomsg=msg) table_row(record)
     if (ios == 0) flush (unit, iostat=ios, iomsg=msg)
     if (ios /= 0) then
@@ -273,11 +288,12 @@ contains
     character(len=*), intent(in) :: partial_path, out_path, list_path
     integer, intent(in) :: n_cases, n_failed
     type(status_t), intent(inout) :: status
-    type(text_t), allocatable :: partial(:), lines(:)
+    type(text_t), allocatable :: partial(:), lines(:), print_of(:)
     character(len=:), allocatable :: tail
     character(len=line_length), allocatable :: head(:)
     character(len=0) :: no_warnings(0)
-    integer :: k, nh, unit, ios
+    integer, allocatable :: case_of(:), order(:)
+    integer :: j, k, nh, unit, ios
 
     call read_text_file(partial_path, 'batch table', partial, tail, status)
     if (status%failed()) return
@@ -293,12 +309,19 @@ contains
     end do
     lines = [lines, text_t('# batch '''//list_path//''': '//itoa(n_cases)//' cases, '// &
                            itoa(n_failed)//' failed (verdict error:...)')]
-    do k = 2, size(partial)         ! per-case comments first (line 1 is the signature)
-      if (partial(k)%s(1:min(1, len(partial(k)%s))) == '#') lines = [lines, partial(k)]
+    ! per-case comments first, then the rows, both in list order (a resume may
+    ! have run a changed case after later ones); line 1 is the signature
+    call block_numbers(partial, case_of, print_of)
+    order = case_order(case_of, n_cases)
+    do j = 1, size(order)
+      k = order(j)
+      if (partial(k)%s(1:min(1, len(partial(k)%s))) /= '#') cycle
+      if (index(partial(k)%s, fingerprint_mark) == 1) cycle
+      lines = [lines, partial(k)]
     end do
     lines = [lines, text_t(trim(head(nh)))]
-    do k = 2, size(partial)
-      if (is_row(partial(k)%s)) lines = [lines, partial(k)]
+    do j = 1, size(order)
+      if (is_row(partial(order(j))%s)) lines = [lines, partial(order(j))]
     end do
     call write_text_file(out_path, joined(lines), 'batch table', status)
     if (status%failed()) return
@@ -509,70 +532,6 @@ contains
     write (buf, '(f12.3)') t
     text = trim(adjustl(buf))
   end function seconds
-
-  pure logical function is_row(line)
-    character(len=*), intent(in) :: line
-    is_row = len_trim(line) > 0
-    if (is_row) is_row = line(1:1) /= '#'
-  end function is_row
-
-  pure integer function count_rows(lines) result(n)
-    type(text_t), intent(in) :: lines(:)
-    integer :: k
-    n = 0
-    do k = 1, size(lines)
-      if (is_row(lines(k)%s)) n = n + 1
-    end do
-  end function count_rows
-
-  !> Rows whose verdict (the table's verdict column, not the last word: more
-  !> columns follow it) starts with 'error:'.
-  pure integer function count_error_rows(lines) result(n)
-    type(text_t), intent(in) :: lines(:)
-    integer :: k, column
-    n = 0
-    column = verdict_column()
-    do k = 1, size(lines)
-      if (.not. is_row(lines(k)%s)) cycle
-      if (index(word_of(lines(k)%s, column), 'error:') == 1) n = n + 1
-    end do
-  end function count_error_rows
-
-  !> Position of 'verdict' among the table's columns.
-  pure integer function verdict_column()
-    verdict_column = 1
-    do while (word_of(table_columns, verdict_column) /= 'verdict' .and. &
-              len(word_of(table_columns, verdict_column)) > 0)
-      verdict_column = verdict_column + 1
-    end do
-  end function verdict_column
-
-  !> Word k (blank-separated) of text, '' when there are fewer.
-  pure function word_of(text, k) result(word)
-    character(len=*), intent(in) :: text
-    integer, intent(in) :: k
-    character(len=:), allocatable :: word
-    integer :: i, first, count
-    count = 0
-    i = 1
-    word = ''
-    do while (i <= len(text))
-      if (text(i:i) == ' ') then
-        i = i + 1
-        cycle
-      end if
-      first = i
-      do while (i <= len(text))
-        if (text(i:i) == ' ') exit
-        i = i + 1
-      end do
-      count = count + 1
-      if (count == k) then
-        word = text(first:i - 1)
-        return
-      end if
-    end do
-  end function word_of
 
   !> A short checksum of the case paths, so that a partial table is only
   !> resumed by the list it was started from.

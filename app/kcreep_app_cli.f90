@@ -4,6 +4,7 @@
 !>   kcreep INPUT.nml
 !>   kcreep --batch LIST [OUT_TABLE]      (many cases, one table)
 !>   kcreep --estimate-memory INPUT.nml...
+!>   kcreep --fingerprint INPUT.nml...     (the input fingerprint of each case)
 !>
 !> Exit status: 0 done, 2 bad input, 3 numerical failure, 4 output could not
 !> be written, 5 some cases of a batch failed.
@@ -22,12 +23,13 @@ module kcreep_app_cli
   use kcreep_app_fastsim, only: run_fastsim
   use kcreep_app_wheel_rail, only: wheel_rail_mode
   use kcreep_namelist, only: read_config
+  use kcreep_app_fingerprint, only: program_digest, case_fingerprint
   implicit none
   private
   public :: command_t, parse_command, run_command, stop_with, follow_slurm_cpus
 
   type :: command_t
-    character(len=:), allocatable :: mode     !< 'single', 'batch', 'estimate', 'help' or 'version'
+    character(len=:), allocatable :: mode     !< 'single', 'batch', 'estimate', 'fingerprint', 'help' or 'version'
     type(text_t), allocatable :: args(:)      !< the arguments after the mode's flag
   end type command_t
 
@@ -55,6 +57,9 @@ contains
     case ('--estimate-memory')
       command%mode = 'estimate'
       if (n < 2) call fail(status, exit_bad_input, 'usage: kcreep --estimate-memory INPUT.nml...')
+    case ('--fingerprint')
+      command%mode = 'fingerprint'
+      if (n < 2) call fail(status, exit_bad_input, 'usage: kcreep --fingerprint INPUT.nml...')
     case default
       if (n /= 1) call fail(status, exit_bad_input, 'usage: kcreep INPUT.nml  (kcreep --help for more)')
     end select
@@ -74,6 +79,8 @@ contains
         'usage: kcreep INPUT.nml', &
         '       kcreep --batch LIST [OUT_TABLE]   (one namelist path per line; table <LIST name>.tab)', &
         '       kcreep --estimate-memory INPUT.nml...   (per file: FILE BYTES dense|iterative)', &
+        '       kcreep --fingerprint INPUT.nml...   (per file: SHA-256 FILE, of the program, the namelist '// &
+        'and the files it reads)', &
         'The namelist groups '//group_list()//' are described in docs/input.md.'
     case ('version')
       write (output_unit, '(a)') 'kcreep '//kcreep_version
@@ -81,10 +88,26 @@ contains
       call batch_mode(command%args, status)
     case ('estimate')
       call estimate_mode(command%args, status)
+    case ('fingerprint')
+      call fingerprint_mode(command%args)
     case default
       call single_mode(command%args(1)%s, status)
     end select
   end subroutine run_command
+
+  !> kcreep --fingerprint: one line 'FINGERPRINT FILE' per namelist (64 hex
+  !> digits; see kcreep_app_fingerprint), for scripts/run_cases.sh and the
+  !> SLURM route. A namelist that cannot be read still has one.
+  subroutine fingerprint_mode(args)
+    type(text_t), intent(in) :: args(:)
+    character(len=:), allocatable :: program
+    integer :: k
+    program = program_digest()
+    do k = 1, size(args)
+      write (output_unit, '(a)') case_fingerprint(program, args(k)%s)//' '//args(k)%s
+    end do
+    flush (output_unit)
+  end subroutine fingerprint_mode
 
   !> kcreep INPUT.nml: solve, write the table (and tractions), print the summary.
   subroutine single_mode(input_path, status)

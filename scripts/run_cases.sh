@@ -10,11 +10,11 @@
 # folder, so its default table <name>.tab lands next to the namelist.
 # Cases run in parallel, N at a time (default: the number of cores; each
 # kcreep gets one BLAS thread then). A case is skipped when its .tab exists
-# and nothing it reads has changed since that table was made: the namelist,
-# its mask_file, contact_file (with the .mat files beside it) and the kcreep
-# binary, compared by content (SHA-256, kept in <name>.tab.stamp; see
-# scripts/case_stamps.py). So running again resumes an interrupted study and
-# reruns exactly the cases whose inputs changed.
+# and its input fingerprint has not changed since that table was made
+# (`kcreep --fingerprint`, the one rule of kcreep --batch and the SLURM
+# route: a SHA-256 of the program, the namelist and every file it reads,
+# by content; kept in <name>.tab.stamp). So running again resumes an
+# interrupted study and reruns exactly the cases whose inputs changed.
 # A failed case is reported and the others go on; the summary counts them.
 # Finally all rows are merged into OUT_TABLE (header of the first table,
 # rows in LIST order, each named as kcreep --batch names it: the case's
@@ -83,8 +83,8 @@ done <"$list"
 n=${#cases[@]}
 ((n > 0)) || die "case list '$list' names no cases"
 # what each case reads, fingerprinted (one line per case, in list order)
-mapfile -t stamps < <(printf '%s\n' "${cases[@]}" | python3 "$here/case_stamps.py" "$kcreep")
-((${#stamps[@]} == n)) || die "could not fingerprint the inputs of the cases (scripts/case_stamps.py failed)"
+mapfile -t stamps < <(printf '%s\n' "${cases[@]}" | xargs -d '\n' "$kcreep" --fingerprint | cut -d' ' -f1)
+((${#stamps[@]} == n)) || die "could not fingerprint the inputs of the cases (kcreep --fingerprint failed)"
 
 # One BLAS thread per case when several cases share the cores.
 if ((jobs > 1)); then

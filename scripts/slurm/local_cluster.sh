@@ -8,6 +8,10 @@
 #                                              prints: export SLURM_CONF=DIR/slurm.conf
 #   scripts/slurm/local_cluster.sh stop DIR    cancel the jobs, stop the daemons
 #                                              started in DIR, by their pids
+#   scripts/slurm/local_cluster.sh run DIR -- COMMAND...
+#                                              start, run COMMAND with SLURM_CONF
+#                                              set, stop, and reap the daemons;
+#                                              exit with COMMAND's status
 #   scripts/slurm/local_cluster.sh --help      this text
 #   scripts/slurm/local_cluster.sh check       exit 0 if a cluster can be started
 #                                              here, else say why and exit 1
@@ -15,11 +19,19 @@
 # Everything lives in DIR (munge key, socket, pid and log files, slurm.conf,
 # state and spool folders); nothing outside it is changed. Ports are free
 # ones picked at start. Every wait has a time limit.
+#
+# The daemons outlive `start` (its shell exits), so they are orphans: their
+# parent becomes PID 1, or the nearest child subreaper. Where PID 1 never
+# reaps (a container whose first process is not an init), `stop` leaves them
+# defunct. `run` avoids that: it makes itself a child subreaper
+# (prctl PR_SET_CHILD_SUBREAPER), so the orphaned daemons become its
+# children and it reaps them after `stop`. A program that calls start and
+# stop itself can do the same (tests/scenario/test_slurm.py does).
 usage() { awk 'NR > 1 && /^#/ { sub(/^# ?/, ""); print; next } NR > 1 { exit }' "${BASH_SOURCE[0]}"; }
 for arg in "$@"; do case $arg in -h | --help) usage; exit 0 ;; --) break ;; esac; done
 set -euo pipefail
 
-bad_usage() { echo "usage: $0 start DIR | stop DIR | check (see --help)" >&2; exit 2; }
+bad_usage() { echo "usage: $0 start DIR | stop DIR | run DIR -- COMMAND... | check (see --help)" >&2; exit 2; }
 started_dir=
 # On an error while starting, stop what was already started.
 die() {
@@ -183,9 +195,45 @@ stop() {
   stop_pid "$dir/munged.pid" munged
 }
 
+# `run`: the one process that owns the daemons from start to reaping.
+run_and_reap='
+import ctypes, os, subprocess, sys, time
+script, folder, command = sys.argv[1], sys.argv[2], sys.argv[3:]
+if ctypes.CDLL(None, use_errno=True).prctl(36, 1, 0, 0, 0) != 0:     # PR_SET_CHILD_SUBREAPER
+    sys.exit("local_cluster: run: prctl(PR_SET_CHILD_SUBREAPER) failed: " + os.strerror(ctypes.get_errno()))
+
+def reap(limit):   # reap every child that ends within limit seconds (the stopped daemons)
+    end = time.time() + limit
+    while time.time() < end:
+        try:
+            pid, _ = os.waitpid(-1, os.WNOHANG)
+        except ChildProcessError:
+            return
+        if pid == 0:
+            time.sleep(0.1)
+
+start = subprocess.run([script, "start", folder])
+rc = 1
+if start.returncode == 0:
+    env = dict(os.environ, SLURM_CONF=os.path.join(os.path.abspath(folder), "slurm.conf"))
+    try:
+        rc = subprocess.run(command, env=env).returncode
+    except OSError as e:
+        print(f"local_cluster: run: cannot run {command[0]}: {e}", file=sys.stderr)
+        rc = 127
+    stop = subprocess.run([script, "stop", folder])
+    rc = rc if stop.returncode == 0 else (rc or 1)
+reap(15)
+sys.exit(rc)
+'
+
 case ${1:-} in
   start) [[ $# -eq 2 ]] || bad_usage; start "$2" ;;
   stop) [[ $# -eq 2 ]] || bad_usage; stop "$2" ;;
+  run)
+    [[ $# -ge 4 && $3 == -- ]] || bad_usage
+    # python3 for prctl: a subreaper that starts, runs, stops and reaps in one process
+    exec python3 -c "$run_and_reap" "${BASH_SOURCE[0]}" "$2" "${@:4}" ;;
   check)
     reason=$(why_not)
     [[ -z $reason ]] || { echo "local_cluster: cannot start a cluster here: $reason" >&2; exit 1; }

@@ -34,10 +34,11 @@
 # Restart: run the same command again. Chunks whose table exists are not
 # resubmitted; a chunk that was killed (time-out, node failure, scancel)
 # resumes after its last finished case (its kcreep --batch .partial table).
-# Unless something its cases read changed since it was submitted (namelist,
-# mask_file, contact_file and its .mat files, the kcreep binary; compared by
-# content, see scripts/case_stamps.py): then the chunk runs again from the
-# start (its old table is kept as NNNNN.tab.stale).
+# Unless the input fingerprint of one of its cases changed since it was
+# submitted (`kcreep --fingerprint`: the program, the namelist and every file
+# it reads, by content; the rule of kcreep --batch and run_cases.sh): then
+# the chunk runs again from the start (its old table is kept as
+# NNNNN.tab.stale).
 # When every chunk is done, the gather runs at once, here, without SLURM.
 #
 # Exit status: 0 submitted (with --wait: 0 table complete, 5 complete with
@@ -133,10 +134,10 @@ else
   split -l "$chunk" -a 5 --numeric-suffixes=1 --additional-suffix=.list "$workdir/cases.list" "$workdir/chunks/"
 fi
 
-# What each case reads (binary, namelist, mask and CONTACT files), fingerprinted
-# by content; a chunk whose fingerprint changed since it was submitted is stale.
-mapfile -t stamps < <(python3 "$repo/scripts/case_stamps.py" "$kcreep" <"$workdir/cases.list")
-((${#stamps[@]} == n_cases)) || die "could not fingerprint the inputs of the cases (scripts/case_stamps.py failed)"
+# The input fingerprint of each case (kcreep --fingerprint); a chunk whose
+# cases' fingerprints changed since it was submitted is stale.
+mapfile -t stamps < <(xargs -d '\n' "$kcreep" --fingerprint <"$workdir/cases.list" | cut -d' ' -f1)
+((${#stamps[@]} == n_cases)) || die "could not fingerprint the inputs of the cases (kcreep --fingerprint failed)"
 chunk_stamp() { printf '%s\n' "${stamps[@]:$((($1 - 1) * chunk)):$chunk}" | sha256sum | cut -d' ' -f1; }
 
 # chunks still to run

@@ -153,6 +153,53 @@ kc.check([r["case"] for r in torn_rows] == [r["case"] for r in reference], "torn
 for a, b in zip(reference, torn_rows):
     same_numbers(a, b, f"{a['case']}: after a torn row vs uninterrupted")
 
+# --- defect 1 of issue 31: a case whose mask file changes after the interruption
+# is run again on resume (the row's input fingerprint, kcreep --fingerprint, is
+# written beside it in the partial table); the unchanged cases are kept
+def mask_text(cells):
+    rows = ["".join("1" if 12 * j + i < cells else "0" for i in range(12)) for j in range(12)]
+    return "12 12 0.1 0.1 0 0\n" + "\n".join(rows) + "\n"
+
+
+write(os.path.join(sub, "fp_mask.nml"), "&patch shape='mask', mask_file='fp.mask' /\n&solver method='dense', target_error=0 /\n")
+write(os.path.join(sub, "fp.mask"), mask_text(100))
+write(os.path.join(folder, "fp.list"), "sub/fp_mask.nml\nsub/s1_12.nml\n" + "\n".join(sweep[2:]) + "\n")
+fp_partial = os.path.join(folder, "fp.tab.partial")
+victim = subprocess.Popen([kc.KCREEP, "--batch", "fp.list", "fp.tab"], cwd=folder,
+                          stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
+deadline = time.time() + 60
+fp_done = 0
+while time.time() < deadline and victim.poll() is None:
+    if os.path.exists(fp_partial):
+        fp_done = sum(1 for l in open(fp_partial) if l.strip() and not l.startswith("#"))
+        if fp_done >= 2:
+            break
+    time.sleep(0.005)
+victim.send_signal(signal.SIGKILL)
+victim.wait()
+marks = [l.split() for l in open(fp_partial) if l.startswith("# fingerprint ")]
+printed = subprocess.run([kc.KCREEP, "--fingerprint", "sub/fp_mask.nml"], cwd=folder, capture_output=True,
+                         text=True).stdout.split()
+kc.check(2 <= fp_done < 5 and marks and marks[0][2:4] == ["1", printed[0]],
+         f"killed after {fp_done} rows; the partial table holds each row's fingerprint, "
+         f"that of kcreep --fingerprint ({marks[:1]}, {printed[:1]})")
+old = os.path.getmtime(os.path.join(sub, "fp.mask"))
+write(os.path.join(sub, "fp.mask"), mask_text(80))
+os.utime(os.path.join(sub, "fp.mask"), (old - 3600, old - 3600))     # an older mtime: contents decide
+proc = batch("fp.list", "fp.tab")
+kc.check(proc.returncode == 0 and "case 1 'sub/fp_mask.nml': its inputs changed" in proc.stdout.replace(folder + "/", "")
+         and f"{fp_done - 1} of 5 cases already done" in proc.stdout,
+         f"resume after the mask changed: case 1 named and run again, the other {fp_done - 1} kept: "
+         f"{proc.stdout.splitlines()[:2]}")
+ran = [l.split()[1] for l in proc.stdout.splitlines() if l.startswith("kcreep: ") and "/5 " in l]
+kc.check(ran[:1] == ["1/5"] and len(ran) == 5 - (fp_done - 1), f"the changed case and the remaining ones ran ({ran})")
+fp_rows = kc.read_table(os.path.join(folder, "fp.tab"))
+kc.check([r["case"] for r in fp_rows] == ["sub/fp_mask", "sub/s1_12"] + [r["case"] for r in reference[2:]]
+         and fp_rows[0]["n"] == 80, f"the table: rows in list order, the masked case with its new 80 cells "
+         f"({[r['case'] for r in fp_rows]}, n = {fp_rows[0]['n'] if fp_rows else None})")
+kc.check(not any(l.startswith("# fingerprint") for l in open(os.path.join(folder, "fp.tab"))),
+         "the finished table carries no fingerprint lines")
+
 # a partial table of another list is not resumed
 write(os.path.join(folder, "other.tab.partial"), kept_partial)
 proc = batch("good.list", "other.tab")

@@ -1,7 +1,8 @@
 """scripts/run_cases.sh skips a case only when nothing it reads has changed
 since its table was made: the namelist, the mask file, the CONTACT output
-(and its .mat files) and the kcreep binary, compared by content, whatever
-their modification times say. An unchanged case is still skipped (resume).
+(and its .mat file) and the kcreep binary, compared by content, whatever
+their modification times say: its stamp is `kcreep --fingerprint` (defect 1
+of issue 31: one fingerprint for --batch, run_cases.sh and SLURM). An unchanged case is still skipped (resume).
 Rows are named as kcreep --batch names them (defect 6 of issue 31): a/case.nml
 and b/case.nml give the rows a/case and b/case in both.
 
@@ -80,6 +81,12 @@ def main():
     kctest.check(rc == 0 and skipped == 2, f"mask rewritten: only the mask case runs again ({skipped} skipped)")
     n_after = rows[0]["n"] if rows else None
     kctest.check(n_after == 80, f"mask rewritten: the table has the new cell count 80 ({n_after})")
+    # the one input fingerprint of kcreep --batch, run_cases.sh and the SLURM route
+    printed = subprocess.run([kctest.KCREEP, "--fingerprint", os.path.join(folder, "m", "masked.nml")],
+                             capture_output=True, text=True).stdout.split()
+    stamp = open(os.path.join(folder, "m", "masked.tab.stamp")).read().strip()
+    kctest.check(printed and stamp == printed[0],
+                 f"the stamp is kcreep --fingerprint's ({stamp[:16]}, {printed[:1]})")
 
     # The same for a change of the namelist itself whose mtime stays old.
     nml = os.path.join(folder, "inline.nml")

@@ -4,7 +4,11 @@ sweep as a job array (scripts/slurm/run_cases_slurm.sh), kill one array task
 on purpose, check that the gather step names exactly the missing cases,
 resubmit, and compare the gathered table with the same sweep run locally
 (kcreep --batch), row by row. Every daemon started is stopped by its pid,
-also on failure or when the test is interrupted.
+also on failure or when the test is interrupted, and none is left defunct:
+the daemons outlive local_cluster.sh start, and PID 1 on these machines never
+reaps orphans, so the test makes itself their child subreaper
+(prctl PR_SET_CHILD_SUBREAPER) and reaps them after local_cluster.sh stop;
+local_cluster.sh run DIR -- COMMAND does the same for a command.
 
 Skipped (exit code 77, CTest's SKIP_RETURN_CODE) with a loud message when
 no cluster can be started here: not root, or slurm-wlm/munge missing. With
@@ -12,6 +16,7 @@ KCREEP_REQUIRE_SLURM=1 that is a failure instead.
 
     test_slurm.py PATH/TO/kcreep
 """
+import ctypes
 import os
 import re
 import shutil
@@ -40,6 +45,38 @@ if probe.returncode != 0:
           f"# (it runs as root on Debian once scripts/setup.sh installed slurm-wlm and munge)\n{banner}")
     sys.stdout.flush()
     sys.exit(1 if os.environ.get("KCREEP_REQUIRE_SLURM") == "1" else SKIP)
+
+
+DAEMONS = ("munged", "slurmctld", "slurmd", "slurmstepd")
+
+
+def defunct_daemons():
+    """{pid: name} of the defunct (zombie) SLURM and munge processes on this machine."""
+    found = {}
+    for entry in os.listdir("/proc"):
+        if not entry.isdigit():
+            continue
+        try:
+            with open(f"/proc/{entry}/stat") as f:
+                head, tail = f.read().rsplit(")", 1)
+        except OSError:
+            continue
+        name = head.split("(", 1)[1]
+        if tail.split()[0] == "Z" and name in DAEMONS:
+            found[int(entry)] = name
+    return found
+
+
+def reap_children(limit):
+    """Reap every child of this process that ends within limit seconds."""
+    end = time.time() + limit
+    while time.time() < end:
+        try:
+            pid, _ = os.waitpid(-1, os.WNOHANG)
+        except ChildProcessError:
+            return
+        if pid == 0:
+            time.sleep(0.1)
 
 
 def remaining():
@@ -100,6 +137,13 @@ t_local = time.time() - t0
 kc.check(local.returncode == 5, f"local batch: exit 5 (one bad case) ({local.returncode})")
 local_rows = kc.read_table(os.path.join(folder, "local.tab"))
 kc.check(local_rows[-1]["case"] == "sub/p7_24", f"a case in a sub-folder is named by its path ({local_rows[-1]['case']})")
+
+# the daemons outlive `local_cluster.sh start`: as their subreaper this process
+# becomes their parent and can reap them (PID 1 here never does)
+defunct_before = defunct_daemons()          # other people's, left alone
+PR_SET_CHILD_SUBREAPER = 36
+kc.check(ctypes.CDLL(None, use_errno=True).prctl(PR_SET_CHILD_SUBREAPER, 1, 0, 0, 0) == 0,
+         "this test is the child subreaper of the daemons it starts")
 
 state = tempfile.mkdtemp(prefix="kcreep-slurm-")
 os.chmod(state, 0o755)                # munged wants every folder above its socket searchable
@@ -197,6 +241,30 @@ try:
     ratio = redo_rows[2]["c"] ** 2 if redo_rows else None       # c^2 = a b = 0.5 now
     kc.check(ratio is not None and abs(ratio - 0.5) < 1e-9, f"the gathered row is the new case's (c^2 = {ratio})")
     compare(local_rows[:2] + local_rows[3:], redo_rows[:2] + redo_rows[3:], "the other cases after the rerun")
+
+    # --- defect 1 of issue 31: the mask file of a case changes (contents only, its
+    # mtime set back): the input fingerprint (kcreep --fingerprint) sees it
+    def mask_text(cells):
+        rows = ["".join("1" if 12 * j + i < cells else "0" for i in range(12)) for j in range(12)]
+        return "12 12 0.1 0.1 0 0\n" + "\n".join(rows) + "\n"
+
+    mask_path = os.path.join(folder, "fp.mask")
+    with open(mask_path, "w") as f:
+        f.write(mask_text(100))
+    with open(changed, "w") as f:
+        f.write("&patch shape='mask', mask_file='fp.mask' /\n&solver method='dense', target_error=0 /\n")
+    first = run([run_cases, "sweep.list", "full.tab", "--chunk", "2", "--wait"], env=env, cwd=folder, timeout=150)
+    cells = [r["n"] for r in kc.read_table(os.path.join(folder, "full.tab"))][2:3]
+    kc.check(first.returncode == 5 and cells == [100], f"the case now reads a mask: 100 cells ({cells})")
+    old = os.path.getmtime(mask_path)
+    with open(mask_path, "w") as f:
+        f.write(mask_text(80))
+    os.utime(mask_path, (old - 3600, old - 3600))
+    redo = run([run_cases, "sweep.list", "full.tab", "--chunk", "2", "--wait"], env=env, cwd=folder, timeout=150)
+    cells = [r["n"] for r in kc.read_table(os.path.join(folder, "full.tab"))][2:3]
+    kc.check(redo.returncode == 5 and "submitted 1 array task(s)" in redo.stdout
+             and "chunk 2: its cases' inputs changed" in redo.stdout and cells == [80],
+             f"its mask file rewritten: its chunk alone runs again, 80 cells ({cells}) {redo.stdout.strip()[-200:]}")
 finally:
     stop = subprocess.run([local_cluster, "stop", cluster], capture_output=True, text=True, timeout=90)
     if stop.returncode != 0:
@@ -211,5 +279,18 @@ finally:
 
     still = {d: p for d, p in daemon_pids.items() if alive(p)}
     kc.check(not still, f"every daemon stopped ({daemon_pids}, still running: {still})")
+    reap_children(15)
+    left = {p: d for p, d in defunct_daemons().items() if p not in defunct_before}
+    kc.check(not left, f"no defunct daemon left after stop (defunct: {left})")
+
+    # `run DIR -- COMMAND`: start, the command, stop and reaping in one process
+    if remaining() > 60:
+        ran = run([local_cluster, "run", os.path.join(state, "cluster2"), "--", "sinfo", "-h", "-o", "%T"],
+                  timeout=90)
+        kc.check(ran.returncode == 0 and ran.stdout.strip().endswith("idle"),
+                 f"local_cluster.sh run: the command sees the idle node ({ran.returncode}: {ran.stdout.strip()})")
+        left = {p: d for p, d in defunct_daemons().items() if p not in defunct_before}
+        kc.check(not left, f"no defunct daemon left after local_cluster.sh run (defunct: {left})")
+        reap_children(5)
     shutil.rmtree(state, ignore_errors=True)
 kc.finish()

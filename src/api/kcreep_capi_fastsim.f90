@@ -1,0 +1,90 @@
+!> The C API's kcreep_fastsim: FASTSIM creep forces on a solved handle's
+!> patch (include/kcreep.h).
+module kcreep_capi_fastsim
+  use, intrinsic :: iso_c_binding, only: c_int, c_double, c_ptr, c_f_pointer, c_associated
+  use kcreep_kinds, only: wp
+  use kcreep_status, only: fail, exit_bad_input
+  use kcreep, only: creep_request_t, creep_point_t, creep_map_t, creep_curve, flexibility_weighted, &
+                    flexibility_separate
+  use kcreep_capi_handle, only: handle_t, status_ok, solved, finish, from_c
+  implicit none
+  private
+
+contains
+
+  !> FASTSIM with friction mu on the solved patch for n creepages
+  !> creep[3 k + 0..2] = (xi, eta, phi), with the patch's exact L1 L2 L3.
+  !> pressure: mx * my values on the patch's grid (rows in increasing y), or
+  !> NULL for the pressure of the normal problem (after kcreep_set_gap).
+  !> rule: "separate" (each creepage term with its own L) or "weighted"
+  !> (Kalker's single weighted L). Out: force[3 k + 0..2] = (Fx, Fy, Mz),
+  !> adhesion[k] = fraction of the area in adhesion (may be NULL).
+  integer(c_int) function c_fastsim(handle, mu, n, creep, pressure, rule, force, adhesion) &
+    bind(c, name='kcreep_fastsim')
+    type(c_ptr), value :: handle, creep, pressure, rule, force, adhesion
+    real(c_double), value :: mu
+    integer(c_int), value :: n
+    type(handle_t), pointer :: h
+    real(c_double), pointer :: creepages(:, :), grid(:, :), forces(:, :), adhered(:)
+    real(wp), allocatable :: pn(:, :)
+    type(creep_request_t) :: request
+    type(creep_point_t), allocatable :: points(:)
+    type(creep_map_t), allocatable :: maps(:)
+    character(len=:), allocatable :: rule_name
+    integer :: k
+    c_fastsim = solved(handle, h)
+    if (c_fastsim /= status_ok) return
+    if (.not. (mu > 0 .and. mu < huge(1.0_wp)) .or. n < 1) then
+      call fail(h%last, exit_bad_input, 'kcreep_fastsim: mu must be finite and > 0, n >= 1')
+    else if (.not. c_associated(creep) .or. .not. c_associated(force) .or. .not. c_associated(rule)) then
+      call fail(h%last, exit_bad_input, 'kcreep_fastsim: creep, rule and force must not be NULL')
+    else if (.not. c_associated(pressure) .and. .not. h%result%normal_solved) then
+      call fail(h%last, exit_bad_input, 'kcreep_fastsim: pressure is NULL and the last solve had no normal problem')
+    end if
+    if (h%last%failed()) then
+      c_fastsim = finish(h)
+      return
+    end if
+    rule_name = from_c(rule, 16)
+    select case (rule_name)
+    case ('separate')
+      request%rule = flexibility_separate
+    case ('weighted')
+      request%rule = flexibility_weighted
+    case default
+      call fail(h%last, exit_bad_input, 'kcreep_fastsim: rule = "'//rule_name//'" (allowed: separate, weighted)')
+      c_fastsim = finish(h)
+      return
+    end select
+    associate (p => h%result%patch)
+      if (c_associated(pressure)) then
+        call c_f_pointer(pressure, grid, [p%mx, p%my])
+        pn = grid
+        if (.not. all(pn >= 0 .and. pn < huge(1.0_wp))) then
+          call fail(h%last, exit_bad_input, 'kcreep_fastsim: pressure must be finite and >= 0 on the grid')
+          c_fastsim = finish(h)
+          return
+        end if
+      else
+        allocate (pn(p%mx, p%my))
+        pn = 0
+        do k = 1, p%n
+          pn(p%ix(k), p%iy(k)) = h%result%pressure(k)
+        end do
+      end if
+    end associate
+    call c_f_pointer(creep, creepages, [3, int(n)])
+    request%mu = mu
+    request%creepages = creepages
+    call creep_curve(h%result, pn, request, points, maps)
+    call c_f_pointer(force, forces, [3, int(n)])
+    do k = 1, n
+      forces(:, k) = [points(k)%force%fx, points(k)%force%fy, points(k)%force%mz]
+    end do
+    if (c_associated(adhesion)) then
+      call c_f_pointer(adhesion, adhered, [int(n)])
+      adhered = [(points(k)%force%adhesion, k=1, n)]
+    end if
+  end function c_fastsim
+
+end module kcreep_capi_fastsim

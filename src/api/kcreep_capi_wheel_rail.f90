@@ -1,0 +1,188 @@
+!> The C API's wheel-rail calls: kcreep_set_profiles, kcreep_set_track,
+!> kcreep_wheel_rail and kcreep_get_wheel_rail (include/kcreep.h).
+module kcreep_capi_wheel_rail
+  use, intrinsic :: iso_c_binding, only: c_int, c_double, c_ptr, c_f_pointer, c_associated
+  use kcreep_kinds, only: wp
+  use kcreep_status, only: fail, exit_bad_input
+  use kcreep_strings, only: itoa, rtoa
+  use kcreep, only: problem_t, kcreep_wheel_rail, wheel_rail_setup_t, check_wheel_rail_setup, max_wheel_rail_shifts, &
+                    default_target_error
+  use kcreep_profile_file, only: read_profile_file
+  use kcreep_capi_handle, only: handle_t, status_ok, status_no_result, begin, finish, from_c, output_array
+  implicit none
+  private
+
+  !> The wheel-rail table's columns (KCREEP_WHEEL_RAIL_COLUMNS in kcreep.h).
+  integer, parameter :: wheel_rail_column_count = 23
+
+contains
+
+  !> The handle behind a C pointer, with its last error cleared.
+  !> Wheel and rail profiles for kcreep_wheel_rail, read now (as &wheel_rail
+  !> wheel_file, rail_file: SIMPACK .prw/.prr, MiniProf .whl/.ban, else two
+  !> columns y z in mm); mirror flags 0 or 1; smoothing >= 0 (mm^3).
+  integer(c_int) function c_set_profiles(handle, wheel_file, rail_file, wheel_mirror, rail_mirror, smoothing) &
+    bind(c, name='kcreep_set_profiles')
+    type(c_ptr), value :: handle, wheel_file, rail_file
+    integer(c_int), value :: wheel_mirror, rail_mirror
+    real(c_double), value :: smoothing
+    type(handle_t), pointer :: h
+    character(len=:), allocatable :: wheel_path, rail_path
+    c_set_profiles = begin(handle, h)
+    if (c_set_profiles /= status_ok) return
+    if (.not. (c_associated(wheel_file) .and. c_associated(rail_file))) then
+      call fail(h%last, exit_bad_input, 'kcreep_set_profiles: wheel_file or rail_file is NULL')
+    else if (.not. (smoothing >= 0 .and. smoothing <= 1e12_wp)) then
+      call fail(h%last, exit_bad_input, 'kcreep_set_profiles: smoothing = '//rtoa(real(smoothing, wp))// &
+                ' (allowed: 0 to 1e12 mm^3)')
+    else if (any([wheel_mirror, rail_mirror] /= 0 .and. [wheel_mirror, rail_mirror] /= 1)) then
+      call fail(h%last, exit_bad_input, 'kcreep_set_profiles: wheel_mirror, rail_mirror = '//itoa(int(wheel_mirror))// &
+                ', '//itoa(int(rail_mirror))//' (allowed: 0 or 1)')
+    else
+      wheel_path = from_c(wheel_file, 4096)
+      rail_path = from_c(rail_file, 4096)
+      associate (s => h%wheel_rail)
+        if (allocated(s%wheel_y)) deallocate (s%wheel_y, s%wheel_z)
+        if (allocated(s%rail_y)) deallocate (s%rail_y, s%rail_z)
+        call read_profile_file(wheel_path, 'wheel_file', .true., s%wheel_y, s%wheel_z, h%last)
+        if (.not. h%last%failed()) call read_profile_file(rail_path, 'rail_file', .false., s%rail_y, s%rail_z, h%last)
+        if (h%last%failed()) then
+          if (allocated(s%wheel_y)) deallocate (s%wheel_y, s%wheel_z)
+          if (allocated(s%rail_y)) deallocate (s%rail_y, s%rail_z)
+          h%last%message = 'kcreep_set_profiles: '//h%last%message
+        else
+          s%wheel_name = 'wheel_file '''//wheel_path//''''
+          s%rail_name = 'rail_file '''//rail_path//''''
+          s%wheel_mirror = wheel_mirror == 1
+          s%rail_mirror = rail_mirror == 1
+          s%smoothing = smoothing
+        end if
+      end associate
+    end if
+    c_set_profiles = finish(h)
+  end function c_set_profiles
+
+  !> Track and wheelset placement of kcreep_wheel_rail (as &wheel_rail): side
+  !> "right" or "left", gauge_width at gauge_height below the track plane,
+  !> rail_cant (rad, added to the rail file's), flange_back_distance,
+  !> flange_back_position, nominal_radius (mm). Until called: 'right', 1435,
+  !> 14, 0, 1360, -70, 460.
+  integer(c_int) function c_set_track(handle, side, gauge_width, gauge_height, rail_cant, flange_back_distance, &
+                                      flange_back_position, nominal_radius) bind(c, name='kcreep_set_track')
+    type(c_ptr), value :: handle, side
+    real(c_double), value :: gauge_width, gauge_height, rail_cant, flange_back_distance, flange_back_position, &
+                             nominal_radius
+    type(handle_t), pointer :: h
+    type(wheel_rail_setup_t) :: trial
+    c_set_track = begin(handle, h)
+    if (c_set_track /= status_ok) return
+    if (.not. c_associated(side)) then
+      call fail(h%last, exit_bad_input, 'kcreep_set_track: side is NULL (allowed: "right", "left")')
+    else
+      trial%side = from_c(side, 16)
+      trial%gauge_width = gauge_width
+      trial%gauge_height = gauge_height
+      trial%rail_cant = rail_cant
+      trial%flange_back_distance = flange_back_distance
+      trial%flange_back_position = flange_back_position
+      trial%nominal_radius = nominal_radius
+      trial%shifts = [0.0_wp]
+      trial%vertical_force = 1
+      call check_wheel_rail_setup(trial, 'kcreep_set_track: ', h%last)
+      if (.not. h%last%failed()) then
+        h%wheel_rail%side = trial%side
+        h%wheel_rail%gauge_width = gauge_width
+        h%wheel_rail%gauge_height = gauge_height
+        h%wheel_rail%rail_cant = rail_cant
+        h%wheel_rail%flange_back_distance = flange_back_distance
+        h%wheel_rail%flange_back_position = flange_back_position
+        h%wheel_rail%nominal_radius = nominal_radius
+      end if
+    end if
+    c_set_track = finish(h)
+  end function c_set_track
+
+  !> The contact table of the handle's profiles and track for n_shifts lateral
+  !> shifts (mm) at yaw (rad): exactly one of vertical_force (N) and approach
+  !> (mm) > 0. The handle's material, solver settings and target error are
+  !> used (target 0: the program's default, 1e-3). rows: the table's rows
+  !> (one per shift and patch), read with kcreep_get_wheel_rail.
+  integer(c_int) function c_wheel_rail(handle, n_shifts, shifts, yaw, vertical_force, approach, rows) &
+    bind(c, name='kcreep_wheel_rail')
+    type(c_ptr), value :: handle, shifts, rows
+    integer(c_int), value :: n_shifts
+    real(c_double), value :: yaw, vertical_force, approach
+    type(handle_t), pointer :: h
+    real(c_double), pointer :: values(:)
+    integer(c_int), pointer :: n_rows
+    type(problem_t) :: base
+    c_wheel_rail = begin(handle, h)
+    if (c_wheel_rail /= status_ok) return
+    h%wheel_rail_done = .false.
+    if (.not. (c_associated(shifts) .and. c_associated(rows))) then
+      call fail(h%last, exit_bad_input, 'kcreep_wheel_rail: shifts or rows is NULL')
+    else if (n_shifts < 1 .or. n_shifts > max_wheel_rail_shifts) then
+      call fail(h%last, exit_bad_input, 'kcreep_wheel_rail: n_shifts = '//itoa(int(n_shifts))//' (allowed: 1 to '// &
+                itoa(max_wheel_rail_shifts)//')')
+    else if (.not. (allocated(h%wheel_rail%wheel_y) .and. allocated(h%wheel_rail%rail_y))) then
+      call fail(h%last, exit_bad_input, 'kcreep_wheel_rail: no profiles (call kcreep_set_profiles first)')
+    else if ((vertical_force > 0) .eqv. (approach > 0)) then
+      call fail(h%last, exit_bad_input, 'kcreep_wheel_rail: vertical_force = '//rtoa(real(vertical_force, wp))// &
+                ', approach = '//rtoa(real(approach, wp))//' (allowed: exactly one > 0)')
+    else
+      call c_f_pointer(shifts, values, [n_shifts])
+      call c_f_pointer(rows, n_rows)
+      n_rows = 0
+      h%wheel_rail%shifts = values
+      h%wheel_rail%yaw = yaw
+      h%wheel_rail%force_given = vertical_force > 0
+      h%wheel_rail%vertical_force = max(vertical_force, 0.0_c_double)
+      h%wheel_rail%approach = max(approach, 0.0_c_double)
+      call check_wheel_rail_setup(h%wheel_rail, 'kcreep_wheel_rail: ', h%last)
+      if (.not. h%last%failed()) then
+        base = h%problem
+        if (.not. (base%target_error > 0)) base%target_error = default_target_error
+        call kcreep_wheel_rail(h%wheel_rail, base, h%wheel_rail_rows, h%last)
+        h%wheel_rail_done = .not. h%last%failed()
+        if (h%wheel_rail_done) n_rows = size(h%wheel_rail_rows)
+      end if
+    end if
+    c_wheel_rail = finish(h)
+  end function c_wheel_rail
+
+  !> The last kcreep_wheel_rail's table, row by row: table[r * KCREEP_WHEEL_RAIL_COLUMNS + k]
+  !> (length >= rows * KCREEP_WHEEL_RAIL_COLUMNS), the columns of
+  !> KCREEP_WHEEL_RAIL_COLUMN_NAMES, the verdict as its bits.
+  integer(c_int) function c_get_wheel_rail(handle, length, table) bind(c, name='kcreep_get_wheel_rail')
+    type(c_ptr), value :: handle, table
+    integer(c_int), value :: length
+    type(handle_t), pointer :: h
+    real(c_double), pointer :: values(:)
+    integer :: r, n
+    c_get_wheel_rail = begin(handle, h)
+    if (c_get_wheel_rail /= status_ok) return
+    if (.not. h%wheel_rail_done) then
+      call fail(h%last, int(status_no_result), 'kcreep_get_wheel_rail: no table: call kcreep_wheel_rail '// &
+                '(successfully) first')
+      c_get_wheel_rail = finish(h)
+      return
+    end if
+    n = size(h%wheel_rail_rows) * wheel_rail_column_count
+    if (length < n) then
+      call fail(h%last, exit_bad_input, 'kcreep_get_wheel_rail: length = '//itoa(int(length))//' (the table has '// &
+                itoa(n)//' values)')
+      c_get_wheel_rail = finish(h)
+      return
+    end if
+    c_get_wheel_rail = output_array(h, table, n, 'kcreep_get_wheel_rail: table', values)
+    if (c_get_wheel_rail /= status_ok) return
+    do r = 1, size(h%wheel_rail_rows)
+      associate (w => h%wheel_rail_rows(r))
+        values((r - 1) * wheel_rail_column_count + 1:r * wheel_rail_column_count) = &
+          [w%shift, w%yaw, real(w%patch, wp), w%fn, w%delta, w%y_rail, w%y_wheel, w%r_wheel, w%area, w%length, &
+           w%width, w%c, w%err, real(w%result%verdict_flags, wp), w%l, w%spin]
+      end associate
+    end do
+  end function c_get_wheel_rail
+
+end module kcreep_capi_wheel_rail
