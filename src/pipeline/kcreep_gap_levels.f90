@@ -46,11 +46,11 @@ module kcreep_gap_levels
   use kcreep_verdict, only: message_length
   use kcreep_fastsim, only: fastsim_flexibilities
   use kcreep_refine_constants
-  use kcreep_refine_estimate, only: level_estimate, gap_level_estimate, within_target, coefficient_targets, min_estimate_cells, &
+  use kcreep_refine_estimate, only: level_estimate, within_target, coefficient_targets, min_estimate_cells, &
                                     level_cell_budget
   implicit none
   private
-  public :: run_gap_patch, gap_single_estimate, aspect_defect
+  public :: run_gap_patch, gap_single_estimate
 
   !> Power of c in f_ij = G c^p C_ij.
   integer, parameter :: c_power(3, 3) = reshape([2, 2, 3, 2, 2, 3, 3, 3, 4], [3, 3])
@@ -155,7 +155,7 @@ contains
     type(normal_result_t) :: nres
     type(gap_t) :: gap
     integer, allocatable :: done(:), want(:), idx(:)
-    real(real64), allocatable :: cnorm(:, :, :), area(:), defect(:)
+    real(real64), allocatable :: cnorm(:, :, :), area(:)
     character(len=message_length), allocatable :: warnings(:)
     character(len=message_length) :: line
     real(real64) :: box(4), diameter, t(4), budget
@@ -168,7 +168,7 @@ contains
     diameter = contact_diameter(first)
     box = level_box(problem%normal%gap, first%grid_box())
 
-    allocate (done(0), cnorm(3, 3, 0), area(0), defect(0), warnings(0))
+    allocate (done(0), cnorm(3, 3, 0), area(0), warnings(0))
     t = 0
     budget = cell_budget_or(problem, level_cell_budget(problem%target_error))
     level_problem = problem
@@ -190,12 +190,12 @@ contains
         if (any(done == want(k))) cycle
         call level_gap(problem, box, diameter / want(k), gap, status)
         if (status%failed()) return
-        call run_gap_level(level_problem, gap, want(k), result, cnorm, area, defect, warnings, t, status)
+        call run_gap_level(level_problem, gap, want(k), result, cnorm, area, warnings, t, status)
         if (status%failed()) return
         done = [done, want(k)]
       end do
       idx = [(findloc(done, want(k), 1), k=1, size(want))]
-      call fit_gap_levels(1.0_real64 / want, cnorm(:, :, idx), area(idx), defect(idx), result)
+      call fit_gap_levels(1.0_real64 / want, cnorm(:, :, idx), area(idx), result)
       if (within_target(result%err, coefficient_targets(problem%target_error))) exit
     end do
     result%t_assemble = t(1)
@@ -206,12 +206,12 @@ contains
   end subroutine run_gap_levels
 
   !> One level: solve, keep its own-area normalised coefficients, area and warnings.
-  subroutine run_gap_level(problem, gap, label, result, cnorm, area, defect, warnings, t, status)
+  subroutine run_gap_level(problem, gap, label, result, cnorm, area, warnings, t, status)
     type(problem_t), intent(in) :: problem
     type(gap_t), intent(in) :: gap
     integer, intent(in) :: label
     type(result_t), intent(inout) :: result
-    real(real64), allocatable, intent(inout) :: cnorm(:, :, :), area(:), defect(:)
+    real(real64), allocatable, intent(inout) :: cnorm(:, :, :), area(:)
     character(len=message_length), allocatable, intent(inout) :: warnings(:)
     real(real64), intent(inout) :: t(4)
     type(status_t), intent(inout) :: status
@@ -225,21 +225,20 @@ contains
     c(:, :, size(c, 3)) = result%f / (result%g * result%c**c_power)
     call move_alloc(c, cnorm)
     area = [area, pi * result%c**2]
-    defect = [defect, aspect_defect(result%patch, result%pressure)]
     call append_prefixed(warnings, 'level '//itoa(label)//' (gap grid '//itoa(gap%mx)//' x '//itoa(gap%my)//'): ', &
                          result%warnings)
   end subroutine run_gap_level
 
   !> The fits: C_ij and the area extrapolated; f_ij = G c^p C_ij with c from
   !> the fitted area; err the estimates of C11, C22, C23.
-  subroutine fit_gap_levels(h, cnorm, area, defect, result)
-    real(real64), intent(in) :: h(:), cnorm(:, :, :), area(:), defect(:)
+  subroutine fit_gap_levels(h, cnorm, area, result)
+    real(real64), intent(in) :: h(:), cnorm(:, :, :), area(:)
     type(result_t), intent(inout) :: result
     real(real64) :: limit(3, 3), rel(3, 3), a0, rel_area
     integer :: i, j
     do j = 1, 3
       do i = 1, 3
-        call gap_level_estimate(h, cnorm(i, j, :), defect, limit(i, j), rel(i, j))
+        call level_estimate(h, cnorm(i, j, :), limit(i, j), rel(i, j))
       end do
     end do
     call level_estimate(h, area, a0, rel_area)
@@ -251,86 +250,6 @@ contains
     ! FASTSIM's flexibilities of the finest contact area with the extrapolated f
     result%fastsim = fastsim_flexibilities(result%patch, result%f(1, 1), result%f(2, 2), result%f(2, 3))
   end subroutine fit_gap_levels
-
-  !> A level's aspect defect: ln(a_s / b_s) - ln(a_t / b_t), a_s / b_s the
-  !> aspect ratio of the contact area's staircase from its second moments
-  !> about its centroid (each cell with its own dx^2/12, dy^2/12), a_t / b_t
-  !> that of the contact boundary located inside the cells. The boundary:
-  !> along every row (for the x moment) and every column (for the y moment)
-  !> each run of contact cells ends where p^2, linear in the distance to the
-  !> edge (Hertz's square root), extrapolated from the run's last two cells
-  !> vanishes, at most a cell beyond the last centre (the first cell out), at
-  !> least at it; a run of one cell ends at the cell's edges. From one level
-  !> to the next the staircase's aspect wanders by a fraction of a cell and
-  !> the coefficients follow it; the located boundary follows the contact
-  !> area (measured on Hertz's a/b = 2, 26 grids: its area within 0.1 % of
-  !> Hertz's where the staircase's scatters by 0.4 %), so the defect is the
-  !> staircase's wander alone and vanishes as h -> 0.
-  pure real(real64) function aspect_defect(patch, pressure) result(defect)
-    type(patch_t), intent(in) :: patch
-    real(real64), intent(in) :: pressure(:)
-    real(real64), allocatable :: p(:, :), x(:), y(:)
-    real(real64) :: xc, yc, ixx_s, iyy_s, ax, ixx_t, ay, iyy_t
-    integer :: k
-    allocate (p(0:patch%mx + 1, 0:patch%my + 1))
-    p = 0
-    do k = 1, patch%n
-      p(patch%ix(k), patch%iy(k)) = max(pressure(k), tiny(1.0_real64))
-    end do
-    x = patch%cell_x(patch%ix)
-    y = patch%cell_y(patch%iy)
-    xc = sum(x) / patch%n
-    yc = sum(y) / patch%n
-    ixx_s = sum((x - xc)**2) + patch%n * patch%dx**2 / 12
-    iyy_s = sum((y - yc)**2) + patch%n * patch%dy**2 / 12
-    call run_moments(p, patch%dx, patch%x0 - xc, ax, ixx_t)
-    call run_moments(transpose(p), patch%dy, patch%y0 - yc, ay, iyy_t)
-    defect = 0.5_real64 * (log(ixx_s / iyy_s) - log((ixx_t / ax) / (iyy_t / ay)))
-  end function aspect_defect
-
-  !> Length and second moment (sum over the lines of the integral of x^2)
-  !> of the runs of p > 0 along the first index of p(0:m+1, :), their ends
-  !> located inside the cells (aspect_defect); x1 is the first cell's centre.
-  pure subroutine run_moments(p, d, x1, length, moment)
-    real(real64), intent(in) :: p(0:, :), d, x1
-    real(real64), intent(out) :: length, moment
-    real(real64) :: lo, hi
-    integer :: i, j, s, e, m
-    m = size(p, 1) - 2
-    length = 0
-    moment = 0
-    do j = 2, size(p, 2) - 1
-      i = 1
-      do while (i <= m)
-        if (p(i, j) <= 0) then
-          i = i + 1
-          cycle
-        end if
-        s = i
-        do while (p(i + 1, j) > 0)
-          i = i + 1
-        end do
-        e = i
-        lo = x1 + (s - 1) * d - d * edge_beyond(p(s, j), p(s + 1, j), s < e)
-        hi = x1 + (e - 1) * d + d * edge_beyond(p(e, j), p(e - 1, j), s < e)
-        length = length + (hi - lo)
-        moment = moment + (hi**3 - lo**3) / 3
-        i = e + 1
-      end do
-    end do
-  end subroutine run_moments
-
-  !> Where p^2 extrapolated linearly from a run's last cell (p_end) and the
-  !> one inside it (p_in) vanishes, in cells beyond the last centre, within
-  !> [0, 1]; half a cell when the run has one cell or p does not fall.
-  pure real(real64) function edge_beyond(p_end, p_in, two) result(beyond)
-    real(real64), intent(in) :: p_end, p_in
-    logical, intent(in) :: two
-    beyond = 0.5_real64
-    if (.not. two) return
-    if (p_in**2 <= p_end**2) return
-    beyond = min(1.0_real64, p_end**2 / (p_in**2 - p_end**2))
-  end function edge_beyond
 
   !> The region the level grids cover: the contact area's bounding box (cell
   !> edges, xmin xmax ymin ymax) widened by gap_level_margin of its size and two

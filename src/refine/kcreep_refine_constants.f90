@@ -123,11 +123,6 @@ module kcreep_refine_constants
   !> widened by this fraction of its size on every side (and by two cells of
   !> the given grid): the contact area moves by less than a cell between levels.
   real(real64), parameter :: gap_level_margin = 0.2_real64
-  !> A gap level's aspect defect (kcreep_gap_levels aspect_defect) that
-  !> varies by less than this over the levels is no column of the fit (a
-  !> circle on a symmetric grid: zero to round-off; measured defects of
-  !> Hertz's a/b = 2 and of the wheel on rail spread over 1e-3 to 1e-2).
-  real(real64), parameter :: gap_defect_floor = 1e-6_real64
   !> A gap's grid given as is: the geometry on cells gap_single_sizes times
   !> the size, estimate gap_single_factor max(|C(h) - C(2h)|, 2 |C(h) -
   !> C(1.5h)|) / C(h) (the contact boundary moves between the grids: 97 of

@@ -27,7 +27,7 @@ module kcreep_refine_estimate
   public :: default_target_error, c23_target_factor, min_estimate_cells, nominal_ellipse_cells
   public :: coefficient_targets, ellipse_level_grid, ellipse_cells_long_in_y, next_level, level_cell_budget, student_t95
   public :: cell_budget_allowed, cell_budget_range, level_solver_tolerance
-  public :: first_order_fit, level_estimate, ellipse_level_estimate, split_level_estimate, gap_level_estimate, basis_fit
+  public :: first_order_fit, level_estimate, ellipse_level_estimate, split_level_estimate, basis_fit
   public :: single_grid_estimate, ellipse_fit_min, ellipse_fit_width
   public :: split_grid_estimate, within_target, uncertain_flag
 
@@ -204,28 +204,6 @@ contains
     call three_column_fit(h, f, shape, limit, se)
     rel_error = (student_t95(size(h) - 3) * se + order_margin * abs(limit - f(minloc(h, 1)))) / abs(limit)
   end subroutine ellipse_level_estimate
-
-  !> Limit and relative 95 % error estimate from a gap's levels (each its own
-  !> geometry, normalised by its own contact area): the fit f0 + K h + B
-  !> defect, defect being each level's aspect defect (the log aspect ratio
-  !> of its staircase minus that of its contact boundary located inside the
-  !> cells, kcreep_gap_levels aspect_defect; it vanishes as h -> 0 for any
-  !> shape). The staircase's aspect wanders from level to level and the
-  !> coefficients follow it; the column takes that out (it halves the
-  !> scatter on Hertz's a/b = 2, docs/accuracy.md section 5). Estimate:
-  !> t95 x the standard error of f0. A defect that does not vary (a circle
-  !> on a symmetric grid) leaves the first-order fit (level_estimate).
-  pure subroutine gap_level_estimate(h, f, defect, limit, rel_error)
-    real(real64), intent(in) :: h(:), f(:), defect(:)
-    real(real64), intent(out) :: limit, rel_error
-    real(real64) :: se
-    if (maxval(defect) - minval(defect) < gap_defect_floor .or. size(h) < 4) then
-      call level_estimate(h, f, limit, rel_error)
-      return
-    end if
-    call three_column_fit(h, f, defect, limit, se)
-    rel_error = student_t95(size(h) - 3) * se / abs(limit)
-  end subroutine gap_level_estimate
 
   !> Least-squares fit f = f0 + K h + L g(h) with g(h) = h**1.5 (kind 1) or
   !> h log h (kind 2); std_error of f0 (NaN without degrees of freedom left).
