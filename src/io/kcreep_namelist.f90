@@ -30,6 +30,7 @@ module kcreep_namelist
   use kcreep_normal_influence, only: compliance_from_g_nu, compliance_from_e_nu, combined_g_nu_from_e_nu
   use kcreep_creep_curve, only: creep_request_t, source_names
   use kcreep_fastsim_forces, only: flexibility_weighted, flexibility_separate
+  use kcreep_rolling_input, only: rolling_config_t, read_rolling_group
   implicit none
   private
   public :: config_t, read_config, build_patch, problem_of, max_inline_rows, max_row_length, max_creepages
@@ -37,8 +38,8 @@ module kcreep_namelist
   integer, parameter :: max_inline_rows = 2048, max_row_length = 2048
   integer, parameter :: default_cells = 60
   integer, parameter :: max_creepages = 100000   !< creepage points of &fastsim (list and sweep together)
-  character(len=*), parameter :: group_names(6) = [character(len=8) :: 'patch', 'material', 'solver', 'output', &
-                                                    'normal', 'fastsim']
+  character(len=*), parameter :: group_names(7) = [character(len=8) :: 'patch', 'material', 'solver', 'output', &
+                                                    'normal', 'fastsim', 'rolling']
   !> &normal: the number of cells across the automatic grid's larger side, its margin
   integer, parameter :: default_cells_across = 60
   real(real64), parameter :: default_margin = 0.2_real64
@@ -73,6 +74,7 @@ module kcreep_namelist
     ! &fastsim (group absent: fastsim_on false, nothing of it runs)
     logical :: fastsim_on = .false.
     type(creep_request_t) :: fastsim
+    type(rolling_config_t) :: rolling               !< &rolling (kcreep_rolling_input); rolling%on: given
     character(len=:), allocatable :: pressure       !< 'hertz', 'contact', 'file', 'parabolic' (after 'auto')
     character(len=:), allocatable :: pressure_input_file   !< pressure = 'file': the pressure per cell
     real(real64) :: fn = 1                          !< load of the 'hertz' and 'parabolic' pressures
@@ -124,7 +126,7 @@ contains
     integer :: sweep_points
     character(len=16) :: sweep_spacing, rule, pressure
     character(len=128) :: flexibility
-    character(len=4096) :: pressure_input_file, creep_file, creep_map_file
+    character(len=4096) :: pressure_input_file, creep_file, creep_map_file, rolling_file, rolling_map_file
     logical :: maps
     !> "not given": g, nu and spin_shift default differently for shape = 'contact',
     !> and a value the user wrote is either used or refused, never replaced
@@ -138,7 +140,7 @@ contains
                       refine_ratio, refine, method, tolerance, max_iterations, restart, split_systems, spin_centre, &
                       spin_centre_x, spin_centre_y, preconditioner, threads
     namelist /output/ table_file, traction_file, pressure_file, contact_mask_file, creep_file, &
-                      creep_map_file
+                      creep_map_file, rolling_file, rolling_map_file
     namelist /normal/ gap_file, contact_inp, contact_inp_case, rx, ry, lx, ly, cx, cy, approach, normal_force, &
                       cells_across, margin, e1, nu1, e2, nu2, normal_tolerance, normal_max_iterations
     namelist /fastsim/ mu, creepages, sweep_direction, sweep_from, sweep_to, sweep_points, sweep_spacing, &
@@ -210,6 +212,8 @@ contains
     normal_max_iterations = cfg%normal%options%max_iterations
     creep_file = ''
     creep_map_file = ''
+    rolling_file = ''
+    rolling_map_file = ''
     mu = unset
     allocate (creepages(3 * max_creepages + 1))
     creepages = unset
@@ -263,6 +267,8 @@ contains
     rewind (unit)
     if (group_present(6)) read (unit, nml=fastsim, iostat=ios, iomsg=msg)
     call check_read('fastsim', 6)
+    call read_rolling_group(unit, path, group_present(7), group_closed(7) .and. last_line_open, &
+                            lower(trim(adjustl(shape))), extrapolate, cfg%rolling, status)
     close (unit)
     if (status%failed()) return
 
@@ -438,6 +444,16 @@ contains
     cfg%creep_map_file = resolve_path(trim(creep_map_file), folder_of(path))
     if (maps .and. len(cfg%creep_map_file) == 0) cfg%creep_map_file = default_output_name(path, '.creepmap')
     cfg%pressure_input_file = resolve_path(trim(pressure_input_file), folder_of(path))
+    cfg%rolling%rolling_file = resolve_path(trim(rolling_file), folder_of(path))
+    if (len(cfg%rolling%rolling_file) == 0) cfg%rolling%rolling_file = default_output_name(path, '.roll')
+    cfg%rolling%rolling_map_file = resolve_path(trim(rolling_map_file), folder_of(path))
+    if (cfg%rolling%request%maps .and. len(cfg%rolling%rolling_map_file) == 0) &
+      cfg%rolling%rolling_map_file = default_output_name(path, '.rollmap')
+    cfg%rolling%request%maps = cfg%rolling%request%maps .or. len(cfg%rolling%rolling_map_file) > 0
+    if (cfg%rolling%on .and. cfg%scheme%name /= 'backward') call fail(status, exit_bad_input, 'input '''//path// &
+        ''': &rolling needs &solver scheme = ''backward'' (scheme = '''//cfg%scheme%name//''')')
+    if (cfg%rolling%on .and. len(cfg%rolling%pressure_input_file) > 0 .and. cfg%shape == 'mask') &
+      cfg%refine_grid = .false.   ! a pressure file is given on the mask's own grid
 
     call validate(cfg, mask_rows, nrows, load_cases, status)
     if (cfg%fastsim_on .and. .not. status%failed()) call validate_fastsim(status)
@@ -445,6 +461,10 @@ contains
     if (.not. status%failed()) call validate_normal(cfg, group_present(5), material_given, [e1, nu1, e2, nu2], &
                                                     unset, status)
     if (cfg%shape == 'gap' .and. .not. status%failed()) call load_gap(cfg, status)
+    if (cfg%rolling%on .and. cfg%rolling%pressure == 'contact' .and. .not. status%failed()) then
+      if (.not. allocated(cfg%contact%pn)) call fail(status, exit_bad_input, 'input '''//path// &
+          ''': &rolling pressure = ''contact'' needs the element file (.mat) of the case with its PN column')
+    end if
     if (cfg%fastsim_on .and. cfg%pressure == 'contact' .and. .not. status%failed()) then
       if (.not. allocated(cfg%contact%pn)) call fail(status, exit_bad_input, 'input '''//path// &
           ''': &fastsim pressure = ''contact'' needs the element file (.mat) of the case with its PN column')
