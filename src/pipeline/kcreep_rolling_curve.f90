@@ -22,6 +22,7 @@ module kcreep_rolling_curve
   implicit none
   private
   public :: rolling_request_t, rolling_point_t, rolling_curve, default_rolling_tolerance, cell_stick, cell_slip
+  public :: rolling_residual_of
 
   type :: rolling_request_t
     real(real64) :: mu = 0                        !< friction coefficient
@@ -175,5 +176,40 @@ contains
     end subroutine project
 
   end subroutine rolling_curve
+
+  !> The residual max|F_i| / max(mu pn) of given tractions (2n: px, py per
+  !> patch cell) in the discrete rolling problem of (patch, creep, mu, pn):
+  !> how far another solver's answer (CONTACT's element file) is from
+  !> satisfying the Coulomb conditions of this discretisation.
+  function rolling_residual_of(patch, scheme, nu, g, spin_centre, pn, mu, creep, traction) result(residual)
+    type(patch_t), intent(in) :: patch
+    type(scheme_t), intent(in) :: scheme
+    real(real64), intent(in) :: nu, g, spin_centre(2), pn(:, :), mu, creep(3), traction(:)
+    real(real64) :: residual
+    type(patch_t) :: centred
+    type(operator_table_t) :: table
+    type(rolling_solver_t) :: solver
+    real(real64), allocatable :: unit_w(:), w(:), bound(:), f(:), q(:)
+    real(real64) :: fnorm, fmax
+    integer :: j, k, n
+    n = patch%n
+    centred = patch
+    centred%x0 = patch%x0 - spin_centre(1)
+    centred%y0 = patch%y0 - spin_centre(2)
+    allocate (unit_w(2 * n), w(2 * n), bound(n), f(2 * n), q(2 * n))
+    w = 0
+    do j = 1, 3
+      call rigid_creepage(centred, scheme, j, unit_w)
+      w = w + creep(j) * unit_w
+    end do
+    do k = 1, n
+      bound(k) = mu * pn(patch%ix(k), patch%iy(k))
+    end do
+    call build_operator_table(centred, scheme, nu, g, table)
+    call create_rolling_solver(centred, table, solver)
+    call rolling_residual(solver, w, bound, traction, f, q, fnorm, fmax)
+    residual = fmax / max(maxval(bound), tiny(1.0_real64))
+    call destroy_rolling_solver(solver)
+  end function rolling_residual_of
 
 end module kcreep_rolling_curve
