@@ -156,6 +156,14 @@ int main(int argc, char **argv) {
     must(h, kcreep_fastsim(h, 0.3, 2, creep, NULL, "separate", force, adhesion), "kcreep_fastsim");
     expect(fabs(-force[3] - 0.3 * fn) < 1e-3 * 0.3 * fn && adhesion[0] > 0.99, "FASTSIM saturates at mu Fn");
     printf("errors gap fn %.6e cells %d fx_full_slip %.6e\n", fn, cells, force[3]);
+    /* exact rolling: the same conventions; small creepage near FASTSIM's slope (f11), full slip mu Fn
+       (the elastic slip bends the directions a little at xi = 1: within 1e-4) */
+    double fastsim_fx = force[0];
+    expect(kcreep_rolling(h, -0.3, 2, creep, NULL, force, adhesion) == KCREEP_BAD_INPUT, "rolling: mu < 0 refused");
+    must(h, kcreep_rolling(h, 0.3, 2, creep, NULL, force, adhesion), "kcreep_rolling");
+    expect(fabs(force[0] / fastsim_fx - 1) < 1e-3 && fabs(-force[3] - 0.3 * fn) < 1e-4 * 0.3 * fn &&
+           adhesion[0] > 0.95 && adhesion[1] == 0, "rolling: slope f11, saturation at mu Fn");
+    printf("errors rolling fx %.6e %.10e fastsim %.6e adhesion %.4f %.4f\n", force[0], force[3], fastsim_fx, adhesion[0], adhesion[1]);
     int flags;
     expect(kcreep_get_verdict(h, &flags, NULL, 10) == KCREEP_BAD_INPUT, "NULL verdict buffer refused");
     char warning[512];
