@@ -31,6 +31,7 @@ module kcreep_app_batch
                           contact_mask_lines, line_length
   use kcreep_app_files, only: write_text_file, check_output_path
   use kcreep_app_fastsim, only: run_fastsim
+  use kcreep_app_rolling, only: run_rolling
   use kcreep_app_lock, only: lock_exclusive, truncate_locked, real_path
   use kcreep_namelist, only: read_config
   use kcreep_app_fingerprint, only: program_digest, case_fingerprint
@@ -129,7 +130,7 @@ contains
     type(status_t) :: case_status
     character(len=:), allocatable :: label
     character(len=400), allocatable :: creep(:)
-    character(len=200), allocatable :: maps(:), fastsim_summary(:), fastsim_warnings(:)
+    character(len=200), allocatable :: maps(:), fastsim_summary(:), fastsim_warnings(:), rolling_warnings(:)
     integer :: i, ios
     character(len=512) :: msg
 
@@ -150,6 +151,15 @@ contains
       if (.not. case_status%failed()) call write_text_file(cfg%creep_file, creep, 'creep_file', case_status)
       if (.not. case_status%failed() .and. cfg%fastsim%maps) &
         call write_text_file(cfg%creep_map_file, maps, 'creep_map_file', case_status)
+    end if
+    ! &rolling: the case's exact rolling table (and maps)
+    if (.not. case_status%failed() .and. cfg%rolling%on) then
+      call run_rolling(cfg, record, creep, maps, fastsim_summary, rolling_warnings, case_status)
+      if (.not. case_status%failed()) &
+        call write_text_file(cfg%rolling%rolling_file, creep, 'rolling_file', case_status)
+      if (.not. case_status%failed() .and. cfg%rolling%request%maps) &
+        call write_text_file(cfg%rolling%rolling_map_file, maps, 'rolling_map_file', case_status)
+      if (.not. case_status%failed()) fastsim_warnings = [character(len=200) :: fastsim_warnings, rolling_warnings]
     end if
 
     if (case_status%failed()) then

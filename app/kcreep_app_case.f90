@@ -53,6 +53,10 @@ contains
       call check_output_path(cfg%creep_file, 'creep_file', status)
     if (check_table .and. cfg%fastsim_on .and. len(cfg%creep_map_file) > 0 .and. .not. status%failed()) &
       call check_output_path(cfg%creep_map_file, 'creep_map_file', status)
+    if (check_table .and. cfg%rolling%on .and. .not. status%failed()) &
+      call check_output_path(cfg%rolling%rolling_file, 'rolling_file', status)
+    if (check_table .and. cfg%rolling%on .and. cfg%rolling%request%maps .and. .not. status%failed()) &
+      call check_output_path(cfg%rolling%rolling_map_file, 'rolling_map_file', status)
     if (status%failed()) return
     problem = problem_of(cfg, patch)
     problem%solve%memory_limit = memory_limit_bytes()

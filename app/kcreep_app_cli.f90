@@ -24,6 +24,7 @@ module kcreep_app_cli
   use kcreep_app_wheel_rail, only: wheel_rail_mode
   use kcreep_namelist, only: read_config
   use kcreep_app_fingerprint, only: program_digest, case_fingerprint
+  use kcreep_app_rolling, only: run_rolling
   implicit none
   private
   public :: command_t, parse_command, run_command, stop_with, follow_slurm_cpus
@@ -117,8 +118,10 @@ contains
     type(run_record_t) :: record
     character(len=400), allocatable :: creep(:)
     character(len=200), allocatable :: maps(:), fastsim_summary(:), fastsim_warnings(:)
-    character(len=4096) :: paths(6)
-    character(len=24) :: variables(6)
+    character(len=400), allocatable :: rolling(:)
+    character(len=200), allocatable :: rolling_maps(:), rolling_summary(:), rolling_warnings(:)
+    character(len=4096) :: paths(8)
+    character(len=24) :: variables(8)
     logical :: with_maps
     integer :: i, k, np
 
@@ -136,6 +139,10 @@ contains
       if (status%failed()) return
       with_maps = cfg%fastsim%maps
     end if
+    if (cfg%rolling%on) then
+      call run_rolling(cfg, record, rolling, rolling_maps, rolling_summary, rolling_warnings, status)
+      if (status%failed()) return
+    end if
     ! every output complete in its temporary file before any is renamed into
     ! place: a failure (a full disk) leaves all the previous files as they were
     np = 0
@@ -149,6 +156,9 @@ contains
       call stage(cfg%contact_mask_file, 'contact_mask_file', contact_mask_lines(record%patch))
     if (cfg%fastsim_on) call stage(cfg%creep_file, 'creep_file', creep)
     if (with_maps) call stage(cfg%creep_map_file, 'creep_map_file', maps)
+    if (cfg%rolling%on) call stage(cfg%rolling%rolling_file, 'rolling_file', rolling)
+    if (cfg%rolling%on .and. cfg%rolling%request%maps) &
+      call stage(cfg%rolling%rolling_map_file, 'rolling_map_file', rolling_maps)
     do k = 1, np
       if (.not. status%failed()) call commit_temporary(trim(paths(k)), trim(variables(k)), status)
     end do
@@ -167,6 +177,15 @@ contains
       do i = 1, size(fastsim_warnings)
         write (output_unit, '(2x, a)') 'WARNING: '//trim(fastsim_warnings(i))
         write (error_unit, '(a)') 'kcreep: warning: '//trim(fastsim_warnings(i))
+      end do
+    end if
+    if (cfg%rolling%on) then
+      do i = 1, size(rolling_summary)
+        write (output_unit, '(2x, a)') trim(rolling_summary(i))
+      end do
+      do i = 1, size(rolling_warnings)
+        write (output_unit, '(2x, a)') 'WARNING: '//trim(rolling_warnings(i))
+        write (error_unit, '(a)') 'kcreep: warning: '//trim(rolling_warnings(i))
       end do
     end if
     if (profile_requested() .and. record%method == 'iterative') write (error_unit, '(a, 3f9.3)') &

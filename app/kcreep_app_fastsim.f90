@@ -12,7 +12,7 @@ module kcreep_app_fastsim
   use kcreep_creep_table, only: creep_lines, creep_map_lines
   implicit none
   private
-  public :: run_fastsim, pressure_label
+  public :: run_fastsim, pressure_label, source_pressure
 
 contains
 
@@ -34,6 +34,42 @@ contains
     end select
   end function pressure_label
 
+  !> The normal pressure (mx, my) on record's patch from its source ('hertz',
+  !> 'contact', 'file', 'normal', 'parabolic'); &fastsim and &rolling share it
+  !> (who: the group's name in the warning).
+  subroutine source_pressure(who, pressure, pressure_file, fn, cfg, record, pn, warnings, status)
+    character(len=*), intent(in) :: who, pressure, pressure_file
+    real(real64), intent(in) :: fn
+    type(config_t), intent(in) :: cfg
+    type(run_record_t), intent(in) :: record
+    real(real64), allocatable, intent(out) :: pn(:, :)
+    character(len=200), allocatable, intent(inout) :: warnings(:)
+    type(status_t), intent(inout) :: status
+    integer :: k
+    associate (p => record%patch)
+      select case (pressure)
+      case ('hertz')
+        pn = hertz_pressure(p%inside, p%dx, p%dy, p%x0, p%y0, p%semi_a, p%semi_b, fn)
+      case ('contact')
+        pn = cfg%contact%pn
+      case ('file')
+        call read_pressure_file(pressure_file, p, pn, status)
+        if (status%failed()) return
+      case ('normal')
+        ! the normal solve's pressure, per patch cell, onto the patch's grid
+        allocate (pn(p%mx, p%my))
+        pn = 0
+        do k = 1, p%n
+          pn(p%ix(k), p%iy(k)) = record%pressure(k)
+        end do
+      case default
+        pn = strip_parabolic_pressure(p%inside, p%dx, p%dy, fn)
+        warnings = [character(len=200) :: warnings, who//' pressure: the parabolic strip MODEL (no normal solve, '// &
+                    'no pressure given): forces beyond the linear range depend on it']
+      end select
+    end associate
+  end subroutine source_pressure
+
   !> FASTSIM for every creepage and source of cfg%fastsim on record's patch.
   !> lines: the creep table; map_lines: the maps (empty unless requested);
   !> summary: lines for the case's summary; warnings: to standard error too.
@@ -54,28 +90,8 @@ contains
     integer(int64) :: t0, t1, rate
 
     allocate (warnings(0))
-    associate (p => record%patch)
-      select case (cfg%pressure)
-      case ('hertz')
-        pn = hertz_pressure(p%inside, p%dx, p%dy, p%x0, p%y0, p%semi_a, p%semi_b, cfg%fn)
-      case ('contact')
-        pn = cfg%contact%pn
-      case ('file')
-        call read_pressure_file(cfg%pressure_input_file, p, pn, status)
-        if (status%failed()) return
-      case ('normal')
-        ! the normal solve's pressure, per patch cell, onto the patch's grid
-        allocate (pn(p%mx, p%my))
-        pn = 0
-        do k = 1, p%n
-          pn(p%ix(k), p%iy(k)) = record%pressure(k)
-        end do
-      case default
-        pn = strip_parabolic_pressure(p%inside, p%dx, p%dy, cfg%fn)
-        warnings = [character(len=200) :: 'FASTSIM pressure: the parabolic strip MODEL (no normal solve, '// &
-                    'no pressure given): forces beyond the linear range depend on it']
-      end select
-    end associate
+    call source_pressure('FASTSIM', cfg%pressure, cfg%pressure_input_file, cfg%fn, cfg, record, pn, warnings, status)
+    if (status%failed()) return
     call system_clock(t0, rate)
     call creep_curve(record%result_t, pn, cfg%fastsim, points, maps)
     call system_clock(t1)

@@ -135,6 +135,14 @@ int kcreep_get_normal(kcreep_handle handle, double *fn, double *approach, double
  * of the area in adhesion. */
 int kcreep_fastsim(kcreep_handle handle, double mu, int n, const double *creep, const double *pressure,
                    const char *rule, double *force, double *adhesion);
+/* Exact steady rolling with Coulomb friction mu on the solved patch
+ * (docs/rolling.md: kcreep's backward scheme, semi-smooth Newton), for n
+ * creepages creep[3 k + 0..2] = (xi, eta, phi); pressure as kcreep_fastsim
+ * (NULL: the normal problem's). force[3 k + 0..2] = (Fx, Fy, Mz); adhesion[k]
+ * (may be NULL): the fraction of the patch cells in adhesion. Needs the
+ * backward scheme. */
+int kcreep_rolling(kcreep_handle handle, double mu, int n, const double *creep, const double *pressure,
+                   double *force, double *adhesion);
 
 /* Wheel and rail profiles to a contact table (docs/wheel_rail.md; the same
  * table as the program's &wheel_rail). Profiles are read by

@@ -31,6 +31,8 @@ module kcreep
   use kcreep_creep_matrix, only: normalised_about
   use kcreep_check, only: check_problem, collocation_aspect_limit
   use kcreep_run, only: run_case, solve_cache_t
+  use kcreep_rolling_curve, only: rolling_request_t, rolling_point_t, rolling_curve, default_rolling_tolerance, &
+                                 cell_stick, cell_slip, rolling_residual_of
   use kcreep_creep_curve, only: creep_request_t, creep_point_t, creep_map_t, creep_curve, source_names, &
                                 source_flexibilities
   use kcreep_fastsim_forces, only: fastsim_forces, fastsim_result_t, flexibility_weighted, flexibility_separate, &
@@ -47,6 +49,8 @@ module kcreep
   implicit none
   private
   public :: kcreep_solve, kcreep_memory_need, kcreep_version, kcreep_version_number, max_threads
+  public :: rolling_request_t, rolling_point_t, rolling_curve, default_rolling_tolerance, cell_stick, cell_slip, &
+            rolling_residual_of
   public :: creep_request_t, creep_point_t, creep_map_t, creep_curve, source_names, source_flexibilities
   public :: validate_solver_options, refine_modes, collocation_aspect_limit, normalised_about
   public :: fastsim_forces, fastsim_result_t, flexibility_weighted, flexibility_separate, flexibility_rule_name

@@ -81,6 +81,7 @@ _signatures = {
     "kcreep_get_normal": ([_h, ctypes.POINTER(_d), ctypes.POINTER(_d), ctypes.POINTER(_d), ctypes.POINTER(_i),
                            ctypes.POINTER(_i)], _i),
     "kcreep_fastsim": ([_h, _d, _i, _p, _p, ctypes.c_char_p, _p, _p], _i),
+    "kcreep_rolling": ([_h, _d, _i, _p, _p, _p, _p], _i),
     "kcreep_get_diagnostics": ([_h, ctypes.POINTER(_i), ctypes.POINTER(_d), ctypes.POINTER(_d), ctypes.POINTER(_d)], _i),
     "kcreep_set_profiles": ([_h, ctypes.c_char_p, ctypes.c_char_p, _i, _i, _d], _i),
     "kcreep_set_track": ([_h, ctypes.c_char_p, _d, _d, _d, _d, _d, _d], _i),
@@ -231,6 +232,22 @@ class Solver:
         table["patch"] = table["patch"].astype(int)
         table["verdict"] = table["verdict"].astype(int)
         return table
+
+    def rolling(self, mu, creepages, pressure=None):
+        """Exact steady rolling with friction mu on the last solved patch
+        (docs/rolling.md) for creepages (n x 3: xi, eta, phi); pressure on the
+        patch's grid (2-D, rows in increasing y) or None for the normal
+        problem's. Returns (forces n x 3: Fx, Fy, Mz; adhesion n: fraction of
+        the patch cells adhering)."""
+        creep = np.ascontiguousarray(np.atleast_2d(creepages), dtype=np.float64)
+        if creep.ndim != 2 or creep.shape[1] != 3:
+            raise KcreepError(2, "creepages must be n x 3 (xi, eta, phi)")
+        n = creep.shape[0]
+        forces, adhesion = np.empty((n, 3)), np.empty(n)
+        p = None if pressure is None else np.ascontiguousarray(pressure, dtype=np.float64)
+        self._check(_lib.kcreep_rolling(self._handle, mu, n, creep.ctypes.data, None if p is None else p.ctypes.data,
+                                        forces.ctypes.data, adhesion.ctypes.data))
+        return forces, adhesion
 
     @property
     def reuse_count(self):

@@ -1,11 +1,12 @@
-!> The C API's kcreep_fastsim: FASTSIM creep forces on a solved handle's
-!> patch (include/kcreep.h).
+!> The C API's calls with friction on a solved handle's patch
+!> (include/kcreep.h): kcreep_fastsim (FASTSIM) and kcreep_rolling (exact
+!> steady rolling), with the same conventions and the same pressure.
 module kcreep_capi_fastsim
   use, intrinsic :: iso_c_binding, only: c_int, c_double, c_ptr, c_f_pointer, c_associated
   use kcreep_kinds, only: wp
   use kcreep_status, only: fail, exit_bad_input
   use kcreep, only: creep_request_t, creep_point_t, creep_map_t, creep_curve, flexibility_weighted, &
-                    flexibility_separate
+                    flexibility_separate, rolling_request_t, rolling_point_t, rolling_curve
   use kcreep_capi_handle, only: handle_t, status_ok, solved, finish, from_c
   implicit none
   private
@@ -25,7 +26,7 @@ contains
     real(c_double), value :: mu
     integer(c_int), value :: n
     type(handle_t), pointer :: h
-    real(c_double), pointer :: creepages(:, :), grid(:, :), forces(:, :), adhered(:)
+    real(c_double), pointer :: creepages(:, :), forces(:, :), adhered(:)
     real(wp), allocatable :: pn(:, :)
     type(creep_request_t) :: request
     type(creep_point_t), allocatable :: points(:)
@@ -56,23 +57,11 @@ contains
       c_fastsim = finish(h)
       return
     end select
-    associate (p => h%result%patch)
-      if (c_associated(pressure)) then
-        call c_f_pointer(pressure, grid, [p%mx, p%my])
-        pn = grid
-        if (.not. all(pn >= 0 .and. pn < huge(1.0_wp))) then
-          call fail(h%last, exit_bad_input, 'kcreep_fastsim: pressure must be finite and >= 0 on the grid')
-          c_fastsim = finish(h)
-          return
-        end if
-      else
-        allocate (pn(p%mx, p%my))
-        pn = 0
-        do k = 1, p%n
-          pn(p%ix(k), p%iy(k)) = h%result%pressure(k)
-        end do
-      end if
-    end associate
+    call pressure_of(h, pressure, 'kcreep_fastsim', pn)
+    if (h%last%failed()) then
+      c_fastsim = finish(h)
+      return
+    end if
     call c_f_pointer(creep, creepages, [3, int(n)])
     request%mu = mu
     request%creepages = creepages
@@ -86,5 +75,78 @@ contains
       adhered = [(points(k)%force%adhesion, k=1, n)]
     end if
   end function c_fastsim
+
+  !> Exact steady rolling with friction mu on the solved patch (docs/rolling.md),
+  !> the same conventions as kcreep_fastsim: creep[3 k + 0..2], pressure (or
+  !> NULL), force[3 k + 0..2] = (Fx, Fy, Mz), adhesion[k] (may be NULL).
+  integer(c_int) function c_rolling(handle, mu, n, creep, pressure, force, adhesion) bind(c, name='kcreep_rolling')
+    type(c_ptr), value :: handle, creep, pressure, force, adhesion
+    real(c_double), value :: mu
+    integer(c_int), value :: n
+    type(handle_t), pointer :: h
+    real(c_double), pointer :: creepages(:, :), forces(:, :), adhered(:)
+    real(wp), allocatable :: pn(:, :)
+    type(rolling_request_t) :: request
+    type(rolling_point_t), allocatable :: points(:)
+    type(creep_map_t), allocatable :: maps(:)
+    integer :: k
+    c_rolling = solved(handle, h)
+    if (c_rolling /= status_ok) return
+    if (.not. (mu > 0 .and. mu < huge(1.0_wp)) .or. n < 1) then
+      call fail(h%last, exit_bad_input, 'kcreep_rolling: mu must be finite and > 0, n >= 1')
+    else if (.not. c_associated(creep) .or. .not. c_associated(force)) then
+      call fail(h%last, exit_bad_input, 'kcreep_rolling: creep and force must not be NULL')
+    else if (.not. c_associated(pressure) .and. .not. h%result%normal_solved) then
+      call fail(h%last, exit_bad_input, 'kcreep_rolling: pressure is NULL and the last solve had no normal problem')
+    end if
+    if (.not. h%last%failed()) call pressure_of(h, pressure, 'kcreep_rolling', pn)
+    if (.not. h%last%failed()) then
+      call c_f_pointer(creep, creepages, [3, int(n)])
+      request%mu = mu
+      request%creepages = creepages
+      if (allocated(h%result%traction)) then
+        call rolling_curve(h%result%patch, h%problem%scheme, h%result%nu, h%result%g, h%result%spin_centre, pn, &
+                           request, points, maps, h%last, h%result%traction)
+      else
+        call rolling_curve(h%result%patch, h%problem%scheme, h%result%nu, h%result%g, h%result%spin_centre, pn, &
+                           request, points, maps, h%last)
+      end if
+    end if
+    if (h%last%failed()) then
+      c_rolling = finish(h)
+      return
+    end if
+    call c_f_pointer(force, forces, [3, int(n)])
+    forces = reshape([(points(k)%force%fx, points(k)%force%fy, points(k)%force%mz, k=1, n)], [3, int(n)])
+    if (c_associated(adhesion)) then
+      call c_f_pointer(adhesion, adhered, [int(n)])
+      adhered = [(points(k)%force%adhesion, k=1, n)]
+    end if
+  end function c_rolling
+
+  !> The pressure for kcreep_fastsim / kcreep_rolling: mx * my values, or the
+  !> normal problem's (pressure NULL); an error in h%last when not usable.
+  subroutine pressure_of(h, pressure, who, pn)
+    type(handle_t), intent(inout) :: h
+    type(c_ptr), intent(in) :: pressure
+    character(len=*), intent(in) :: who
+    real(wp), allocatable, intent(out) :: pn(:, :)
+    real(c_double), pointer :: grid(:, :)
+    integer :: k
+    associate (p => h%result%patch)
+      if (c_associated(pressure)) then
+        call c_f_pointer(pressure, grid, [p%mx, p%my])
+        pn = grid
+        if (.not. all(pn >= 0 .and. pn < huge(1.0_wp))) &
+          call fail(h%last, exit_bad_input, who//': pressure must be finite and >= 0 on the grid')
+      else
+        allocate (pn(p%mx, p%my))
+        pn = 0
+        do k = 1, p%n
+          pn(p%ix(k), p%iy(k)) = h%result%pressure(k)
+        end do
+      end if
+    end associate
+  end subroutine pressure_of
 
 end module kcreep_capi_fastsim

@@ -9,14 +9,15 @@
 module kcreep_namelist
   use, intrinsic :: iso_fortran_env, only: real64, iostat_end
   use kcreep_status, only: status_t, fail, exit_bad_input
-  use kcreep_strings, only: rtoa, itoa
+  use kcreep_strings, only: rtoa, itoa, resolve_path, folder_of
   use kcreep, only: patch_t, ellipse_patch, mask_patch, problem_t, collocation_aspect_limit
   use kcreep_refine_estimate, only: default_target_error
   use kcreep_mask_file, only: read_mask_file, parse_mask_rows
   use kcreep_contact_reader, only: read_contact_case, combined_material
   use kcreep_file_checks, only: read_input_file
   use kcreep_namelist_scan, only: scan_namelist_text, diagnose_group
-  use kcreep_nml_config, only: config_t, input_where, unset, max_inline_rows, max_row_length, max_creepages
+  use kcreep_nml_config, only: config_t, input_where, unset, max_inline_rows, max_row_length, max_creepages, &
+                               default_output_name
   use kcreep_nml_patch, only: patch_variables, patch_group_t, read_patch_group, apply_patch_group
   use kcreep_nml_material, only: material_variables, material_group_t, read_material_group, apply_material_group
   use kcreep_nml_solver, only: solver_variables, solver_group_t, read_solver_group, apply_solver_group
@@ -25,13 +26,14 @@ module kcreep_namelist
   use kcreep_nml_fastsim, only: fastsim_variables, fastsim_group_t, read_fastsim_group, apply_fastsim_group
   use kcreep_nml_wheel_rail, only: wheel_rail_variables, wheel_rail_group_t, read_wheel_rail_group, &
                                    apply_wheel_rail_group
+  use kcreep_nml_rolling, only: rolling_variables, read_rolling_group
   implicit none
   private
   public :: config_t, read_config, build_patch, problem_of, max_inline_rows, max_row_length, max_creepages
   public :: group_names, group_list
 
-  character(len=*), parameter :: group_names(7) = [character(len=10) :: 'patch', 'material', 'solver', 'output', &
-                                                     'normal', 'fastsim', 'wheel_rail']
+  character(len=*), parameter :: group_names(8) = [character(len=10) :: 'patch', 'material', 'solver', 'output', &
+                                                     'normal', 'fastsim', 'wheel_rail', 'rolling']
 
 contains
 
@@ -121,8 +123,10 @@ contains
       call read_wheel_rail_group(unit, wheel_rail, ios, msg)
       call check_read(7)
     end if
-    close (unit)
-    if (status%failed()) return
+    if (status%failed()) then
+      close (unit)
+      return
+    end if
 
     ! each group on its own, in the order their checks need
     if (.not. allocated(patch%mask_rows)) allocate (patch%mask_rows(0))
@@ -136,12 +140,27 @@ contains
     if (.not. status%failed()) call apply_wheel_rail_group(wheel_rail, present(7), cfg, status)
     if (.not. status%failed()) call apply_fastsim_group(fastsim, present(6), cfg, status)
     if (.not. status%failed()) call apply_normal_group(normal, present(5), cfg, status)
+    ! &rolling reads and checks its group itself, for the patch's shape
+    if (present(8) .and. .not. status%failed()) then
+      call read_rolling_group(unit, path, .true., closed(8) .and. last_line_open, cfg%shape, cfg%extrapolate, &
+                              cfg%rolling, status)
+      if (.not. status%failed()) call apply_rolling_output(cfg, output%rolling_file, output%rolling_map_file, status)
+    end if
+    close (unit)
     if (status%failed()) return
     call apply_error_control(cfg, status)
+    ! a pressure file for &rolling is given on the mask's own grid: keep that grid
+    if (cfg%rolling%on .and. cfg%shape == 'mask') then
+      if (len(cfg%rolling%pressure_input_file) > 0) cfg%refine_grid = .false.
+    end if
     if (status%failed()) return
     ! then what they name: CONTACT's case, the gap
     if (cfg%shape == 'contact') call load_contact_case(cfg, status)
     if (cfg%shape == 'gap' .and. .not. status%failed()) call load_gap(cfg, status)
+    if (cfg%rolling%on .and. .not. status%failed()) then
+      if (cfg%rolling%pressure == 'contact' .and. .not. allocated(cfg%contact%pn)) call fail(status, exit_bad_input, &
+          input_where(cfg)//'&rolling pressure = ''contact'' needs the element file (.mat) of the case with its PN column')
+    end if
     if (cfg%fastsim_on .and. cfg%pressure == 'contact' .and. .not. status%failed()) then
       if (.not. allocated(cfg%contact%pn)) call fail(status, exit_bad_input, input_where(cfg)// &
           '&fastsim pressure = ''contact'' needs the element file (.mat) of the case with its PN column')
@@ -173,6 +192,8 @@ contains
           why = diagnose_group(text, 'normal', normal_variables)
         case (6)
           why = diagnose_group(text, 'fastsim', fastsim_variables)
+        case (8)
+          why = diagnose_group(text, 'rolling', rolling_variables)
         case default
           why = diagnose_group(text, 'wheel_rail', wheel_rail_variables)
         end select
@@ -182,6 +203,24 @@ contains
     end subroutine check_read
 
   end subroutine read_config
+
+  !> &output's rolling_file [<input name>.roll] and rolling_map_file
+  !> [<input name>.rollmap with maps] for &rolling, which needs the backward scheme.
+  subroutine apply_rolling_output(cfg, rolling_file, rolling_map_file, status)
+    type(config_t), intent(inout) :: cfg
+    character(len=*), intent(in) :: rolling_file, rolling_map_file
+    type(status_t), intent(inout) :: status
+    character(len=:), allocatable :: folder
+    folder = folder_of(cfg%input_path)
+    cfg%rolling%rolling_file = resolve_path(trim(rolling_file), folder)
+    if (len(cfg%rolling%rolling_file) == 0) cfg%rolling%rolling_file = default_output_name(cfg%input_path, '.roll')
+    cfg%rolling%rolling_map_file = resolve_path(trim(rolling_map_file), folder)
+    if (cfg%rolling%request%maps .and. len(cfg%rolling%rolling_map_file) == 0) &
+      cfg%rolling%rolling_map_file = default_output_name(cfg%input_path, '.rollmap')
+    cfg%rolling%request%maps = cfg%rolling%request%maps .or. len(cfg%rolling%rolling_map_file) > 0
+    if (cfg%scheme%name /= 'backward') call fail(status, exit_bad_input, input_where(cfg)// &
+        '&rolling needs &solver scheme = ''backward'' (scheme = '''//cfg%scheme%name//''')')
+  end subroutine apply_rolling_output
 
   !> Error control, from &patch, &solver, &normal and &fastsim together: the
   !> default target, whether kcreep chooses the grids, the cell budget.

@@ -3,19 +3,31 @@
 !> _fastsim, _wheel_rail) fill in and kcreep_namelist turns into the library's problem.
 module kcreep_nml_config
   use, intrinsic :: iso_fortran_env, only: real64
-  use kcreep, only: scheme_t, n_load_cases, solver_options_t, creep_request_t, normal_problem_t, polynomial_gap_t, &
+  use kcreep, only: rolling_request_t, &
+                    scheme_t, n_load_cases, solver_options_t, creep_request_t, normal_problem_t, polynomial_gap_t, &
                     wheel_rail_setup_t
   use kcreep_contact_reader, only: contact_case_t
   implicit none
   private
-  public :: config_t, input_where, default_output_name
+  public :: config_t, rolling_config_t, input_where, default_output_name
 
   integer, parameter, public :: max_inline_rows = 2048, max_row_length = 2048
   integer, parameter, public :: max_creepages = 100000   !< creepage points of &fastsim (list and sweep together)
+  integer, parameter, public :: max_rolling_points = 100000   !< &rolling's points (list and sweep together)
   !> "not given": a value the user wrote is either used or refused, never
   !> replaced, and some defaults depend on other groups
   real(real64), parameter, public :: unset = -huge(1.0_real64)
   integer, parameter, public :: unset_int = -huge(1)
+
+  !> &rolling (kcreep_nml_rolling): exact steady rolling with friction
+  type :: rolling_config_t
+    logical :: on = .false.                        !< the group was given
+    type(rolling_request_t) :: request
+    character(len=:), allocatable :: pressure      !< 'hertz', 'contact', 'normal', 'file', 'parabolic'
+    character(len=:), allocatable :: pressure_input_file
+    real(real64) :: fn = 1                         !< load of the 'hertz' and 'parabolic' pressures
+    character(len=:), allocatable :: rolling_file, rolling_map_file   !< &output
+  end type rolling_config_t
 
   type :: config_t
     character(len=:), allocatable :: input_path
@@ -49,6 +61,7 @@ module kcreep_nml_config
     ! &fastsim (group absent: fastsim_on false, nothing of it runs)
     logical :: fastsim_on = .false.
     type(creep_request_t) :: fastsim
+    type(rolling_config_t) :: rolling               !< &rolling; rolling%on: given
     character(len=:), allocatable :: pressure       !< 'hertz', 'contact', 'file', 'parabolic' (after 'auto')
     character(len=:), allocatable :: pressure_input_file   !< pressure = 'file': the pressure per cell
     real(real64) :: fn = 1                          !< load of the 'hertz' and 'parabolic' pressures

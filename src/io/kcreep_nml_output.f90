@@ -9,15 +9,16 @@ module kcreep_nml_output
 
   type :: output_group_t
     character(len=4096) :: table_file = '', traction_file = '', pressure_file = '', contact_mask_file = '', &
-                           creep_file = '', creep_map_file = '', wheel_rail_file = ''
+                           creep_file = '', creep_map_file = '', wheel_rail_file = '', &
+                           rolling_file = '', rolling_map_file = ''
   end type output_group_t
 
   !> The group's variables and their types, as in its namelist statement
   !> (kcreep_namelist_scan diagnose_group explains a failed read with them).
-  character(len=*), parameter :: output_variables(7) = [character(len=27) :: &
+  character(len=*), parameter :: output_variables(9) = [character(len=27) :: &
     'table_file character', 'traction_file character', 'pressure_file character', &
     'contact_mask_file character', 'creep_file character', 'creep_map_file character', &
-    'wheel_rail_file character']
+    'wheel_rail_file character', 'rolling_file character', 'rolling_map_file character']
 
 contains
 
@@ -27,9 +28,9 @@ contains
     integer, intent(out) :: ios
     character(len=*), intent(inout) :: msg
     character(len=4096) :: table_file, traction_file, pressure_file, contact_mask_file, creep_file, creep_map_file, &
-                           wheel_rail_file
+                           wheel_rail_file, rolling_file, rolling_map_file
     namelist /output/ table_file, traction_file, pressure_file, contact_mask_file, creep_file, creep_map_file, &
-                      wheel_rail_file
+                      wheel_rail_file, rolling_file, rolling_map_file
 
     table_file = grp%table_file
     traction_file = grp%traction_file
@@ -38,6 +39,8 @@ contains
     creep_file = grp%creep_file
     creep_map_file = grp%creep_map_file
     wheel_rail_file = grp%wheel_rail_file
+    rolling_file = grp%rolling_file
+    rolling_map_file = grp%rolling_map_file
     read (unit, nml=output, iostat=ios, iomsg=msg)
     grp%table_file = table_file
     grp%traction_file = traction_file
@@ -46,6 +49,8 @@ contains
     grp%creep_file = creep_file
     grp%creep_map_file = creep_map_file
     grp%wheel_rail_file = wheel_rail_file
+    grp%rolling_file = rolling_file
+    grp%rolling_map_file = rolling_map_file
   end subroutine read_output_group
 
   !> The file names relative to the namelist's folder; the default table and

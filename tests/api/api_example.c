@@ -164,6 +164,8 @@ int main(int argc, char **argv) {
     expect(kcreep_set_gap(h, 40, 40, gap, 0.05, 0.05, -0.975, -0.975, 0.01, 1000) == KCREEP_BAD_INPUT,
            "approach and normal_force together refused");
     must(h, kcreep_set_material(h, 82000.0, 0.28), "kcreep_set_material");
+    /* the gap on its own 40 x 40 grid (no refinement): the conventions are under test, not the accuracy */
+    must(h, kcreep_set_error_control(h, 0, 0, 1), "kcreep_set_error_control");
     must(h, kcreep_set_gap(h, 40, 40, gap, 0.05, 0.05, -0.975, -0.975, 0, 1000.0), "kcreep_set_gap");
     must(h, kcreep_solve(h), "kcreep_solve (gap)");
     must(h, kcreep_get_normal(h, &fn, &approach, &pmax, &cells, &iterations), "kcreep_get_normal");
@@ -173,6 +175,14 @@ int main(int argc, char **argv) {
     must(h, kcreep_fastsim(h, 0.3, 2, creep, NULL, "separate", force, adhesion), "kcreep_fastsim");
     expect(fabs(-force[3] - 0.3 * fn) < 1e-3 * 0.3 * fn && adhesion[0] > 0.99, "FASTSIM saturates at mu Fn");
     printf("errors gap fn %.6e cells %d fx_full_slip %.6e\n", fn, cells, force[3]);
+    /* exact rolling: the same conventions; small creepage near FASTSIM's slope (f11), full slip mu Fn
+       (the elastic slip bends the directions a little at xi = 1: within 1e-4) */
+    double fastsim_fx = force[0];
+    expect(kcreep_rolling(h, -0.3, 2, creep, NULL, force, adhesion) == KCREEP_BAD_INPUT, "rolling: mu < 0 refused");
+    must(h, kcreep_rolling(h, 0.3, 2, creep, NULL, force, adhesion), "kcreep_rolling");
+    expect(fabs(force[0] / fastsim_fx - 1) < 1e-3 && fabs(-force[3] - 0.3 * fn) < 1e-4 * 0.3 * fn &&
+           adhesion[0] > 0.95 && adhesion[1] == 0, "rolling: slope f11, saturation at mu Fn");
+    printf("errors rolling fx %.6e %.10e fastsim %.6e adhesion %.4f %.4f\n", force[0], force[3], fastsim_fx, adhesion[0], adhesion[1]);
     int flags;
     expect(kcreep_get_verdict(h, &flags, NULL, 10) == KCREEP_BAD_INPUT, "NULL verdict buffer refused");
     char warning[512];

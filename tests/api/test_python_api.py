@@ -141,6 +141,13 @@ forces, adhesion = hs.fastsim(0.3, [[1e-7, 0, 0], [1e-1, 0, 0]])
 kc.close(-forces[0, 0] / 1e-7, rg.f[0, 0], 1e-3, "FASTSIM slope on the normal pressure = f11")
 kc.close(-forces[1, 0], 0.3 * rg.fn, 1e-3, "FASTSIM saturates at mu Fn")
 kc.check(adhesion[0] > 0.99 and adhesion[1] < 0.05, f"adhesion {adhesion}")
+# the exact rolling solution (docs/rolling.md) on the same patch and pressure: the slope f11
+# (a few trailing cells slip at 1e-7: measured within 1e-4), full slip exactly mu Fn
+forces, adhesion = hs.rolling(0.3, [[1e-7, 0, 0], [1e-1, 0, 0]])
+kc.close(-forces[0, 0] / 1e-7, rg.f[0, 0], 1e-3, "rolling slope on the normal pressure = f11")
+# full slip: every cell at mu pn, the directions bent a little by the elastic slip (measured 4e-5)
+kc.close(-forces[1, 0], 0.3 * rg.fn, 1e-4, "rolling saturates at mu Fn")
+kc.check(adhesion[0] > 0.95 and adhesion[1] == 0, f"rolling adhesion {adhesion}")
 try:
     kcreep.Solver().solve_gap(quadratic, 0.05, 0.05, approach=0.01, normal_force=10.0)
     kc.check(False, "approach and normal_force together refused")

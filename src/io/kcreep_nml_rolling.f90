@@ -1,0 +1,219 @@
+!> The &rolling group: exact steady rolling with Coulomb friction
+!> (kcreep_rolling_curve). It reads and validates its group in one call;
+!> kcreep_namelist calls read_rolling_group when the group is present.
+!>
+!>   &rolling
+!>     mu = 0.3                                  ! required, 0 < mu <= 1000
+!>     creepages = 1e-3 0 0,  0 1e-3 0           ! (xi, eta, phi) triples
+!>     sweep_direction = 1 0 0, sweep_from = 1e-5, sweep_to = 1e-2, sweep_points = 50,
+!>     sweep_spacing = 'linear'                  ! or 'log'
+!>     pressure = 'auto', pressure_input_file = '', fn = 1    ! as &fastsim
+!>     maps = .false.                            ! traction and stick/slip map of every point
+!>     tolerance = 1e-10                         ! Newton stops at max|F| <= tolerance * max(mu pn)
+!>   /
+module kcreep_nml_rolling
+  use, intrinsic :: iso_fortran_env, only: real64, iostat_end
+  use kcreep_status, only: status_t, fail, exit_bad_input
+  use kcreep_strings, only: itoa, rtoa, lower, resolve_path, folder_of
+  use kcreep, only: default_rolling_tolerance
+  use kcreep_nml_config, only: rolling_config_t, max_rolling_points
+  implicit none
+  private
+  public :: rolling_variables, read_rolling_group
+
+  !> The group's variables and their types, as in its namelist statement
+  !> (kcreep_namelist_scan diagnose_group explains a failed read with them).
+  character(len=*), parameter :: rolling_variables(12) = [character(len=29) :: &
+    'mu real', 'creepages real', 'sweep_direction real', 'sweep_from real', 'sweep_to real', &
+    'sweep_points integer', 'sweep_spacing character', 'pressure character', &
+    'pressure_input_file character', 'fn real', 'maps logical', 'tolerance real']
+
+contains
+
+  !> Read &rolling from unit (rewound here) and validate it for a patch of
+  !> the given shape. given: the group is in the file; closed_open: its /
+  !> was read and only the last newline is missing (a complete group).
+  subroutine read_rolling_group(unit, path, given, closed_open, shape, extrapolate, config, status)
+    integer, intent(in) :: unit
+    character(len=*), intent(in) :: path, shape
+    logical, intent(in) :: given, closed_open, extrapolate
+    type(rolling_config_t), intent(out) :: config
+    type(status_t), intent(inout) :: status
+    real(real64) :: mu, fn, sweep_direction(3), sweep_from, sweep_to, tolerance, t
+    real(real64), allocatable :: creepages(:)
+    integer :: sweep_points, ios, n_values, n_list, k
+    character(len=16) :: sweep_spacing, pressure
+    character(len=4096) :: pressure_input_file
+    character(len=512) :: msg
+    character(len=:), allocatable :: where
+    logical :: maps
+    real(real64), parameter :: unset = -huge(1.0_real64)
+    namelist /rolling/ mu, creepages, sweep_direction, sweep_from, sweep_to, sweep_points, sweep_spacing, &
+                       pressure, pressure_input_file, fn, maps, tolerance
+
+    config%on = given
+    if (.not. given .or. status%failed()) return
+    mu = unset
+    allocate (creepages(3 * max_rolling_points + 1))
+    creepages = unset
+    sweep_direction = 0
+    sweep_from = 0
+    sweep_to = 0
+    sweep_points = 0
+    sweep_spacing = 'linear'
+    pressure = 'auto'
+    pressure_input_file = ''
+    fn = unset
+    maps = .false.
+    tolerance = default_rolling_tolerance
+    where = 'input '''//path//''': &rolling '
+    rewind (unit)
+    read (unit, nml=rolling, iostat=ios, iomsg=msg)
+    if (ios == iostat_end .and. closed_open) ios = 0
+    if (ios == iostat_end) then
+      call fail(status, exit_bad_input, 'input '''//path//''': namelist &rolling: end of file before the closing /')
+    else if (ios /= 0) then
+      call fail(status, exit_bad_input, 'input '''//path//''': namelist &rolling: '//trim(msg))
+    end if
+    if (status%failed()) return
+
+    if (mu == unset) then
+      call fail(status, exit_bad_input, where//'mu is required (the friction coefficient, > 0)')
+      return
+    end if
+    if (.not. (mu > 0 .and. mu <= 1e3_real64)) then
+      call fail(status, exit_bad_input, where//'mu = '//rtoa(mu)//' (allowed: 0 < mu <= 1000)')
+      return
+    end if
+    config%request%mu = mu
+    if (.not. (tolerance >= 1e-14_real64 .and. tolerance <= 1e-2_real64)) then
+      call fail(status, exit_bad_input, where//'tolerance = '//rtoa(tolerance)//' (allowed: 1e-14 to 1e-2; '// &
+                'Newton stops at max|F| <= tolerance * max(mu pn))')
+      return
+    end if
+    config%request%tolerance = tolerance
+    ! the list: numbers up to the last one given, three per point
+    n_values = size(creepages)
+    do while (n_values > 0)
+      if (creepages(n_values) /= unset) exit
+      n_values = n_values - 1
+    end do
+    if (n_values > 3 * max_rolling_points) then
+      call fail(status, exit_bad_input, where//'creepages: more than '//itoa(max_rolling_points)//' points')
+      return
+    end if
+    if (mod(n_values, 3) /= 0) then
+      call fail(status, exit_bad_input, where//'creepages: '//itoa(n_values)//' numbers given (allowed: '// &
+                '(xi, eta, phi) triples, a multiple of 3)')
+      return
+    end if
+    if (any(creepages(1:n_values) == unset) .or. .not. all(abs(creepages(1:n_values)) <= 1e6_real64)) then
+      call fail(status, exit_bad_input, where//'creepages: a value is missing or not finite (allowed: '// &
+                'finite numbers, |value| <= 1e6)')
+      return
+    end if
+    n_list = n_values / 3
+    sweep_spacing = lower(trim(adjustl(sweep_spacing)))
+    if (sweep_points /= 0) then
+      if (sweep_points < 2 .or. sweep_points > max_rolling_points - n_list) then
+        call fail(status, exit_bad_input, where//'sweep_points = '//itoa(sweep_points)//' (allowed: 0 for '// &
+                  'no sweep, or 2 to '//itoa(max_rolling_points - n_list)//')')
+        return
+      end if
+      if (.not. any(sweep_direction /= 0) .or. .not. all(abs(sweep_direction) <= 1e6_real64)) then
+        call fail(status, exit_bad_input, where//'sweep_direction = '//rtoa(sweep_direction(1))//', '// &
+                  rtoa(sweep_direction(2))//', '//rtoa(sweep_direction(3))//' (a finite (xi, eta, phi), not all 0)')
+        return
+      end if
+      select case (sweep_spacing)
+      case ('linear')
+        if (.not. (abs(sweep_from) <= 1e6_real64 .and. abs(sweep_to) <= 1e6_real64)) call fail(status, &
+            exit_bad_input, where//'sweep_from, sweep_to = '//rtoa(sweep_from)//', '//rtoa(sweep_to)// &
+            ' (allowed: finite, |value| <= 1e6)')
+      case ('log')
+        if (.not. (sweep_from > 0 .and. sweep_to > 0 .and. sweep_from <= 1e6_real64 .and. &
+                   sweep_to <= 1e6_real64)) call fail(status, exit_bad_input, where//'sweep_from, sweep_to = '// &
+            rtoa(sweep_from)//', '//rtoa(sweep_to)//' (sweep_spacing = ''log'' needs 0 < value <= 1e6)')
+      case default
+        call fail(status, exit_bad_input, where//'sweep_spacing = '''//trim(sweep_spacing)// &
+                  ''' (allowed: ''linear'', ''log'')')
+      end select
+      if (status%failed()) return
+    end if
+    if (n_list + sweep_points == 0) then
+      call fail(status, exit_bad_input, where//'no creepage: give creepages (xi, eta, phi triples) or a sweep '// &
+                '(sweep_direction, sweep_from, sweep_to, sweep_points)')
+      return
+    end if
+    allocate (config%request%creepages(3, n_list + sweep_points))
+    config%request%creepages(:, 1:n_list) = reshape(creepages(1:n_values), [3, n_list])
+    do k = 1, sweep_points
+      t = real(k - 1, real64) / (sweep_points - 1)
+      if (sweep_spacing == 'log') then
+        t = sweep_from * (sweep_to / sweep_from)**t
+      else
+        t = sweep_from + (sweep_to - sweep_from) * t
+      end if
+      config%request%creepages(:, n_list + k) = t * sweep_direction
+    end do
+    config%request%maps = maps
+
+    ! the pressure: &fastsim's sources and meanings
+    config%pressure_input_file = resolve_path(trim(pressure_input_file), folder_of(path))
+    config%pressure = lower(trim(adjustl(pressure)))
+    if (config%pressure == 'auto') then
+      select case (shape)
+      case ('ellipse')
+        config%pressure = 'hertz'
+      case ('contact')
+        config%pressure = 'contact'
+      case ('gap')
+        config%pressure = 'normal'
+      case default
+        config%pressure = trim(merge('file     ', 'parabolic', len(config%pressure_input_file) > 0))
+      end select
+    end if
+    select case (config%pressure)
+    case ('hertz')
+      if (shape /= 'ellipse') call fail(status, exit_bad_input, where//'pressure = ''hertz'' needs '// &
+          '&patch shape = ''ellipse'' (for other patches: ''file'', ''contact'' or ''parabolic'')')
+    case ('contact')
+      if (shape /= 'contact') call fail(status, exit_bad_input, where//'pressure = ''contact'' needs '// &
+          '&patch shape = ''contact''')
+    case ('normal')
+      if (shape /= 'gap') call fail(status, exit_bad_input, where//'pressure = ''normal'' needs '// &
+          '&patch shape = ''gap'' (the normal problem gives the pressure)')
+    case ('file')
+      if (len(config%pressure_input_file) == 0) call fail(status, exit_bad_input, where//'pressure = ''file'' '// &
+          'needs pressure_input_file (the pressure per cell on the patch''s grid)')
+    case ('parabolic')
+    case default
+      call fail(status, exit_bad_input, where//'pressure = '''//config%pressure//''' (allowed: ''auto'', '// &
+                '''hertz'', ''contact'', ''normal'', ''file'', ''parabolic'')')
+    end select
+    if (status%failed()) return
+    if (len(config%pressure_input_file) > 0 .and. config%pressure /= 'file') then
+      call fail(status, exit_bad_input, where//'pressure_input_file is read with pressure = ''file'' only '// &
+                '(pressure = '''//config%pressure//''')')
+      return
+    end if
+    if (fn /= unset) then
+      if (config%pressure /= 'hertz' .and. config%pressure /= 'parabolic') then
+        call fail(status, exit_bad_input, where//'fn applies to pressure = ''hertz'' or ''parabolic'' only '// &
+                  '(the pressure '''//config%pressure//''' carries its own load)')
+        return
+      end if
+      if (.not. (fn > 0 .and. fn <= 1e30_real64)) then
+        call fail(status, exit_bad_input, where//'fn = '//rtoa(fn)//' (allowed: 0 < fn <= 1e30)')
+        return
+      end if
+      config%fn = fn
+    end if
+    if (extrapolate .and. (config%pressure == 'file' .or. config%pressure == 'contact')) then
+      call fail(status, exit_bad_input, where//'pressure = '''//config%pressure//''' is given on the patch''s '// &
+                'own grid: not with &solver extrapolate = .true. (the rolling problem runs on the finest level)')
+      return
+    end if
+  end subroutine read_rolling_group
+
+end module kcreep_nml_rolling

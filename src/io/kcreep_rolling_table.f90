@@ -1,0 +1,78 @@
+!> The text of the &rolling outputs: the exact creep-force table (one row per
+!> creepage) and the traction / stick-slip maps.
+module kcreep_rolling_table
+  use, intrinsic :: iso_fortran_env, only: real64
+  use kcreep_patch, only: patch_t
+  use kcreep, only: rolling_request_t, rolling_point_t
+  use kcreep, only: creep_map_t
+  implicit none
+  private
+  public :: rolling_lines, rolling_map_lines, rolling_columns
+
+  character(len=*), parameter :: rolling_columns = 'xi eta phi fx fy mz fn adhesion fx_mufn fy_mufn newton residual'
+
+contains
+
+  !> The table: comment lines, the column names, one row per point.
+  function rolling_lines(case_name, request, pressure, points) result(lines)
+    character(len=*), intent(in) :: case_name, pressure
+    type(rolling_request_t), intent(in) :: request
+    type(rolling_point_t), intent(in) :: points(:)
+    character(len=400), allocatable :: lines(:)
+    integer, parameter :: nh = 6
+    real(real64) :: mufn
+    integer :: k
+    character(len=400) :: buf
+
+    allocate (lines(nh + size(points)))
+    lines(1) = '# kcreep exact steady rolling with Coulomb friction, case '//case_name// &
+               ' (backward scheme on the patch grid, semi-smooth Newton)'
+    write (lines(2), '(a, es12.5, a, es9.2)') '# mu = ', request%mu, ', pressure '//pressure// &
+      ', tolerance', request%tolerance
+    lines(3) = '# (Fx, Fy, Mz) = -f (xi, eta, phi) at small creepage; adhesion: fraction of the patch cells in adhesion'
+    lines(4) = '# fx_mufn = fx / (mu fn), fy_mufn = fy / (mu fn); newton: Newton steps of the point'
+    lines(5) = '# residual: max |F_i| / max(mu pn) of the Coulomb conditions F(p) = p - Proj(p - rho s(p)) = 0 '// &
+               '(checked at the solution)'
+    lines(nh) = '# '//rolling_columns
+    do k = 1, size(points)
+      associate (p => points(k), f => points(k)%force)
+        mufn = request%mu * f%fn
+        write (buf, '(7(es23.15e3, 1x), f8.6, 2(1x, es23.15e3), 1x, i0, 1x, es10.3e3)') p%creep, f%fx, f%fy, &
+          f%mz, f%fn, f%adhesion, f%fx / mufn, f%fy / mufn, p%info%newton, p%info%residual
+        lines(nh + k) = buf
+      end associate
+    end do
+  end function rolling_lines
+
+  !> The maps: per point a comment line naming it, then one row per patch cell:
+  !> ix iy x y pn px py state (state 1 adhesion, 2 slip); blocks separated by two blank lines.
+  function rolling_map_lines(patch, pn, points, maps) result(lines)
+    type(patch_t), intent(in) :: patch
+    real(real64), intent(in) :: pn(:, :)
+    type(rolling_point_t), intent(in) :: points(:)
+    type(creep_map_t), intent(in) :: maps(:)
+    character(len=200), allocatable :: lines(:)
+    integer :: k, c, n, ix, iy
+
+    allocate (lines(2 + size(maps) * (patch%n + 1) + 2 * max(0, size(maps) - 1)))
+    lines(1) = '# kcreep exact rolling: traction and stick/slip maps, one block per creepage point'
+    lines(2) = '# ix iy x y pn px py state   (state 1 adhesion, 2 slip; blocks separated by two blank lines)'
+    n = 2
+    do k = 1, size(maps)
+      if (k > 1) then
+        lines(n + 1:n + 2) = ''
+        n = n + 2
+      end if
+      n = n + 1
+      write (lines(n), '(a, i0, a, 3es14.6)') '# point ', k, ': xi eta phi =', points(k)%creep
+      do c = 1, patch%n
+        ix = patch%ix(c)
+        iy = patch%iy(c)
+        n = n + 1
+        write (lines(n), '(2(i0, 1x), 5(es16.8, 1x), i0)') ix, iy, patch%cell_x(ix), patch%cell_y(iy), &
+          pn(ix, iy), maps(k)%px(ix, iy), maps(k)%py(ix, iy), maps(k)%state(ix, iy)
+      end do
+    end do
+  end function rolling_map_lines
+
+end module kcreep_rolling_table

@@ -1,0 +1,420 @@
+!> Steady rolling with Coulomb friction on the patch's grid: the exact
+!> (discrete) partial-slip problem of the backward scheme, by a semi-smooth
+!> Newton method.
+!>
+!> Unknowns: the cell tractions p = (px(1:n), py(1:n)). With A the backward
+!> scheme's operator (A p = w in full adhesion, kcreep_assembly) the slip of
+!> cell i is s_i = w_i - (A p)_i, w the rigid slip of the creepage. Coulomb:
+!>   |p_i| <= g_i = mu pn_i;  s_i = 0 where |p_i| < g_i;  p_i = -g_i s_i/|s_i| where s_i /= 0,
+!> the traction opposing the slip. As a projection (the same for any rho > 0):
+!>   F_i(p) = p_i - Proj_{|.| <= g_i}(q_i) = 0,  q_i = p_i - rho s_i(p),
+!> so that F_i = rho s_i in adhesion (|q_i| <= g_i) and p_i - g_i q_i/|q_i| in slip.
+!> Newton's step solves J dp = -F with the generalised Jacobian
+!>   J = I - P' (I + rho A),  P'_i = I (adhesion),  (g_i/|q_i|)(I - n_i n_i^T) (slip), n_i = q_i/|q_i|,
+!> inexactly by flexible GMRES (kcreep_krylov) with the FFT operator
+!> (kcreep_fft_operator) and, as preconditioner, the exact LU of the
+!> Jacobian restricted to each grid row (both components of the row's cells:
+!> the row carries the one-sided upwind difference of rolling). Armijo
+!> back-tracking on ||F||_2 globalises the step; the stop test is on the
+!> residual itself, max_i |F_i| <= tolerance * max_i g_i (not on the size of
+!> the update, which leaves CONTACT's GDsteady short of convergence at some points).
+module kcreep_rolling_solve
+  use, intrinsic :: iso_fortran_env, only: real64
+  use kcreep_patch, only: patch_t
+  use kcreep_assembly, only: operator_table_t
+  use kcreep_fft_operator, only: fft_operator_t, create_fft_operator, destroy_fft_operator, apply_fft_operator
+  use kcreep_krylov, only: block_operator_t, gmres_result_t, gmres
+  use kcreep_lapack, only: dgbtrf, dgbtrs
+  implicit none
+  private
+  public :: rolling_solver_t, rolling_options_t, rolling_info_t, create_rolling_solver, destroy_rolling_solver, &
+            solve_rolling, rolling_residual, cell_stick, cell_slip, default_rolling_tolerance
+
+  integer, parameter :: cell_stick = 1, cell_slip = 2   !< CONTACT's IGS: 1 adhesion, 2 slip
+
+  !> max |F_i| / max g_i at which Newton stops. 1e-10: the forces then agree
+  !> with a run to 1e-13 within 1e-9 of mu Fn on CONTACT's four slip patches
+  !> (docs/rolling.md, "Stopping"), far below CONTACT's printed digits.
+  real(real64), parameter :: default_rolling_tolerance = 1e-10_real64
+
+  !> GMRES's relative tolerance in the first Newton step and its largest
+  !> value later (Eisenstat-Walker forcing in between).
+  real(real64), parameter :: first_forcing = 1e-2_real64, max_forcing = 0.1_real64
+
+  !> Cells of a grid row coupled in the preconditioner's row blocks, each side.
+  !> Measured, one thread (24-point circle curve of ../shared/contact-slip;
+  !> one point xi = 2e-3 on the Hertzian circle at 100 x 100 and 200 x 200):
+  !> whole rows (dense LU) 0.47 s, 0.37 s, 7.8 s; band 8: 0.56, 0.22, 2.3 s;
+  !> band 4: 0.41, 0.15, 1.3 s; band 2: 0.38, 0.25, 1.4 s (more GMRES steps).
+  integer, parameter :: band_cells = 4
+
+  type :: rolling_options_t
+    real(real64) :: tolerance = default_rolling_tolerance
+    integer :: max_newton = 60
+    integer :: restart = 40          !< GMRES restart length
+    integer :: max_gmres = 600       !< GMRES iterations per Newton step
+  end type rolling_options_t
+
+  type :: rolling_info_t
+    integer :: newton = 0            !< Newton steps
+    integer :: gmres = 0             !< GMRES iterations, all steps
+    integer :: products = 0          !< operator products (A p), all uses
+    real(real64) :: residual = 0     !< max |F_i| / max g_i at the end
+    logical :: converged = .false.
+  end type rolling_info_t
+
+  !> The generalised Jacobian J v = v - P' (v + rho A v), P' per cell
+  !> (symmetric 2 x 2: pxx, pxy, pyy).
+  type, extends(block_operator_t) :: rolling_jacobian_t
+    type(fft_operator_t) :: op
+    integer :: n = 0
+    real(real64) :: rho = 0
+    real(real64), allocatable :: pxx(:), pxy(:), pyy(:)
+    integer :: products = 0
+  contains
+    procedure :: apply => apply_jacobian
+  end type rolling_jacobian_t
+
+  !> Banded LU of the Jacobian restricted to one grid row: unknowns (px, py)
+  !> of its m cells interleaved, couplings between cells at most band_cells
+  !> apart in the row (A's row coupling falls off as 1/distance^2).
+  type :: row_block_t
+    integer :: first = 0, m = 0      !< cells first .. first + m - 1
+    integer :: kl = 0                !< sub- and superdiagonals of the band (unknowns)
+    real(real64), allocatable :: ab(:, :)      !< LAPACK band storage (2 kl + kl + 1, 2 m)
+    integer, allocatable :: pivots(:)
+  end type row_block_t
+
+  type, extends(block_operator_t) :: row_preconditioner_t
+    type(row_block_t), allocatable :: rows(:)
+    integer :: n = 0
+    integer, allocatable :: ix(:)                         !< grid column of each cell
+    real(real64), allocatable :: rxx(:), rxy(:), ryy(:)   !< A within a grid row, by offset
+    real(real64), allocatable :: b(:)                     !< work
+  contains
+    procedure :: apply => apply_rows
+  end type row_preconditioner_t
+
+  type :: rolling_solver_t
+    type(rolling_jacobian_t) :: jac
+    type(row_preconditioner_t) :: prec
+    integer :: n = 0
+  end type rolling_solver_t
+
+contains
+
+  !> Plan the FFT operator of the patch and the row blocks (once per patch and material).
+  subroutine create_rolling_solver(patch, table, solver)
+    type(patch_t), intent(in) :: patch
+    type(operator_table_t), intent(in) :: table
+    type(rolling_solver_t), intent(out) :: solver
+    integer :: k, first, nrows, r, m
+
+    solver%n = patch%n
+    solver%jac%n = patch%n
+    call create_fft_operator(patch, table, 1, solver%jac%op)
+    ! rho: the inverse of the cell's own coefficient, so that q_i hardly depends on p_i itself
+    solver%jac%rho = 2 / (abs(table%xx(0, 0)) + abs(table%yy(0, 0)))
+    allocate (solver%jac%pxx(patch%n), solver%jac%pxy(patch%n), solver%jac%pyy(patch%n))
+    ! grid rows: cells are numbered row by row, x increasing
+    nrows = 0
+    do k = 1, patch%n
+      if (k == 1) then
+        nrows = 1
+      else if (patch%iy(k) /= patch%iy(k - 1)) then
+        nrows = nrows + 1
+      end if
+    end do
+    solver%prec%n = patch%n
+    solver%prec%ix = patch%ix
+    allocate (solver%prec%rxx(-(patch%mx - 1):patch%mx - 1), solver%prec%rxy(-(patch%mx - 1):patch%mx - 1), &
+              solver%prec%ryy(-(patch%mx - 1):patch%mx - 1))
+    solver%prec%rxx = table%xx(:, 0)
+    solver%prec%rxy = table%xy(:, 0)
+    solver%prec%ryy = table%yy(:, 0)
+    allocate (solver%prec%rows(nrows))
+    r = 0
+    first = 1
+    do k = 1, patch%n
+      if (k == patch%n) then
+        call add_row(first, k)
+      else if (patch%iy(k + 1) /= patch%iy(k)) then
+        call add_row(first, k)
+        first = k + 1
+      end if
+    end do
+
+  contains
+
+    subroutine add_row(lo, hi)
+      integer, intent(in) :: lo, hi
+      integer :: kl
+      r = r + 1
+      m = hi - lo + 1
+      kl = 2 * min(m - 1, band_cells) + 1
+      solver%prec%rows(r)%first = lo
+      solver%prec%rows(r)%m = m
+      solver%prec%rows(r)%kl = kl
+      allocate (solver%prec%rows(r)%ab(3 * kl + 1, 2 * m), solver%prec%rows(r)%pivots(2 * m))
+    end subroutine add_row
+
+  end subroutine create_rolling_solver
+
+  subroutine destroy_rolling_solver(solver)
+    type(rolling_solver_t), intent(inout) :: solver
+    call destroy_fft_operator(solver%jac%op)
+  end subroutine destroy_rolling_solver
+
+  !> F(p) and what Newton needs of it: q = p - rho s, ||F||_2, max |F_i|.
+  subroutine rolling_residual(solver, w, bound, p, f, q, fnorm, fmax)
+    type(rolling_solver_t), intent(inout) :: solver
+    real(real64), intent(in) :: w(:), bound(:), p(:)
+    real(real64), intent(out) :: f(:), q(:)
+    real(real64), intent(out) :: fnorm, fmax
+    real(real64) :: ap(size(p), 1), qn
+    integer :: i, n
+    n = solver%n
+    call apply_fft_operator(solver%jac%op, reshape(p, [2 * n, 1]), ap)
+    solver%jac%products = solver%jac%products + 1
+    q = p + solver%jac%rho * (ap(:, 1) - w)
+    fmax = 0
+    do i = 1, n
+      qn = hypot(q(i), q(n + i))
+      if (qn <= bound(i)) then
+        f(i) = p(i) - q(i)
+        f(n + i) = p(n + i) - q(n + i)
+      else
+        f(i) = p(i) - bound(i) * q(i) / qn
+        f(n + i) = p(n + i) - bound(i) * q(n + i) / qn
+      end if
+      fmax = max(fmax, hypot(f(i), f(n + i)))
+    end do
+    fnorm = norm2(f)
+  end subroutine rolling_residual
+
+  !> Solve the rolling problem for rigid slip w (2n) and traction bounds g (n);
+  !> p: start in, solution out; state: cell_stick / cell_slip per cell.
+  subroutine solve_rolling(solver, w, bound, options, p, state, info)
+    type(rolling_solver_t), intent(inout) :: solver
+    real(real64), intent(in) :: w(:), bound(:)
+    type(rolling_options_t), intent(in) :: options
+    real(real64), intent(inout) :: p(:)
+    integer, intent(out) :: state(:)
+    type(rolling_info_t), intent(out) :: info
+    real(real64), allocatable :: f(:), q(:), ftrial(:), qtrial(:), ptrial(:), dp(:, :), rhs(:, :)
+    real(real64) :: fnorm, fmax, gscale, tnorm, tmax, t, eta, fnorm_previous
+    type(gmres_result_t) :: gr
+    integer :: n, i, halvings
+    real(real64), parameter :: armijo = 1e-4_real64
+
+    n = solver%n
+    allocate (f(2 * n), q(2 * n), ftrial(2 * n), qtrial(2 * n), ptrial(2 * n), dp(2 * n, 1), rhs(2 * n, 1))
+    solver%jac%products = 0
+    gscale = max(maxval(bound), tiny(1.0_real64))
+    ! p must start inside the bounds for the residual to mean what it says
+    call project(p)
+    call rolling_residual(solver, w, bound, p, f, q, fnorm, fmax)
+    do
+      info%residual = fmax / gscale
+      if (info%residual <= options%tolerance) then
+        info%converged = .true.
+        exit
+      end if
+      if (info%newton >= options%max_newton) exit
+      info%newton = info%newton + 1
+      call set_derivative(q)
+      call factor_rows(solver)
+      ! forcing term (Eisenstat and Walker's choice 2, safeguarded): loose while
+      ! far, tighter as ||F|| falls; never far below what the stop test needs
+      if (info%newton == 1) then
+        eta = first_forcing
+      else
+        eta = max(0.9_real64 * (fnorm / fnorm_previous)**2, 0.9_real64 * eta**2)
+      end if
+      eta = min(max_forcing, max(eta, 0.1_real64 * options%tolerance * gscale / fmax))
+      fnorm_previous = fnorm
+      rhs(:, 1) = -f
+      dp = 0
+      call gmres(solver%jac, solver%prec, rhs, dp, eta, options%restart, options%max_gmres, gr)
+      info%gmres = info%gmres + gr%iterations(1)
+      ! Armijo back-tracking on ||F||_2
+      t = 1
+      halvings = 0
+      do
+        ptrial = p + t * dp(:, 1)
+        call rolling_residual(solver, w, bound, ptrial, ftrial, qtrial, tnorm, tmax)
+        if (tnorm <= (1 - armijo * t) * fnorm .or. halvings >= 30) exit
+        t = t / 2
+        halvings = halvings + 1
+      end do
+      p = ptrial
+      f = ftrial
+      q = qtrial
+      fnorm = tnorm
+      fmax = tmax
+    end do
+    info%products = solver%jac%products
+    ! the element division of the solution (q: of the final p)
+    do i = 1, n
+      if (hypot(q(i), q(n + i)) <= bound(i)) then
+        state(i) = cell_stick
+      else
+        state(i) = cell_slip
+      end if
+    end do
+
+  contains
+
+    subroutine project(v)
+      real(real64), intent(inout) :: v(:)
+      real(real64) :: a
+      integer :: k
+      do k = 1, n
+        a = hypot(v(k), v(n + k))
+        if (a > bound(k)) then
+          if (a > 0) then
+            v(k) = v(k) * bound(k) / a
+            v(n + k) = v(n + k) * bound(k) / a
+          end if
+        end if
+      end do
+    end subroutine project
+
+    !> P' per cell at q.
+    subroutine set_derivative(qq)
+      real(real64), intent(in) :: qq(:)
+      real(real64) :: a, c, nx, ny
+      integer :: k
+      do k = 1, n
+        a = hypot(qq(k), qq(n + k))
+        if (a <= bound(k)) then
+          solver%jac%pxx(k) = 1
+          solver%jac%pxy(k) = 0
+          solver%jac%pyy(k) = 1
+        else
+          c = bound(k) / a
+          nx = qq(k) / a
+          ny = qq(n + k) / a
+          solver%jac%pxx(k) = c * (1 - nx * nx)
+          solver%jac%pxy(k) = -c * nx * ny
+          solver%jac%pyy(k) = c * (1 - ny * ny)
+        end if
+      end do
+    end subroutine set_derivative
+
+  end subroutine solve_rolling
+
+  !> y = J x = x - P' (x + rho A x) for each column.
+  subroutine apply_jacobian(self, x, y, columns)
+    class(rolling_jacobian_t), intent(inout) :: self
+    real(real64), intent(in) :: x(:, :)
+    real(real64), intent(out) :: y(:, :)
+    integer, intent(in) :: columns(:)
+    real(real64) :: vx, vy
+    integer :: k, v, n
+    if (size(columns) < 0) return
+    n = self%n
+    call apply_fft_operator(self%op, x, y)
+    self%products = self%products + size(x, 2)
+    do v = 1, size(x, 2)
+      do k = 1, n
+        vx = x(k, v) + self%rho * y(k, v)
+        vy = x(n + k, v) + self%rho * y(n + k, v)
+        y(k, v) = x(k, v) - (self%pxx(k) * vx + self%pxy(k) * vy)
+        y(n + k, v) = x(n + k, v) - (self%pxy(k) * vx + self%pyy(k) * vy)
+      end do
+    end do
+  end subroutine apply_jacobian
+
+  !> Banded LU of each row's block of J = I - P' (I + rho A_row).
+  subroutine factor_rows(solver)
+    type(rolling_solver_t), intent(inout) :: solver
+    integer :: r, i, j, m, k, l, kl, info, d, ci, cj
+    real(real64) :: rho, pxx, pxy, pyy, bxx, bxy, byy
+    rho = solver%jac%rho
+    associate (pr => solver%prec)
+      do r = 1, size(pr%rows)
+        associate (row => pr%rows(r))
+          m = row%m
+          kl = row%kl
+          row%ab = 0
+          do i = 1, m
+            k = row%first + i - 1
+            pxx = solver%jac%pxx(k)
+            pxy = solver%jac%pxy(k)
+            pyy = solver%jac%pyy(k)
+            do j = max(1, i - (kl - 1) / 2), min(m, i + (kl - 1) / 2)
+              l = row%first + j - 1
+              d = pr%ix(k) - pr%ix(l)
+              bxx = rho * pr%rxx(d)
+              bxy = rho * pr%rxy(d)
+              byy = rho * pr%ryy(d)
+              if (i == j) then
+                bxx = bxx + 1
+                byy = byy + 1
+              end if
+              ci = 2 * i - 1   ! px of cell i; py is ci + 1
+              cj = 2 * j - 1
+              call put(ci, cj, -(pxx * bxx + pxy * bxy))
+              call put(ci, cj + 1, -(pxx * bxy + pxy * byy))
+              call put(ci + 1, cj, -(pxy * bxx + pyy * bxy))
+              call put(ci + 1, cj + 1, -(pxy * bxy + pyy * byy))
+              if (i == j) then
+                call put(ci, cj, 1.0_real64)
+                call put(ci + 1, cj + 1, 1.0_real64)
+              end if
+            end do
+          end do
+          call dgbtrf(2 * m, 2 * m, kl, kl, row%ab, 3 * kl + 1, row%pivots, info)
+          if (info > 0) then
+            ! a singular row block (not seen; a guard): the identity there
+            row%ab = 0
+            row%ab(2 * kl + 1, :) = 1
+            row%pivots = [(i, i=1, 2 * m)]
+          end if
+        end associate
+      end do
+    end associate
+
+  contains
+
+    !> Add v to element (a, b) of the row's band matrix.
+    subroutine put(a, b, v)
+      integer, intent(in) :: a, b
+      real(real64), intent(in) :: v
+      associate (row => solver%prec%rows(r))
+        row%ab(2 * row%kl + 1 + a - b, b) = row%ab(2 * row%kl + 1 + a - b, b) + v
+      end associate
+    end subroutine put
+
+  end subroutine factor_rows
+
+  !> z = (row-block J)^-1 r for each column.
+  subroutine apply_rows(self, x, y, columns)
+    class(row_preconditioner_t), intent(inout) :: self
+    real(real64), intent(in) :: x(:, :)
+    real(real64), intent(out) :: y(:, :)
+    integer, intent(in) :: columns(:)
+    integer :: r, v, m, lo, n, info, i
+    if (size(columns) < 0) return
+    n = self%n
+    if (.not. allocated(self%b)) allocate (self%b(2 * n))
+    do v = 1, size(x, 2)
+      do r = 1, size(self%rows)
+        m = self%rows(r)%m
+        lo = self%rows(r)%first
+        do i = 1, m
+          self%b(2 * i - 1) = x(lo + i - 1, v)
+          self%b(2 * i) = x(n + lo + i - 1, v)
+        end do
+        call dgbtrs('N', 2 * m, self%rows(r)%kl, self%rows(r)%kl, 1, self%rows(r)%ab, 3 * self%rows(r)%kl + 1, &
+                    self%rows(r)%pivots, self%b, 2 * m, info)
+        do i = 1, m
+          y(lo + i - 1, v) = self%b(2 * i - 1)
+          y(n + lo + i - 1, v) = self%b(2 * i)
+        end do
+      end do
+    end do
+  end subroutine apply_rows
+
+end module kcreep_rolling_solve
