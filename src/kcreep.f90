@@ -29,7 +29,8 @@ module kcreep
   use kcreep_check, only: check_problem
   use kcreep_run, only: run_case, solve_cache_t
   use kcreep_creep_curve, only: creep_request_t, creep_point_t, creep_map_t, creep_curve, source_names
-  use kcreep_fastsim_forces, only: fastsim_forces, fastsim_result_t, flexibility_weighted, flexibility_separate
+  use kcreep_fastsim_forces, only: fastsim_forces, fastsim_result_t, flexibility_weighted, flexibility_separate, &
+                                   flexibility_aligned
   use kcreep_pressure_models, only: hertz_pressure, strip_parabolic_pressure
   use kcreep_equivalent_ellipse, only: equivalent_ellipse_t, equivalent_ellipses
   use kcreep_extrapolation, only: run_extrapolated
@@ -39,7 +40,7 @@ module kcreep
   private
   public :: kcreep_solve, kcreep_version, kcreep_version_number, max_threads
   public :: creep_request_t, creep_point_t, creep_map_t, creep_curve, source_names
-  public :: fastsim_forces, fastsim_result_t, flexibility_weighted, flexibility_separate
+  public :: fastsim_forces, fastsim_result_t, flexibility_weighted, flexibility_separate, flexibility_aligned
   public :: hertz_pressure, strip_parabolic_pressure, equivalent_ellipse_t, equivalent_ellipses
   public :: normal_problem_t, normal_options_t, gap_t, polynomial_gap_t, gap_from_array, gap_from_polynomial, auto_grid
   public :: problem_t, result_t, default_problem, solve_cache_t, status_t, patch_t, scheme_t, solver_options_t

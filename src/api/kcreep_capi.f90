@@ -16,7 +16,7 @@ module kcreep_capi
   use kcreep, only: kcreep_solve, kcreep_version_number, max_threads, problem_t, result_t, default_problem, solve_cache_t, &
                     ellipse_patch, mask_patch, n_load_cases, gap_from_array
   use kcreep_creep_curve, only: creep_request_t, creep_point_t, creep_map_t, creep_curve
-  use kcreep_fastsim_forces, only: flexibility_weighted, flexibility_separate
+  use kcreep_fastsim_forces, only: flexibility_rule_of
   use kcreep_rolling_curve, only: rolling_request_t, rolling_point_t, rolling_curve
   use kcreep_normal_influence, only: compliance_from_e_nu, combined_g_nu_from_e_nu
   implicit none
@@ -565,8 +565,10 @@ contains
   !> creep[3 k + 0..2] = (xi, eta, phi), with the patch's exact L1 L2 L3.
   !> pressure: mx * my values on the patch's grid (rows in increasing y), or
   !> NULL for the pressure of the normal problem (after kcreep_set_gap).
-  !> rule: "separate" (each creepage term with its own L) or "weighted"
-  !> (Kalker's single weighted L). Out: force[3 k + 0..2] = (Fx, Fy, Mz),
+  !> rule: "aligned" (the program's default: each creepage term with its own
+  !> L, slipping tractions opposing the slip; docs/fastsim.md), "separate"
+  !> (each term with its own L, slipping tractions along the predictor) or
+  !> "weighted" (Kalker's single weighted L). Out: force[3 k + 0..2] = (Fx, Fy, Mz),
   !> adhesion[k] = fraction of the area in adhesion (may be NULL).
   integer(c_int) function c_fastsim(handle, mu, n, creep, pressure, rule, force, adhesion) &
     bind(c, name='kcreep_fastsim')
@@ -595,16 +597,12 @@ contains
       return
     end if
     rule_name = from_c(rule, 16)
-    select case (rule_name)
-    case ('separate')
-      request%rule = flexibility_separate
-    case ('weighted')
-      request%rule = flexibility_weighted
-    case default
-      call fail(h%last, exit_bad_input, 'kcreep_fastsim: rule = "'//rule_name//'" (allowed: separate, weighted)')
+    request%rule = flexibility_rule_of(rule_name)
+    if (request%rule == 0) then
+      call fail(h%last, exit_bad_input, 'kcreep_fastsim: rule = "'//rule_name//'" (allowed: aligned, separate, weighted)')
       c_fastsim = finish(h)
       return
-    end select
+    end if
     call pressure_of(h, pressure, 'kcreep_fastsim', pn)
     if (h%last%failed()) then
       c_fastsim = finish(h)

@@ -29,7 +29,7 @@ module kcreep_namelist
   use kcreep_hertz, only: hertz_t, hertz_from_force
   use kcreep_normal_influence, only: compliance_from_g_nu, compliance_from_e_nu, combined_g_nu_from_e_nu
   use kcreep_creep_curve, only: creep_request_t, source_names
-  use kcreep_fastsim_forces, only: flexibility_weighted, flexibility_separate
+  use kcreep_fastsim_forces, only: flexibility_rule_of
   use kcreep_rolling_input, only: rolling_config_t, read_rolling_group
   implicit none
   private
@@ -229,7 +229,7 @@ contains
     l1 = 0
     l2 = 0
     l3 = 0
-    rule = 'separate'
+    rule = 'aligned'
     maps = .false.
 
     cfg%input_path = path
@@ -554,15 +554,12 @@ contains
         cfg%fastsim%creepages(:, n_list + k) = t * sweep_direction
       end do
 
-      select case (lower(trim(adjustl(rule))))
-      case ('separate')
-        cfg%fastsim%rule = flexibility_separate
-      case ('weighted')
-        cfg%fastsim%rule = flexibility_weighted
-      case default
-        call fail(status, exit_bad_input, where//'rule = '''//trim(rule)//''' (allowed: ''separate'', ''weighted'')')
+      cfg%fastsim%rule = flexibility_rule_of(lower(trim(adjustl(rule))))
+      if (cfg%fastsim%rule == 0) then
+        call fail(status, exit_bad_input, where//'rule = '''//trim(rule)// &
+                  ''' (allowed: ''aligned'', ''separate'', ''weighted'')')
         return
-      end select
+      end if
 
       cfg%fastsim%sources = .false.
       rest = lower(flexibility)
