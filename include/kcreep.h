@@ -130,7 +130,8 @@ int kcreep_get_normal(kcreep_handle handle, double *fn, double *approach, double
 /* FASTSIM with friction mu on the solved patch, for n creepages
  * creep[3 k + 0..2] = (xi, eta, phi), with the patch's exact L1 L2 L3.
  * pressure: mx * my values on the patch's grid (rows in increasing y), or
- * NULL for the normal problem's pressure. rule: "separate" or "weighted".
+ * NULL for the normal problem's pressure. rule: "aligned" (the program's
+ * default), "separate" or "weighted" (docs/fastsim.md).
  * force[3 k + 0..2] = (Fx, Fy, Mz); adhesion[k] (may be NULL): the fraction
  * of the area in adhesion. */
 int kcreep_fastsim(kcreep_handle handle, double mu, int n, const double *creep, const double *pressure,

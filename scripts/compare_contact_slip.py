@@ -9,7 +9,8 @@ For every case of every CONTACT `.out` given (its `.NNNN.mat` element files besi
     else from the `.out` (four digits);
   - the exact coefficients: kcreep on the patch (shape = 'contact', CONTACT's scheme);
   - FASTSIM (kcreep_fastsim_curve) with the patch's own L1 L2 L3 ('exact') and with those of
-    the two equivalent ellipses ('box', 'moments'), flexibility rules 'weighted' and 'separate'.
+    the two equivalent ellipses ('box', 'moments'), flexibility rules 'weighted', 'separate' and
+    'aligned' (and the variants separate-l1, separate-m of the -phi y term).
 Prints per case the force errors |F_fastsim - F_contact| / (mu Fn) in %, per patch the
 largest error over the pure and the combined cases, and writes every number to a CSV
 (--csv). Standard library only.
@@ -27,7 +28,7 @@ import sys
 import tempfile
 
 SOURCES = ('exact', 'box', 'moments')
-RULES = ('weighted', 'separate', 'separate-l1', 'separate-m')
+RULES = ('weighted', 'separate', 'separate-l1', 'separate-m', 'aligned')
 
 
 def fail(msg):
@@ -234,7 +235,7 @@ def main():
                     errs = ' '.join(f"{row[f'{s}_{q}_err']:6.2f}" for s in SOURCES for q in RULES
                                     if f'{s}_{q}_err' in row)
                     print(f'{patch:22s} {case:3d} {kind:8s} xi {creep[0]: .3e} eta {creep[1]: .3e} phi {creep[2]: .3e} '
-                          f'CONTACT F/(mu Fn) ({fx / mufn: .4f},{fy / mufn: .4f})  err % [exact w s s1 sm, box w s s1, moments w s s1] {errs}')
+                          f'CONTACT F/(mu Fn) ({fx / mufn: .4f},{fy / mufn: .4f})  err % [exact w s s1 sm a, box w s s1 a, moments w s s1 a] {errs}')
             if a.curves:
                 curve_rows.extend(dense_curves(a, patch, pfile, cfile, mu, coef, fn,
                                                [r for r in csv_rows if r['patch'] == patch]))

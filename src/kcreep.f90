@@ -36,7 +36,7 @@ module kcreep
   use kcreep_creep_curve, only: creep_request_t, creep_point_t, creep_map_t, creep_curve, source_names, &
                                 source_flexibilities
   use kcreep_fastsim_forces, only: fastsim_forces, fastsim_result_t, flexibility_weighted, flexibility_separate, &
-                                  flexibility_rule_name
+                                  flexibility_aligned, flexibility_rule_name, flexibility_rule_of
   use kcreep_pressure_models, only: hertz_pressure, strip_parabolic_pressure
   use kcreep_equivalent_ellipse, only: equivalent_ellipse_t, equivalent_ellipses
   use kcreep_extrapolation, only: run_extrapolated, memory_need
@@ -53,7 +53,8 @@ module kcreep
             rolling_residual_of
   public :: creep_request_t, creep_point_t, creep_map_t, creep_curve, source_names, source_flexibilities
   public :: validate_solver_options, refine_modes, collocation_aspect_limit, normalised_about
-  public :: fastsim_forces, fastsim_result_t, flexibility_weighted, flexibility_separate, flexibility_rule_name
+  public :: fastsim_forces, fastsim_result_t, flexibility_weighted, flexibility_separate, flexibility_aligned, &
+            flexibility_rule_name, flexibility_rule_of
   public :: compliance_from_e_nu, combined_g_nu_from_e_nu
   public :: hertz_pressure, strip_parabolic_pressure, equivalent_ellipse_t, equivalent_ellipses
   public :: normal_problem_t, normal_options_t, gap_t, polynomial_gap_t, gap_from_array, gap_from_polynomial, auto_grid

@@ -4,7 +4,8 @@
 !>   kcreep_fastsim_bench [N [POINTS]]
 program fastsim_bench
   use, intrinsic :: iso_fortran_env, only: real64, int64, output_unit
-  use kcreep_fastsim_forces, only: fastsim_forces, fastsim_result_t, flexibility_separate, flexibility_weighted
+  use kcreep_fastsim_forces, only: fastsim_forces, fastsim_result_t, flexibility_weighted, flexibility_aligned, &
+                                   flexibility_rule_name
   use kcreep_pressure_models, only: hertz_pressure
   use kcreep_equivalent_ellipse, only: ellipse_flexibilities
   use kcreep_kalker_table, only: kalker_coefficients
@@ -31,7 +32,7 @@ program fastsim_bench
   pn = hertz_pressure(inside, dx, dx, x0, x0, 1.0_real64, 1.0_real64, 1.0_real64)
   flex = ellipse_flexibilities(1.0_real64, 1.0_real64, kalker_coefficients(1.0_real64, 0.25_real64), 1.0_real64)
   call system_clock(count_rate=rate)
-  do rule = flexibility_weighted, flexibility_separate
+  do rule = flexibility_weighted, flexibility_aligned      ! weighted, separate, aligned
     do r = 1, repeats
       checksum = 0
       call system_clock(t0)
@@ -46,7 +47,7 @@ program fastsim_bench
     end do
     times = sorted(times)
     write (output_unit, '(a, i0, a, i0, a, i0, 2a, f9.5, a, f9.5, a, es10.3, a, es12.5)') 'grid ', n, ' x ', n, &
-      ', ', points, ' points, rule ', merge('weighted', 'separate', rule == flexibility_weighted)// &
+      ', ', points, ' points, rule ', flexibility_rule_name(rule)// &
       ': best ', times(1), ' s, median ', times((repeats + 1) / 2), ' s, per cell and point ', &
       times(1) / (points * count(inside)), ' s; checksum ', checksum
   end do

@@ -11,7 +11,9 @@
 !> the patch's exact coefficients (kcreep's table); F33 (optional) gives the
 !> variant 'separate-m' of the exact source (longitudinal spin term with
 !> the flexibility that reproduces f33). Rules: weighted; separate (spin
-!> terms with L3); separate-l1 (the -phi y term with L1). Writes to standard
+!> terms with L3); separate-l1 (the -phi y term with L1); aligned (the
+!> separate rule in adhesion, slipping tractions opposing the slip: the
+!> program's default, docs/fastsim.md). Writes to standard
 !> output one row per creepage, source and rule:
 !>   source rule xi eta phi fx fy mz fn adhesion
 !> and comment lines (#) with the flexibilities of each source.
@@ -27,8 +29,8 @@ program fastsim_curve
   type(equivalent_ellipse_t) :: e(2)
   type(fastsim_result_t) :: r
   character(len=8), parameter :: sources(3) = [character(len=8) :: 'exact', 'box', 'moments']
-  character(len=12), parameter :: variants(4) = [character(len=12) :: 'weighted', 'separate', 'separate-l1', &
-                                                   'separate-m']
+  character(len=12), parameter :: variants(5) = [character(len=12) :: 'weighted', 'separate', 'separate-l1', &
+                                                   'separate-m', 'aligned']
   integer :: unit, ios, mx, my, iy, k, n, src, i, v
 
   if (command_argument_count() /= 8 .and. command_argument_count() /= 9) then
@@ -94,7 +96,7 @@ program fastsim_curve
   write (output_unit, '(a)') '# source rule xi eta phi fx fy mz fn adhesion'
   do k = 1, n
     do src = 1, 3
-      do v = 1, 4
+      do v = 1, 5
         select case (v)
         case (1)
           call fastsim_forces(inside, pn, dx, dy, x0, y0, flex(:, src), mu, creeps(:, k), c_len, &
@@ -109,6 +111,9 @@ program fastsim_curve
           if (src /= 1 .or. .not. l4 > 0) cycle
           call fastsim_forces(inside, pn, dx, dy, x0, y0, flex(:, src), mu, creeps(:, k), c_len, &
                               flexibility_separate, r, flex_spin_x=l4)
+        case (5)
+          call fastsim_forces(inside, pn, dx, dy, x0, y0, flex(:, src), mu, creeps(:, k), c_len, &
+                              flexibility_aligned, r)
         end select
         write (output_unit, '(a, 1x, a, 8es16.8)') trim(sources(src)), trim(variants(v)), creeps(:, k), &
           r%fx, r%fy, r%mz, r%fn, r%adhesion

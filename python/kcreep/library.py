@@ -191,9 +191,10 @@ class Solver:
         r.fn, r.approach, r.pmax, r.normal_iterations = fn.value, app.value, pmax.value, iterations.value
         return r
 
-    def fastsim(self, mu, creepages, pressure=None, rule="separate"):
+    def fastsim(self, mu, creepages, pressure=None, rule="aligned"):
         """FASTSIM with friction mu on the last solved patch for creepages (n x 3:
-        xi, eta, phi), the patch's exact L1 L2 L3; pressure on the patch's grid
+        xi, eta, phi), the patch's exact L1 L2 L3, flexibility rule "aligned",
+        "separate" or "weighted" (docs/fastsim.md); pressure on the patch's grid
         (2-D, rows in increasing y) or None for the normal problem's. Returns
         (forces n x 3: Fx, Fy, Mz; adhesion n: fraction of the area adhering)."""
         creep = np.ascontiguousarray(np.atleast_2d(creepages), dtype=np.float64)

@@ -3,7 +3,8 @@
 # slip runs (../shared/contact-slip, ../shared/contact-samples/ellipse_a6_b4_slip) and
 # draws fastsim_contact.png (F/(mu Fn) against the normalised creepage,
 # one line per flexibility source, CONTACT's points) and fastsim_combined.png (the
-# error of each combined case under the weighted and the separate flexibility rule).
+# error of each combined case under the weighted, the separate and the aligned
+# flexibility rule).
 #   scripts/figures/fastsim_figures.sh [--out DIR] [--data DIR] [SHARED_FOLDER]
 #     --out DIR      the figures (default build/figures; docs/figures to update docs/fastsim.md)
 #     --data DIR     the CSV tables and the summary (default: the --out folder; docs/data for the docs)
@@ -61,7 +62,7 @@ for r in csv.DictReader(open(f'{data}/fastsim_contact_slip.csv')):
 with open(f'{work}/combined.dat', 'w') as f:
     for k, r in enumerate(r for r in csv.DictReader(open(f'{data}/fastsim_contact_slip.csv')) if r['kind'] == 'combined'):
         f.write(f"{k} {r['patch'].replace('_mu0p3', '')}:{r['case']} {r['exact_weighted_err']} {r['exact_separate_err']} "
-                f"{r['box_separate_err']} {r['moments_separate_err']}\n")
+                f"{r['exact_aligned_err']} {r['box_aligned_err']} {r['moments_aligned_err']}\n")
 for k, v in files.items():
     open(k, 'w').write('\n'.join(v) + '\n')
 EOP
@@ -106,8 +107,9 @@ set xtics rotate by -45
 set key top right
 plot 'combined.dat' u 3:xtic(2) t "weighted L (Kalker 1982)" lc rgb "#d62728", \
      '' u 4 t "separate L1 L2 L3" lc rgb "#1f77b4", \
-     '' u 5 t "separate, box ellipse L" lc rgb "#ff7f0e", \
-     '' u 6 t "separate, moment ellipse L" lc rgb "#2ca02c"
+     '' u 5 t "aligned L1 L2 L3 (default)" lc rgb "#9467bd", \
+     '' u 6 t "aligned, box ellipse L" lc rgb "#ff7f0e", \
+     '' u 7 t "aligned, moment ellipse L" lc rgb "#2ca02c"
 EOG
 cp fastsim_contact.png fastsim_combined.png "$figs/"
 

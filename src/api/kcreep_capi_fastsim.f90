@@ -5,8 +5,8 @@ module kcreep_capi_fastsim
   use, intrinsic :: iso_c_binding, only: c_int, c_double, c_ptr, c_f_pointer, c_associated
   use kcreep_kinds, only: wp
   use kcreep_status, only: fail, exit_bad_input
-  use kcreep, only: creep_request_t, creep_point_t, creep_map_t, creep_curve, flexibility_weighted, &
-                    flexibility_separate, rolling_request_t, rolling_point_t, rolling_curve
+  use kcreep, only: creep_request_t, creep_point_t, creep_map_t, creep_curve, flexibility_rule_of, &
+                    rolling_request_t, rolling_point_t, rolling_curve
   use kcreep_capi_handle, only: handle_t, status_ok, solved, finish, from_c
   implicit none
   private
@@ -17,8 +17,10 @@ contains
   !> creep[3 k + 0..2] = (xi, eta, phi), with the patch's exact L1 L2 L3.
   !> pressure: mx * my values on the patch's grid (rows in increasing y), or
   !> NULL for the pressure of the normal problem (after kcreep_set_gap).
-  !> rule: "separate" (each creepage term with its own L) or "weighted"
-  !> (Kalker's single weighted L). Out: force[3 k + 0..2] = (Fx, Fy, Mz),
+  !> rule: "aligned" (the program's default: each creepage term with its own
+  !> L, slipping tractions opposing the slip; docs/fastsim.md), "separate"
+  !> (each term with its own L, slipping tractions along the predictor) or
+  !> "weighted" (Kalker's single weighted L). Out: force[3 k + 0..2] = (Fx, Fy, Mz),
   !> adhesion[k] = fraction of the area in adhesion (may be NULL).
   integer(c_int) function c_fastsim(handle, mu, n, creep, pressure, rule, force, adhesion) &
     bind(c, name='kcreep_fastsim')
@@ -47,16 +49,12 @@ contains
       return
     end if
     rule_name = from_c(rule, 16)
-    select case (rule_name)
-    case ('separate')
-      request%rule = flexibility_separate
-    case ('weighted')
-      request%rule = flexibility_weighted
-    case default
-      call fail(h%last, exit_bad_input, 'kcreep_fastsim: rule = "'//rule_name//'" (allowed: separate, weighted)')
+    request%rule = flexibility_rule_of(rule_name)
+    if (request%rule == 0) then
+      call fail(h%last, exit_bad_input, 'kcreep_fastsim: rule = "'//rule_name//'" (allowed: aligned, separate, weighted)')
       c_fastsim = finish(h)
       return
-    end select
+    end if
     call pressure_of(h, pressure, 'kcreep_fastsim', pn)
     if (h%last%failed()) then
       c_fastsim = finish(h)

@@ -27,7 +27,24 @@
 !>  - separate: each creepage term with its own flexibility,
 !>    dp_x/dx = xi/L1 - phi y/L3,  dp_y/dx = eta/L2 + phi x/L3.
 !>    This keeps the linear theory's ratio of the creepage components'
-!>    effects in combined creepage (the single L of the weighted rule cannot).
+!>    effects in combined creepage (the single L of the weighted rule cannot),
+!>    but a slipping cell keeps the predictor's direction, so at full slip F
+!>    points along (xi/L1 - phi y/L3, eta/L2 + phi x/L3), not along the slip;
+!>  - aligned (the default of the program): with one flexibility per
+!>    component for the creepage point, D = diag(Dx, Dy),
+!>    Dx = (|xi| L1 + c |phi| L3)/(|xi| + c |phi|),
+!>    Dy = (|eta| L2 + c |phi| L3)/(|eta| + c |phi|) (the terms weighted as
+!>    the weighted rule weights them; the L by their size):
+!>    adhesion: dp_x/dx = xi/L1 - phi y/Dx, dp_y/dx = eta/L2 + phi x/L3
+!>    (the separate rule, but the longitudinal slip of spin with Dx: L3 for
+!>    pure spin, toward L1 as xi dominates, as u_x = L1 p_x would have it);
+!>    slip: the traction opposes the slip of the simplified theory u = D p,
+!>    D (p - p_up) + step w, so p = (D + lambda)^-1 (D p_up - step w) with
+!>    |p| = g (one root, Newton on the secular equation 1/g - 1/|p(lambda)|).
+!>    Small creepage: f11, f22, f23 exact as with the separate rule; pure
+!>    creepage: Kalker's FASTSIM; full slip: F along the rigid slip w, as in
+!>    the exact solution (docs/fastsim.md section 7: the study against the
+!>    exact rolling solver).
 !>
 !> Forces: Fx = sum px dA, Fy = sum py dA, Mz = sum (x py - y px) dA,
 !> Fn = sum pn dA; adhesion = fraction of the patch cells in adhesion.
@@ -38,10 +55,11 @@ module kcreep_fastsim_forces
   implicit none
   private
   public :: fastsim_forces, fastsim_result_t, weighted_flexibility
-  public :: flexibility_weighted, flexibility_separate, flexibility_rule_name, spin_x_flexibility
+  public :: flexibility_weighted, flexibility_separate, flexibility_aligned, flexibility_rule_name, spin_x_flexibility
+  public :: flexibility_rule_of
   public :: cell_outside, cell_adhesion, cell_slip, mask_strip_integrals
 
-  integer, parameter :: flexibility_weighted = 1, flexibility_separate = 2
+  integer, parameter :: flexibility_weighted = 1, flexibility_separate = 2, flexibility_aligned = 3
   !> stick/slip map values (CONTACT's IGS: 0 exterior, 1 adhesion, 2 slip)
   integer, parameter :: cell_outside = 0, cell_adhesion = 1, cell_slip = 2
 
@@ -52,7 +70,7 @@ module kcreep_fastsim_forces
 
 contains
 
-  !> Name of a flexibility rule ('weighted', 'separate'); '' when unknown.
+  !> Name of a flexibility rule ('weighted', 'separate', 'aligned'); '' when unknown.
   pure function flexibility_rule_name(rule) result(name)
     integer, intent(in) :: rule
     character(len=:), allocatable :: name
@@ -61,10 +79,27 @@ contains
       name = 'weighted'
     case (flexibility_separate)
       name = 'separate'
+    case (flexibility_aligned)
+      name = 'aligned'
     case default
       name = ''
     end select
   end function flexibility_rule_name
+
+  !> The rule of a name (flexibility_rule_name's inverse); 0 when unknown.
+  pure integer function flexibility_rule_of(name) result(rule)
+    character(len=*), intent(in) :: name
+    select case (name)
+    case ('weighted')
+      rule = flexibility_weighted
+    case ('separate')
+      rule = flexibility_separate
+    case ('aligned')
+      rule = flexibility_aligned
+    case default
+      rule = 0
+    end select
+  end function flexibility_rule_of
 
   !> Kalker's single flexibility for the creepage (xi, eta, phi); L1 at zero creepage.
   pure real(real64) function weighted_flexibility(flex, creep, c_len) result(l)
@@ -82,7 +117,8 @@ contains
   !>  inside(mx, my): cells of the patch; pn(mx, my): normal pressure (>= 0, read on patch cells);
   !>  cell (ix, iy) has its centre at (x0 + (ix-1) dx, y0 + (iy-1) dy);
   !>  flex = (L1, L2, L3); mu: friction coefficient; creep = (xi, eta, phi);
-  !>  c_len: length of the weighted rule (sqrt(area/pi)); rule: flexibility_weighted or _separate.
+  !>  c_len: length of the weighted and aligned rules (sqrt(area/pi)); rule: flexibility_weighted,
+  !>  _separate or _aligned.
   !> Optional: px, py (mx, my) the cell tractions (0 outside), state (mx, my) the stick/slip map.
   pure subroutine fastsim_forces(inside, pn, dx, dy, x0, y0, flex, mu, creep, c_len, rule, &
                                  res, px, py, state, flex_spin_x)
@@ -92,10 +128,10 @@ contains
     type(fastsim_result_t), intent(out) :: res
     real(real64), intent(out), optional :: px(:, :), py(:, :)
     integer, intent(out), optional :: state(:, :)
-    real(real64), intent(in), optional :: flex_spin_x   !< separate rule: L of the -phi y term (default L3)
+    real(real64), intent(in), optional :: flex_spin_x   !< L of the -phi y term (default separate L3, aligned Dx)
     real(real64) :: h, da, x, y, tx, ty, gx, gy, bound, mag, step, xe
     real(real64) :: rx, ry, sx, sy, fx, fy, mz, fn
-    real(real64) :: inv1, inv2, inv3
+    real(real64) :: inv1, inv2, inv3, slip_flex(2)
     integer :: ix, iy, mx, my, n_cells, n_adhesion, s
     logical :: leading
 
@@ -117,7 +153,11 @@ contains
     sy = creep(2) * inv2
     rx = creep(3) * inv3
     ry = creep(3) * inv3
-    if (rule == flexibility_separate .and. present(flex_spin_x)) rx = creep(3) / flex_spin_x
+    if (rule == flexibility_aligned) then
+      slip_flex = aligned_slip_flexibility(flex, creep, c_len)
+      rx = creep(3) / slip_flex(1)
+    end if
+    if (rule /= flexibility_weighted .and. present(flex_spin_x)) rx = creep(3) / flex_spin_x
 
     fx = 0; fy = 0; mz = 0; fn = 0
     n_cells = 0; n_adhesion = 0
@@ -145,7 +185,11 @@ contains
         bound = mu * max(pn(ix, iy), 0.0_real64)
         mag = sqrt(gx**2 + gy**2)
         if (mag > bound) then
-          if (mag > 0) then
+          if (rule == flexibility_aligned) then
+            ! slip of u = D p: p = (D + lambda)^-1 (D p_up - step w), |p| = g
+            call aligned_slip(slip_flex, tx - step * (creep(1) - creep(3) * y) / slip_flex(1), &
+                              ty - step * (creep(2) + creep(3) * xe) / slip_flex(2), bound, gx, gy)
+          else if (mag > 0) then
             gx = gx * (bound / mag)
             gy = gy * (bound / mag)
           end if
@@ -175,6 +219,58 @@ contains
       res%adhesion = 0
     end if
   end subroutine fastsim_forces
+
+  !> (Dx, Dy) of the aligned rule's slip for the creepage (xi, eta, phi): each the mean of the
+  !> flexibilities of the terms of its component, weighted as the weighted rule weights them,
+  !> Dx = (|xi| L1 + c |phi| L3)/(|xi| + c |phi|), Dy = (|eta| L2 + c |phi| L3)/(|eta| + c |phi|)
+  !> (L1, L2 where the component has no creepage). The L enter by their size: L3 = I3/f23 is
+  !> negative on a patch whose f23 and I3 differ in sign (a crescent with its horns toward +x,
+  !> spun about a point near its centroid), and D must stay positive.
+  pure function aligned_slip_flexibility(flex, creep, c_len) result(d)
+    real(real64), intent(in) :: flex(3), creep(3), c_len
+    real(real64) :: d(2)
+    real(real64) :: w
+    w = c_len * abs(creep(3))
+    d = abs(flex(1:2))
+    if (abs(creep(1)) + w > 0) d(1) = (abs(creep(1)) * abs(flex(1)) + w * abs(flex(3))) / (abs(creep(1)) + w)
+    if (abs(creep(2)) + w > 0) d(2) = (abs(creep(2)) * abs(flex(2)) + w * abs(flex(3))) / (abs(creep(2)) + w)
+  end function aligned_slip_flexibility
+
+  !> The traction p on the bound |p| = g nearest to q in the norm Dx px^2 + Dy py^2:
+  !> p = (D + lambda)^-1 D q, lambda >= 0 with |p| = g; q itself when |q| <= g. Newton on the
+  !> secular equation phi(lambda) = 1/g - 1/|p(lambda)| (convex and decreasing: from a point
+  !> below the root the iterates rise monotonically to it). Start: lambda = min(D) (|q|/g - 1),
+  !> below the root since |p(lambda)| >= |q| min(D)/(min(D) + lambda), and the root itself when
+  !> Dx = Dy. Stop at |p| = g within 1e-13 relative, then p is put on the bound.
+  pure subroutine aligned_slip(d, qx, qy, g, px, py)
+    real(real64), intent(in) :: d(2), qx, qy, g
+    real(real64), intent(out) :: px, py
+    real(real64) :: lambda, r, dr, f, step, a1, a2
+    integer :: k
+    px = qx; py = qy
+    r = sqrt(qx**2 + qy**2)
+    if (r <= g) return
+    if (g <= 0) then
+      px = 0; py = 0
+      return
+    end if
+    lambda = minval(d) * (r / g - 1)
+    do k = 1, 100
+      a1 = 1 / (d(1) + lambda)
+      a2 = 1 / (d(2) + lambda)
+      px = d(1) * qx * a1
+      py = d(2) * qy * a2
+      r = sqrt(px**2 + py**2)
+      f = 1 / g - 1 / r
+      if (abs(r - g) <= 1e-13_real64 * g) exit
+      dr = -(px**2 * a1 + py**2 * a2) / r
+      step = f * r**2 / dr
+      if (.not. (step < 0)) exit            ! no progress left (round-off)
+      lambda = lambda - step
+    end do
+    px = px * (g / r)                        ! on the bound to round-off
+    py = py * (g / r)
+  end subroutine aligned_slip
 
   !> Flexibility of the longitudinal spin term (-phi y) under the separate rule, such that the
   !> full-adhesion spin moment is -f33 phi:  Mz = -phi (J3 / L3 + J2 / L4) with

@@ -3,7 +3,7 @@ module kcreep_nml_fastsim
   use, intrinsic :: iso_fortran_env, only: real64
   use kcreep_status, only: status_t, fail, exit_bad_input
   use kcreep_strings, only: itoa, rtoa, lower, resolve_path, folder_of
-  use kcreep, only: source_names, flexibility_weighted, flexibility_separate
+  use kcreep, only: source_names, flexibility_rule_of
   use kcreep_nml_config, only: config_t, input_where, default_output_name, unset, max_creepages
   implicit none
   private
@@ -15,7 +15,7 @@ module kcreep_nml_fastsim
                     sweep_to = 0
     real(real64), allocatable :: creepages(:)
     integer :: sweep_points = 0
-    character(len=16) :: sweep_spacing = 'linear', rule = 'separate', pressure = 'auto'
+    character(len=16) :: sweep_spacing = 'linear', rule = 'aligned', pressure = 'auto'
     character(len=128) :: flexibility = 'exact'
     character(len=4096) :: pressure_input_file = ''
     logical :: maps = .false.
@@ -175,15 +175,12 @@ contains
       cfg%fastsim%creepages(:, n_list + k) = t * grp%sweep_direction
     end do
 
-    select case (lower(trim(adjustl(grp%rule))))
-    case ('separate')
-      cfg%fastsim%rule = flexibility_separate
-    case ('weighted')
-      cfg%fastsim%rule = flexibility_weighted
-    case default
-      call fail(status, exit_bad_input, where//'rule = '''//trim(grp%rule)//''' (allowed: ''separate'', ''weighted'')')
+    cfg%fastsim%rule = flexibility_rule_of(lower(trim(adjustl(grp%rule))))
+    if (cfg%fastsim%rule == 0) then
+      call fail(status, exit_bad_input, where//'rule = '''//trim(grp%rule)// &
+                ''' (allowed: ''aligned'', ''separate'', ''weighted'')')
       return
-    end select
+    end if
 
     cfg%fastsim%sources = .false.
     rest = lower(grp%flexibility)

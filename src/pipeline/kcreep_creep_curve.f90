@@ -10,7 +10,7 @@ module kcreep_creep_curve
   use, intrinsic :: iso_fortran_env, only: real64
   use kcreep_patch, only: patch_t
   use kcreep_problem, only: result_t
-  use kcreep_fastsim_forces, only: fastsim_forces, fastsim_result_t, flexibility_separate
+  use kcreep_fastsim_forces, only: fastsim_forces, fastsim_result_t, flexibility_aligned
   use kcreep_equivalent_ellipse, only: ellipse_box, ellipse_moments
   implicit none
   private
@@ -22,7 +22,7 @@ module kcreep_creep_curve
   type :: creep_request_t
     real(real64) :: mu = 0                       !< friction coefficient
     real(real64), allocatable :: creepages(:, :) !< (3, n): (xi, eta, phi) of each point
-    integer :: rule = flexibility_separate       !< kcreep_fastsim_forces: flexibility_weighted / _separate
+    integer :: rule = flexibility_aligned        !< kcreep_fastsim_forces: flexibility_aligned / _separate / _weighted
     logical :: sources(4) = [.true., .false., .false., .false.]   !< which of source_names
     real(real64) :: user_flex(3) = 0             !< L1 L2 L3 of the source 'user'
     logical :: maps = .false.                    !< keep the traction and stick/slip map of every point

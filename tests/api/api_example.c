@@ -175,6 +175,11 @@ int main(int argc, char **argv) {
     must(h, kcreep_fastsim(h, 0.3, 2, creep, NULL, "separate", force, adhesion), "kcreep_fastsim");
     expect(fabs(-force[3] - 0.3 * fn) < 1e-3 * 0.3 * fn && adhesion[0] > 0.99, "FASTSIM saturates at mu Fn");
     printf("errors gap fn %.6e cells %d fx_full_slip %.6e\n", fn, cells, force[3]);
+    /* the aligned rule (the program's default): pure xi as the separate rule, to round-off */
+    double aligned[6];
+    must(h, kcreep_fastsim(h, 0.3, 2, creep, NULL, "aligned", aligned, NULL), "kcreep_fastsim (aligned)");
+    expect(fabs(aligned[0] - force[0]) <= 1e-12 * fabs(force[0]) && fabs(aligned[3] - force[3]) <= 1e-12 * fabs(force[3]),
+           "FASTSIM aligned: pure xi as separate");
     /* exact rolling: the same conventions; small creepage near FASTSIM's slope (f11), full slip mu Fn
        (the elastic slip bends the directions a little at xi = 1: within 1e-4) */
     double fastsim_fx = force[0];

@@ -3,7 +3,10 @@
 !>  1. Small creepage: with L = I/f the forces are -f11 xi, -f22 eta, -f23 phi
 !>     (separate flexibilities also for combined creepage) to round-off, on a
 !>     patch whose strips have two segments; all cells adhere.
-!>  2. Large creepage: |F| = mu Fn, every cell slips, F along the creepage.
+!>  2. Large creepage: |F| = mu Fn, every cell slips, F along the creepage
+!>     (weighted, aligned) or along (xi/L1, eta/L2) (separate).
+!>  2b. The aligned rule: pure creepages as the separate rule (to round-off),
+!>     |p| <= mu pn in every cell, combined partial slip between the others.
 !>  3. Pure spin on a Hertzian circle: |Fy| rises to a maximum and falls back
 !>     toward 0; Mz tends to the full-slip moment -mu Int pn r dA.
 !>  4. Grid convergence of partial-slip points on a rectangle (first order, measured).
@@ -26,6 +29,7 @@ program test_fastsim_forces
 
   call small_creepage()
   call large_creepage()
+  call aligned_rule()
   call pure_spin()
   call convergence()
   call classical_curve()
@@ -67,7 +71,7 @@ contains
     f = [7.0_real64, 6.0_real64, 3.0_real64]      ! any positive coefficients
     flex = [moments(1) / f(1), moments(1) / f(2), moments(2) / f(3)]
     c_len = sqrt(count(inside) * dx * dy / pi)
-    do rule = flexibility_weighted, flexibility_separate
+    do rule = flexibility_weighted, flexibility_aligned
       call fastsim_forces(inside, pn, dx, dy, x0, y0, flex, mu, [1e-9_real64, 0.0_real64, 0.0_real64], &
                           c_len, rule, r, state=state)
       call t%check(abs(r%fx + f(1) * 1e-9_real64) <= 1e-12_real64 * f(1) * 1e-9_real64, 'slope f11')
@@ -87,6 +91,9 @@ contains
     expect = [-f(2) * creep(2) - f(3) * creep(3), 0.0_real64]
     call fastsim_forces(inside, pn, dx, dy, x0, y0, flex, mu, creep, c_len, flexibility_separate, r)
     call t%check(abs(r%fy - expect(1)) <= 1e-11_real64 * f(2) * 2e-9_real64, 'separate: linear combined Fy')
+    call fastsim_forces(inside, pn, dx, dy, x0, y0, flex, mu, creep, c_len, flexibility_aligned, r, state=state)
+    call t%check(abs(r%fy - expect(1)) <= 1e-11_real64 * f(2) * 2e-9_real64 .and. r%adhesion == 1, &
+                 'aligned: linear combined Fy, all cells adhere')
     call fastsim_forces(inside, pn, dx, dy, x0, y0, flex, mu, creep, c_len, flexibility_weighted, r)
     write (output_unit, '(a, es11.3)') 'weighted L, combined small creepage: Fy / linear - 1 =', r%fy / expect(1) - 1
     call t%check(abs(r%fy / expect(1) - 1) > 1e-3_real64, 'weighted: combined Fy differs from the linear theory')
@@ -103,22 +110,75 @@ contains
     pn = hertz_pressure(inside, dx, dy, x0, y0, 1.5_real64, 1.0_real64, 5.0_real64)
     flex = [0.8_real64, 0.9_real64, 0.7_real64]
     c_len = sqrt(1.5_real64)
-    do rule = flexibility_weighted, flexibility_separate
+    do rule = flexibility_weighted, flexibility_aligned
       call fastsim_forces(inside, pn, dx, dy, x0, y0, flex, mu, [1e3_real64, 0.0_real64, 0.0_real64], &
                           c_len, rule, r)
       call t%check(abs(r%fx + mu * r%fn) <= 1e-12_real64 * mu * r%fn, 'full slip: Fx = -mu Fn')
       call t%check(r%adhesion == 0, 'full slip: no adhesion')
       call fastsim_forces(inside, pn, dx, dy, x0, y0, flex, mu, [1e3_real64, 1e3_real64, 0.0_real64], &
                           c_len, rule, r)
-      call t%check(abs(hypot(r%fx, r%fy) - mu * r%fn) <= 1e-12_real64 * mu * r%fn, 'full slip: |F| = mu Fn')
-      ! separate flexibilities turn the slip direction by L1/L2 (0.8/0.9); the weighted rule keeps it
+      ! (aligned: the slip directions of the cells differ by the elastic part, ~1e-6 rad: |F| short by ~1e-12)
+      call t%check(abs(hypot(r%fx, r%fy) - mu * r%fn) <= merge(1e-10_real64, 1e-12_real64, &
+                   rule == flexibility_aligned) * mu * r%fn, 'full slip: |F| = mu Fn')
+      ! separate flexibilities turn the slip direction by L1/L2 (0.8/0.9); the weighted rule keeps it,
+      ! the aligned rule's slip step restores it (up to the elastic part of the slip, about L / 1e3 here)
       if (rule == flexibility_weighted) then
         call t%check(abs(r%fx - r%fy) <= 1e-12_real64 * mu * r%fn, 'weighted: F along the creepage')
+      else if (rule == flexibility_aligned) then
+        write (output_unit, '(a, es10.2)') 'aligned, full slip (1e3, 1e3, 0): |Fx - Fy| / (mu Fn) =', &
+          abs(r%fx - r%fy) / (mu * r%fn)
+        call t%check(abs(r%fx - r%fy) <= 1e-3_real64 * mu * r%fn, 'aligned: F along the creepage')
+        call fastsim_forces(inside, pn, dx, dy, x0, y0, flex, mu, [1e9_real64, 1e9_real64, 0.0_real64], &
+                            c_len, rule, r)
+        call t%check(abs(r%fx - r%fy) <= 1e-9_real64 * mu * r%fn, 'aligned: F along the creepage at 1e9')
+        call fastsim_forces(inside, pn, dx, dy, x0, y0, flex, mu, [1e9_real64, -2e9_real64, 1e9_real64], &
+                            c_len, rule, r)
+        call t%check(hypot(r%fx, r%fy) <= mu * r%fn .and. r%adhesion == 0, &
+                     'aligned: full slip with spin: |F| <= mu Fn, no adhesion')
       else
         call t%check(abs(r%fy / r%fx - flex(1) / flex(2)) <= 1e-12_real64, 'separate: F along (xi/L1, eta/L2)')
       end if
     end do
   end subroutine large_creepage
+
+  !> The aligned rule against the separate one on a Hertzian ellipse in partial slip: pure
+  !> creepages the same (to round-off: its slip step reduces to the scaling for one component
+  !> or for spin alone); combined ones different; |p| <= mu pn in every cell (to round-off).
+  subroutine aligned_rule()
+    logical, allocatable :: inside(:, :)
+    real(real64), allocatable :: pn(:, :), px(:, :), py(:, :)
+    real(real64) :: dx, dy, x0, y0, flex(3), c_len, creep(3), excess
+    type(fastsim_result_t) :: ra, rs
+    integer :: k
+    real(real64), parameter :: creeps(3, 6) = reshape([2e-3_real64, 0.0_real64, 0.0_real64, &
+      0.0_real64, 2e-3_real64, 0.0_real64, 0.0_real64, 0.0_real64, 2e-3_real64, &
+      4e-4_real64, 4e-4_real64, 0.0_real64, 0.0_real64, 4e-4_real64, -4e-4_real64, &
+      -2e-4_real64, 6e-4_real64, 4e-4_real64], [3, 6])
+
+    call ellipse_grid(1.5_real64, 1.0_real64, 40, inside, dx, dy, x0, y0)
+    pn = hertz_pressure(inside, dx, dy, x0, y0, 1.5_real64, 1.0_real64, 1.0_real64)
+    allocate (px(40, 40), py(40, 40))
+    flex = [2e-3_real64, 2.6e-3_real64, 1.5e-3_real64]     ! L1 < L2, L3 below both: slip steps differ
+    c_len = sqrt(1.5_real64)
+    excess = 0
+    do k = 1, 6
+      creep = creeps(:, k)
+      call fastsim_forces(inside, pn, dx, dy, x0, y0, flex, mu, creep, c_len, flexibility_aligned, ra, px, py)
+      call fastsim_forces(inside, pn, dx, dy, x0, y0, flex, mu, creep, c_len, flexibility_separate, rs)
+      excess = max(excess, maxval(hypot(px, py) - mu * pn, mask=inside) / (mu * maxval(pn)))
+      write (output_unit, '(a, 3es10.2, a, 2f9.5, a, 2f9.5, a, f6.3)') 'aligned / separate at', creep, &
+        ': F/(mu Fn) =', ra%fx / (mu * ra%fn), ra%fy / (mu * ra%fn), ' /', rs%fx / (mu * rs%fn), &
+        rs%fy / (mu * rs%fn), ', adhesion', ra%adhesion
+      if (k <= 3) then
+        call t%check(abs(ra%fx - rs%fx) + abs(ra%fy - rs%fy) <= 1e-13_real64 * mu * ra%fn .and. &
+                     ra%adhesion == rs%adhesion, 'aligned: a pure creepage as the separate rule')
+      else
+        call t%check(hypot(ra%fx - rs%fx, ra%fy - rs%fy) > 1e-3_real64 * mu * ra%fn .and. &
+                     ra%adhesion > 0 .and. ra%adhesion < 1, 'aligned: combined partial slip differs from separate')
+      end if
+    end do
+    call t%check(excess <= 1e-14_real64, 'aligned: |p| <= mu pn in every cell')
+  end subroutine aligned_rule
 
   subroutine pure_spin()
     logical, allocatable :: inside(:, :)
@@ -166,7 +226,7 @@ contains
   subroutine convergence()
     logical, allocatable :: inside(:, :)
     real(real64), allocatable :: pn(:, :)
-    real(real64) :: dx, dy, x0, y0, flex(3), f(5, 3), order(3), c_len
+    real(real64) :: dx, dy, x0, y0, flex(3), f(5, 3), fa(5, 3), order(3), c_len
     real(real64), parameter :: creeps(3, 3) = reshape([0.1_real64, 0.0_real64, 0.0_real64, &
       0.0_real64, 0.3_real64, 0.3_real64, 0.2_real64, -0.3_real64, 0.4_real64], [3, 3])
     type(fastsim_result_t) :: r
@@ -186,6 +246,9 @@ contains
         call fastsim_forces(inside, pn, dx, dy, x0, y0, flex, mu, creeps(:, j), c_len, &
                             flexibility_separate, r)
         f(k, j) = hypot(r%fx, r%fy) / (mu * r%fn)
+        call fastsim_forces(inside, pn, dx, dy, x0, y0, flex, mu, creeps(:, j), c_len, &
+                            flexibility_aligned, r)
+        fa(k, j) = hypot(r%fx, r%fy) / (mu * r%fn)
       end do
     end do
     do j = 1, 3
@@ -201,6 +264,12 @@ contains
       else
         call t%check(order(j) > 0.8_real64 .and. order(j) < 1.3_real64, 'convergence: first order')
       end if
+      ! the aligned rule's slip step starts from the separate predictor's cell: one more O(dx) term
+      order(j) = log(abs(fa(4, j) - fa(3, j)) / abs(fa(5, j) - fa(4, j))) / log(2.0_real64)
+      write (output_unit, '(a, i1, a, 5f10.6, a, f6.2)') 'aligned, point ', j, ':       |F|/(mu Fn) =', fa(:, j), &
+        '  order (64-128-256) =', order(j)
+      call t%check(abs(fa(5, j) - fa(4, j)) < 2e-3_real64, 'aligned convergence: 128 -> 256 < 0.2 % of mu Fn')
+      if (j > 1) call t%check(order(j) > 0.8_real64 .and. order(j) < 1.3_real64, 'aligned convergence: first order')
     end do
   end subroutine convergence
 
