@@ -19,6 +19,7 @@ module kcreep
   use kcreep_assembly, only: scheme_t, n_load_cases, load_case_names
   use kcreep_solver_options, only: solver_options_t, validate_solver_options
   use kcreep_dense, only: refine_modes
+  use kcreep_solve_memory, only: process_bytes
   use kcreep_threads, only: team_size, enter_team, leave_team, cells_per_thread_iterative, solve_started, &
                             solve_ended, max_threads
   use kcreep_verdict, only: verdict_ok, verdict_degenerate, verdict_nonphysical, verdict_alpha_edge, &
@@ -170,8 +171,9 @@ contains
   !> Bytes kcreep_solve(problem) needs at its peak and the solve path it takes
   !> there ('dense', 'iterative' or 'table'): the dense subsystem matrix or
   !> the iterative solver's storage, and the operator table, of the grid or
-  !> of the finest level error control or extrapolation may choose. The
-  !> program itself (code, OpenBLAS buffers) is not included.
+  !> of the finest level error control or extrapolation may choose, and the
+  !> process's own resident set (kcreep_solve_memory: the model, measured
+  !> against the program's peak RSS, and its evidence).
   subroutine kcreep_memory_need(problem, bytes, method, status)
     type(problem_t), intent(in) :: problem
     integer(int64), intent(out) :: bytes
@@ -208,7 +210,7 @@ contains
     end if
     bounded%patch = bound
     call memory_need(bounded, need, method, level, status)
-    bytes = bytes + need
+    bytes = bytes + need + process_bytes
   end subroutine kcreep_memory_need
 
   !> f13, f23, f31, f32, f33 refer to the spin centre: when it lies outside

@@ -24,6 +24,7 @@ module kcreep_extrapolation
   use kcreep_strings, only: itoa, rtoa
   use kcreep_patch, only: patch_t, ellipse_patch, mask_patch, place_like
   use kcreep_linear_solve, only: solve_memory_plan
+  use kcreep_solve_memory, only: table_bytes
   use kcreep_verdict, only: message_length
   use kcreep_problem, only: problem_t, result_t, append_prefixed, add_uncertain
   use kcreep_run, only: run_case
@@ -40,7 +41,7 @@ contains
   !> each grid it solves (its own, or every extrapolation level) for the
   !> method that grid will take ('auto' decided as run_case will decide it,
   !> with the same memory limit), plus the operator table (about 40 reals per
-  !> grid cell). level: the level of the peak (1 without extrapolation).
+  !> grid cell); kcreep_solve_memory has the model and its evidence. level: the level of the peak (1 without extrapolation).
   subroutine memory_need(problem, bytes, method, level, status)
     type(problem_t), intent(in) :: problem
     integer(int64), intent(out) :: bytes
@@ -58,12 +59,12 @@ contains
     do k = 1, levels
       if (k == 1) then
         call solve_memory_plan(problem%solve, problem%nu, problem%patch, problem%requested, b, m)
-        b = b + 320 * int(problem%patch%mx, int64) * problem%patch%my
+        b = b + table_bytes(problem%patch)
       else
         call refined_patch(problem%patch, problem%refine_ratio**(k - 1), fine, status)
         if (status%failed()) return
         call solve_memory_plan(problem%solve, problem%nu, fine, problem%requested, b, m)
-        b = b + 320 * int(fine%mx, int64) * fine%my
+        b = b + table_bytes(fine)
       end if
       if (b > bytes) then
         bytes = b

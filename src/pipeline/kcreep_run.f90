@@ -7,7 +7,8 @@ module kcreep_run
   use kcreep_patch, only: patch_t
   use kcreep_assembly, only: operator_table_t, build_operator_table
   use kcreep_dense, only: dense_diagnostics_t
-  use kcreep_linear_solve, only: solve_load_cases, solve_workspace_t, clear_workspace
+  use kcreep_linear_solve, only: solve_load_cases, solve_workspace_t, clear_workspace, check_solve_memory
+  use kcreep_solve_memory, only: table_bytes
   use kcreep_creep_matrix, only: creep_matrix, normalised
   use kcreep_kalker_table, only: kalker_coefficients
   use kcreep_fastsim, only: fastsim_flexibilities
@@ -60,6 +61,15 @@ contains
     allocate (result%warnings(0))
     call system_clock(t0, rate)
     associate (patch => problem%patch)
+      ! refuse a grid too big for the memory before the table, the largest
+      ! allocation ahead of the solve (4 million cells: 1.3 GB, 1.4 s)
+      if (present(cache)) then
+        call check_solve_memory(problem%solve, problem%nu, patch, problem%requested, &
+                                merge(0_int64, table_bytes(patch), cache_matches(cache, problem)), status)
+      else
+        call check_solve_memory(problem%solve, problem%nu, patch, problem%requested, table_bytes(patch), status)
+      end if
+      if (status%failed()) return
       if (present(cache)) then
         if (.not. cache_matches(cache, problem)) then
           call build_operator_table(patch, problem%scheme, problem%nu, problem%g, cache%table)

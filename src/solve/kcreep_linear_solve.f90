@@ -30,11 +30,13 @@ module kcreep_linear_solve
   use kcreep_krylov, only: block_operator_t, gmres_result_t, gmres
   use kcreep_block_operators, only: fft_block_t, circulant_block_t, strip_block_t
   use kcreep_solver_options, only: solver_options_t
+  use kcreep_solve_memory, only: iterative_bytes, dense_bytes
   use kcreep_threads, only: team_size, enter_team, leave_team, serial_blas, cells_per_thread_dense, &
                             cells_per_thread_iterative
   implicit none
   private
-  public :: solve_load_cases, choose_method, solve_memory_bytes, solve_memory_plan, solve_workspace_t, clear_workspace
+  public :: solve_load_cases, choose_method, solve_memory_bytes, solve_memory_plan, solve_workspace_t, clear_workspace, &
+            check_solve_memory
 
   !> The block operators (fft_block_t, circulant_block_t, strip_block_t)
   !> are kcreep_block_operators'.
@@ -233,7 +235,7 @@ contains
           call solve_dense_split(ws, nu, patch, table, subs, requested, refine, rhs, traction, diag, status)
         end if
       else
-        call check_iterative_memory(opts, patch, count(requested), status)
+        call check_iterative_memory(opts, nu, patch, requested, 0_int64, status)
         if (status%failed()) return
         call solve_iterative(ws, resolved_preconditioner(opts, scheme), nu, patch, table, requested, rhs, traction, &
                              diag, status, initial)
@@ -338,14 +340,18 @@ contains
     end do
   end subroutine solve_dense_expert
 
-  !> Fail before allocating when the GMRES basis, FFT grids and strip factors cannot fit.
-  subroutine check_iterative_memory(opts, patch, n_cases, status)
+  !> Fail before allocating when the iterative path's storage
+  !> (kcreep_solve_memory) and extra bytes (the operator table when it is
+  !> still to be built) cannot fit in opts%memory_limit.
+  subroutine check_iterative_memory(opts, nu, patch, requested, extra, status)
     type(solver_options_t), intent(in) :: opts
+    real(real64), intent(in) :: nu
     type(patch_t), intent(in) :: patch
-    integer, intent(in) :: n_cases
+    logical, intent(in) :: requested(n_load_cases)
+    integer(int64), intent(in) :: extra
     type(status_t), intent(inout) :: status
     real(real64) :: need, have
-    need = iterative_bytes(opts, patch, n_cases)
+    need = iterative_need(opts, nu, patch, requested) + extra
     have = real(opts%memory_limit, real64)
     if (have > 0 .and. need > have) then
       call fail(status, exit_bad_input, 'the iterative solver for '//itoa(patch%n)//' cells needs about '// &
@@ -354,33 +360,43 @@ contains
     end if
   end subroutine check_iterative_memory
 
-  !> Krylov basis (restart + 1 vectors per case) and a few work vectors, 4
-  !> padded grids per case, and the preconditioner: circulant, 4 grids per
-  !> case and its three half spectra on its own grid (inverse_span of the
-  !> patch's each way); strip, the LU of each grid row's own block per
-  !> component in single precision, 2 x 4 L^2 bytes for a row of L patch
-  !> cells (rows of the same pattern share theirs; not counted, so this is an
-  !> upper bound).
-  !> Measured (unit circle, GNU time peak RSS, the program itself included),
-  !> strip: 200 x 200 estimate 0.155 GB, RSS 0.138 GB; 400 x 400 0.792 GB, 0.553 GB.
-  pure real(real64) function iterative_bytes(opts, patch, n_cases) result(bytes)
+  !> Before any large allocation (the operator table among them: extra, its
+  !> bytes when still to be built): the path 'auto' would take fits, or
+  !> status says why not, as solve_load_cases would after the table.
+  subroutine check_solve_memory(opts, nu, patch, requested, extra, status)
     type(solver_options_t), intent(in) :: opts
+    real(real64), intent(in) :: nu
     type(patch_t), intent(in) :: patch
-    integer, intent(in) :: n_cases
-    real(real64) :: preconditioner, grid, inverse_grid
-    integer :: iy
-    grid = 4 * real(patch%mx, real64) * patch%my     ! padded FFT grid cells
-    inverse_grid = (inverse_span * (patch%mx + 1)) * (inverse_span * (patch%my + 1))   ! the preconditioner's grid
-    if (trim(opts%preconditioner) == 'strip') then
-      preconditioner = 0
-      do iy = 1, patch%my
-        preconditioner = preconditioner + 2 * 4 * real(count(patch%inside(:, iy)), real64)**2
-      end do
+    logical, intent(in) :: requested(n_load_cases)
+    integer(int64), intent(in) :: extra
+    type(status_t), intent(inout) :: status
+    type(subsystem_t), allocatable :: subs(:)
+    real(real64) :: have
+    subs = plan_subsystems(patch, nu, opts%split_systems, requested, sizes_only=.true.)
+    if (choose_method(opts, patch, subs, requested) == 'dense') then
+      have = real(opts%memory_limit, real64)
+      if (have > 0 .and. real(dense_bytes(maxval(subs%m)) + extra, real64) > have) then
+        call fail(status, exit_bad_input, 'method = ''dense'': the largest dense matrix ('// &
+                  itoa(maxval(subs%m))//' unknowns) needs '// &
+                  rtoa(real(dense_bytes(maxval(subs%m)) + extra, real64) / 2.0_real64**30)//' GiB, only '// &
+                  rtoa(have / 2.0_real64**30)//' GiB are available (use method = ''iterative'' or ''auto'')')
+      end if
     else
-      preconditioner = 8 * (4 * n_cases * inverse_grid + 3 * inverse_grid)
+      call check_iterative_memory(opts, nu, patch, requested, extra, status)
     end if
-    bytes = 8 * (2 * real(patch%n, real64) * ((opts%restart + 6) * n_cases) + 4 * n_cases * grid) + preconditioner
-  end function iterative_bytes
+  end subroutine check_solve_memory
+
+  !> iterative_bytes for the systems solve_iterative would solve.
+  real(real64) function iterative_need(opts, nu, patch, requested)
+    type(solver_options_t), intent(in) :: opts
+    real(real64), intent(in) :: nu
+    type(patch_t), intent(in) :: patch
+    logical, intent(in) :: requested(n_load_cases)
+    iterative_need = iterative_bytes(opts, opts%preconditioner, patch, &
+                                     plan_subsystems(patch, nu, opts%split_systems, requested, decouple=.false., &
+                                                     sizes_only=.true.), &
+                                     requested)
+  end function iterative_need
 
   !> Peak bytes of solve_load_cases for this case, for the method it will take
   !> ('auto' decided as it would be now): the largest dense subsystem matrix
@@ -404,14 +420,12 @@ contains
     integer(int64), intent(out) :: bytes
     character(len=:), allocatable, intent(out) :: method
     type(subsystem_t), allocatable :: subs(:)
-    integer(int64) :: m
-    subs = plan_subsystems(patch, nu, opts%split_systems, requested)
+    subs = plan_subsystems(patch, nu, opts%split_systems, requested, sizes_only=.true.)
     method = choose_method(opts, patch, subs, requested)
     if (method == 'dense') then
-      m = maxval(subs%m)
-      bytes = 8 * m * m + 160 * m
+      bytes = dense_bytes(maxval(subs%m))
     else
-      bytes = int(iterative_bytes(opts, patch, count(requested)), int64)
+      bytes = int(iterative_need(opts, nu, patch, requested), int64)
     end if
   end subroutine solve_memory_plan
 

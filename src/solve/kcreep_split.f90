@@ -46,12 +46,15 @@ contains
 
   !> The systems to solve for the requested load cases. decouple (default
   !> true): split px from py when nu = 0 (smaller dense factorisations; the
-  !> iterative path keeps them together, see solve_iterative).
-  function plan_subsystems(patch, nu, split, requested, decouple) result(subs)
+  !> iterative path keeps them together, see solve_iterative). sizes_only
+  !> (default false): label, serves and m only, without the cell lists (a
+  !> memory check of a grid too large to plan in full: 3 million cells take
+  !> 0.5 GB and 1 s to plan).
+  function plan_subsystems(patch, nu, split, requested, decouple, sizes_only) result(subs)
     type(patch_t), intent(in) :: patch
     real(real64), intent(in) :: nu
     logical, intent(in) :: split, requested(n_load_cases)
-    logical, intent(in), optional :: decouple
+    logical, intent(in), optional :: decouple, sizes_only
     type(subsystem_t), allocatable :: subs(:)
     type(subsystem_t) :: candidates(3)
     integer :: nc, i
@@ -95,6 +98,20 @@ contains
       s%serves = serves
       ! px even or py odd: class +1; px odd or py even: class -1 (parity_class)
       if (parities(1) /= all_cells) s%parity_class = merge(1, -1, (comps(1) == 0) .eqv. (parities(1) == even))
+      if (present(sizes_only)) then
+        if (sizes_only) then
+          s%m = 0
+          do p = 1, size(comps)
+            if (parities(p) == all_cells) then
+              s%m = s%m + patch%n
+            else
+              s%m = s%m + count(2 * patch%iy(1:patch%n) < patch%my + 1 .or. &
+                                (2 * patch%iy(1:patch%n) == patch%my + 1 .and. parities(p) == even))
+            end if
+          end do
+          return
+        end if
+      end if
       allocate (cell_of(patch%mx, patch%my))
       cell_of = 0
       do k = 1, patch%n

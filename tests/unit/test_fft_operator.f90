@@ -177,7 +177,37 @@ contains
     call t%check(size(iterative) == 2 .and. iterative(1)%parity_class == 1 .and. &
                  iterative(2)%parity_class == -1 .and. iterative(1)%serves(1) .and. iterative(2)%serves(2) .and. &
                  iterative(2)%serves(3), 'nu = 0, iterative path: the two parity classes (xi; eta and phi)')
+    ! the memory check's plan without cell lists has the same systems and sizes
+    call same_sizes(patch)
+    call ellipse_patch(1.0_real64, 1.0_real64, 24, 24, patch, st)
+    call same_sizes(patch)
+    call ellipse_patch(1.0_real64, 0.5_real64, 31, 7, patch, st)
+    patch%y0 = patch%y0 + patch%dy / 3    ! not mirror-symmetric
+    call same_sizes(patch)
   end subroutine check_coupled_plan
+
+  subroutine same_sizes(patch)
+    type(patch_t), intent(in) :: patch
+    type(subsystem_t), allocatable :: full(:), sizes(:)
+    logical, parameter :: some_cases(n_load_cases) = [.true., .false., .true.]
+    real(real64) :: nu
+    integer :: i, j
+    logical :: decouple, same
+    character(len=80) :: what
+    do i = 0, 1
+      nu = 0.3_real64 * i
+      do j = 0, 1
+        decouple = j == 1
+        full = plan_subsystems(patch, nu, .true., some_cases, decouple=decouple)
+        sizes = plan_subsystems(patch, nu, .true., some_cases, decouple=decouple, sizes_only=.true.)
+        same = size(full) == size(sizes)
+        if (same) same = all(full%m == sizes%m) .and. all(full%parity_class == sizes%parity_class)
+        write (what, '(a, i0, a, i0, a, f3.1, a, l1)') 'plan sizes_only = full plan (', patch%mx, ' x ', patch%my, &
+              ', nu ', nu, ', decouple ', decouple
+        call t%check(same, trim(what)//')')
+      end do
+    end do
+  end subroutine same_sizes
 
   !> r(:, 1), r(:, 2): the results for a field of each class; r(:, 3): for their sum.
   subroutine check_split(r, mirror, what)
