@@ -74,7 +74,7 @@ contains
     else
       write (output_unit, '(2x, a)') 'estimated relative error of C11 C22 C23: none (see the warnings)'
     end if
-    write (output_unit, '(2x, a, 3es12.4)') 'FASTSIM L1 L2 L3:', record%fastsim
+    write (output_unit, '(2x, a, 3es12.4, a)') 'FASTSIM L1 L2 L3:', record%fastsim, '  (length^3/force)'
     if (patch%kind /= 'ellipse') then
       ! the patch's C23 about its centroid, as Kalker's about the ellipse's centre
       about_centroid = normalised_about(record%f, record%g, record%c, record%centroid - record%spin_centre)

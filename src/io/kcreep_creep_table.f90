@@ -31,7 +31,8 @@ contains
     write (lines(2), '(a, es12.5, a)') '# mu = ', request%mu, ', flexibility rule '// &
       flexibility_rule_name(request%rule)//', pressure '//pressure
     lines(3) = '# (Fx, Fy, Mz) = -f (xi, eta, phi) at small creepage; adhesion: fraction of the patch area in adhesion'
-    lines(4) = '# source: where L1 L2 L3 come from; fx_mufn = fx / (mu fn), fy_mufn = fy / (mu fn)'
+    lines(4) = '# source: where L1 L2 L3 come from; fx_mufn = fx / (mu fn), fy_mufn = fy / (mu fn); units: '// &
+               'the input''s (lengths in mm, g in N/mm^2: fx fy fn in N, mz in N mm, phi in 1/mm, L in mm^3/N)'
     k = 4
     do s = 1, size(source_names)
       if (.not. request%sources(s)) cycle

@@ -37,7 +37,7 @@ contains
     type(run_record_t), intent(in) :: records(:)
     character(len=*), intent(in) :: warnings(:)
     character(len=line_length), allocatable :: lines(:)
-    character(len=*), parameter :: fixed(7) = [character(len=160) :: &
+    character(len=*), parameter :: fixed(8) = [character(len=160) :: &
       '# kcreep: creep coefficients of full-adhesion steady rolling', &
       '# (Fx, Fy, Mz) = -[fij] (xi, eta, phi); rigid slip (xi - phi*y, eta + phi*x), x, y from the spin centre', &
       '# c11 = f11/(g c^2), c22 = f22/(g c^2), c23 = f23/(g c^3); kltij: Kalker table E3 (ellipses)', &
@@ -45,7 +45,9 @@ contains
       'Kalker''s C and L, err = ellipse / exact - 1', &
       '# leading edge at +x; xc, yc: centroid of the patch cells (coordinates of the input)', &
       '# times in s; rcond: LAPACK 1-norm estimate; berr: backward error (iterative: relative residual)', &
-      '# shape gap: fn approach pmax of the normal problem (n = cells in contact), its iterations and residual']
+      '# shape gap: fn approach pmax of the normal problem (n = cells in contact), its iterations and residual', &
+      '# units: the input''s (lengths in mm, g in N/mm^2: fij of xi, eta in N, f13 f23 f31 f32 in N mm, f33 in '// &
+      'N mm^2; l1 l2 l3 in mm^3/N); cij, errors, err_* dimensionless']
     integer :: k, nw
 
     nw = size(warnings)
