@@ -21,7 +21,7 @@ module kcreep
   use kcreep_dense, only: refine_modes
   use kcreep_solve_memory, only: process_bytes
   use kcreep_threads, only: team_size, enter_team, leave_team, cells_per_thread_iterative, solve_started, &
-                            solve_ended, max_threads
+                            solve_ended, max_threads, serial_blas
   use kcreep_verdict, only: verdict_ok, verdict_degenerate, verdict_nonphysical, verdict_alpha_edge, &
                             verdict_coarse, verdict_ill_conditioned, verdict_inaccurate, verdict_uncertain, &
                             verdict_words, &
@@ -49,7 +49,7 @@ module kcreep
                                    check_wheel_rail_setup, max_wheel_rail_shifts
   implicit none
   private
-  public :: kcreep_solve, kcreep_memory_need, kcreep_version, kcreep_version_number, max_threads
+  public :: kcreep_solve, kcreep_memory_need, kcreep_version, kcreep_version_number, max_threads, serial_blas
   public :: rolling_request_t, rolling_point_t, rolling_curve, default_rolling_tolerance, cell_stick, cell_slip, &
             rolling_residual_of
   public :: creep_request_t, creep_point_t, creep_map_t, creep_curve, source_names, source_flexibilities

@@ -113,15 +113,18 @@ int kcreep_solves_running(void) { return atomic_load(&solves_running); }
 
 /* OpenBLAS on one thread: kcreep's dense LU is for small systems, where
  * OpenBLAS's threads cost more than they give (docs/performance.md,
- * "Threads"), its pool spins while other processes hold the cores, and
- * its threaded LU rounds differently from its serial one, so that handles
- * solving at once on several threads would not repeat each other's
+ * "Threads"), its pool spins while other processes hold the cores (and for
+ * about 0.1 s after the library loads, doubling a short run's CPU time),
+ * and its threaded LU rounds differently from its serial one, so that
+ * handles solving at once on several threads would not repeat each other's
  * numbers. The count is process-wide and left at one (restoring it would
- * race with another handle's LU). With another BLAS the symbol is absent
- * (weak) and nothing happens. */
+ * race with another handle's LU); the pool's threads are stopped the first
+ * time. With another BLAS the symbols are absent (weak): nothing happens. */
 extern void openblas_set_num_threads(int) __attribute__((weak));
 extern int openblas_get_num_threads(void) __attribute__((weak));
+extern int blas_thread_shutdown_(void) __attribute__((weak));
 void kcreep_serial_blas(void) {
-  if (openblas_set_num_threads && openblas_get_num_threads && openblas_get_num_threads() != 1)
-    openblas_set_num_threads(1);
+  if (!openblas_set_num_threads || !openblas_get_num_threads || openblas_get_num_threads() == 1) return;
+  openblas_set_num_threads(1);
+  if (blas_thread_shutdown_) blas_thread_shutdown_();
 }
