@@ -140,7 +140,6 @@ contains
     type(run_record_t), intent(in) :: record
     character(len=300), allocatable :: lines(:)
     integer :: i
-    real(real64) :: about_centroid(3)
     lines = comparison_lines(cfg%contact, record%f, cfg%scheme%name == 'backward' .and. &
                              cfg%scheme%spin_shift == contact_spin_shift)
     do i = 1, size(lines)

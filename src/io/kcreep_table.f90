@@ -46,8 +46,8 @@ contains
       '# leading edge at +x; xc, yc: centroid of the patch cells (coordinates of the input)', &
       '# times in s; rcond: LAPACK 1-norm estimate; berr: backward error (iterative: relative residual)', &
       '# shape gap: fn approach pmax of the normal problem (n = cells in contact), its iterations and residual', &
-      '# units: the input''s (lengths in mm, g in N/mm^2: fij of xi, eta in N, f13 f23 f31 f32 in N mm, f33 in '// &
-      'N mm^2; l1 l2 l3 in mm^3/N); cij, errors, err_* dimensionless']
+      '# units: the input''s (mm, N/mm^2: f11 f12 f21 f22 N, f13 f23 f31 f32 N mm, f33 N mm^2, l1 l2 l3 mm^3/N); '// &
+      'cij, err* dimensionless']
     integer :: k, nw
 
     nw = size(warnings)

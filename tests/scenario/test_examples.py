@@ -46,6 +46,11 @@ for path in examples:
     table = os.path.join(work, os.path.basename(path)[:-4] + (".wr" if wheel_rail else ".tab"))
     if proc.returncode == 0:
         rows = kc.read_table(table)
+        if not wheel_rail:
+            # the header states the units whole (a fixed-length header line once cut it short)
+            units = [l for l in open(table) if l.startswith("# units:")]
+            kc.check(len(units) == 1 and units[0].rstrip().endswith("dimensionless"),
+                     f"{rel}: the table's header states its units ({units})")
         kc.check(len(rows) >= 1, f"{rel}: {len(rows)} rows")
         for row in rows if wheel_rail else rows[:1]:
             # CONTACT's grid, the normal problem read from CONTACT's input and an
