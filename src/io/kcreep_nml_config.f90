@@ -3,13 +3,15 @@
 !> _fastsim, _wheel_rail) fill in and kcreep_namelist turns into the library's problem.
 module kcreep_nml_config
   use, intrinsic :: iso_fortran_env, only: real64
+  use kcreep_status, only: status_t, fail, exit_bad_input
+  use kcreep_strings, only: itoa, rtoa, lower
   use kcreep, only: rolling_request_t, &
                     scheme_t, n_load_cases, solver_options_t, creep_request_t, normal_problem_t, polynomial_gap_t, &
                     wheel_rail_setup_t
   use kcreep_contact_reader, only: contact_case_t
   implicit none
   private
-  public :: config_t, rolling_config_t, input_where, default_output_name
+  public :: config_t, rolling_config_t, input_where, default_output_name, creepage_points
 
   integer, parameter, public :: max_inline_rows = 2048, max_row_length = 2048
   integer, parameter, public :: max_creepages = 100000   !< creepage points of &fastsim (list and sweep together)
@@ -104,5 +106,86 @@ contains
     if (dot > 1) name = name(1:dot - 1)
     name = name//extension
   end function default_output_name
+
+  !> The creepage points of &fastsim and &rolling: the list `values` (xi,
+  !> eta, phi triples, unset after the last one given) then the sweep
+  !> (sweep_points values of sweep_from to sweep_to, 'linear' or 'log',
+  !> along sweep_direction); checked against their ranges, errors prefixed
+  !> with where.
+  subroutine creepage_points(values, sweep_direction, sweep_from, sweep_to, sweep_points, sweep_spacing, &
+                             max_points, where, points, status)
+    real(real64), intent(in) :: values(:), sweep_direction(3), sweep_from, sweep_to
+    integer, intent(in) :: sweep_points, max_points
+    character(len=*), intent(in) :: sweep_spacing, where
+    real(real64), allocatable, intent(out) :: points(:, :)
+    type(status_t), intent(inout) :: status
+    character(len=:), allocatable :: spacing
+    integer :: n_values, n_list, k
+    real(real64) :: t
+    ! the list: numbers up to the last one given, three per point
+    n_values = size(values)
+    do while (n_values > 0)
+      if (values(n_values) /= unset) exit
+      n_values = n_values - 1
+    end do
+    if (n_values > 3 * max_points) then
+      call fail(status, exit_bad_input, where//'creepages: more than '//itoa(max_points)//' points')
+      return
+    end if
+    if (mod(n_values, 3) /= 0) then
+      call fail(status, exit_bad_input, where//'creepages: '//itoa(n_values)//' numbers given (allowed: '// &
+                '(xi, eta, phi) triples, a multiple of 3)')
+      return
+    end if
+    if (any(values(1:n_values) == unset) .or. .not. all(abs(values(1:n_values)) <= 1e6_real64)) then
+      call fail(status, exit_bad_input, where//'creepages: a value is missing or not finite (allowed: '// &
+                'finite numbers, |value| <= 1e6)')
+      return
+    end if
+    n_list = n_values / 3
+    spacing = lower(trim(adjustl(sweep_spacing)))
+    if (sweep_points /= 0) then
+      if (sweep_points < 2 .or. sweep_points > max_points - n_list) then
+        call fail(status, exit_bad_input, where//'sweep_points = '//itoa(sweep_points)//' (allowed: 0 for '// &
+                  'no sweep, or 2 to '//itoa(max_points - n_list)//')')
+        return
+      end if
+      if (.not. any(sweep_direction /= 0) .or. .not. all(abs(sweep_direction) <= 1e6_real64)) then
+        call fail(status, exit_bad_input, where//'sweep_direction = '//rtoa(sweep_direction(1))//', '// &
+                  rtoa(sweep_direction(2))//', '//rtoa(sweep_direction(3))//' (a finite (xi, eta, phi), not all 0)')
+        return
+      end if
+      select case (spacing)
+      case ('linear')
+        if (.not. (abs(sweep_from) <= 1e6_real64 .and. abs(sweep_to) <= 1e6_real64)) call fail(status, &
+            exit_bad_input, where//'sweep_from, sweep_to = '//rtoa(sweep_from)//', '//rtoa(sweep_to)// &
+            ' (allowed: finite, |value| <= 1e6)')
+      case ('log')
+        if (.not. (sweep_from > 0 .and. sweep_to > 0 .and. sweep_from <= 1e6_real64 .and. &
+                   sweep_to <= 1e6_real64)) call fail(status, exit_bad_input, where//'sweep_from, sweep_to = '// &
+            rtoa(sweep_from)//', '//rtoa(sweep_to)//' (sweep_spacing = ''log'' needs 0 < value <= 1e6)')
+      case default
+        call fail(status, exit_bad_input, where//'sweep_spacing = '''//trim(sweep_spacing)// &
+                  ''' (allowed: ''linear'', ''log'')')
+      end select
+      if (status%failed()) return
+    end if
+    if (n_list + sweep_points == 0) then
+      call fail(status, exit_bad_input, where//'no creepage: give creepages (xi, eta, phi triples) or a sweep '// &
+                '(sweep_direction, sweep_from, sweep_to, sweep_points)')
+      return
+    end if
+    allocate (points(3, n_list + sweep_points))
+    points(:, 1:n_list) = reshape(values(1:n_values), [3, n_list])
+    do k = 1, sweep_points
+      t = real(k - 1, real64) / (sweep_points - 1)
+      if (spacing == 'log') then
+        t = sweep_from * (sweep_to / sweep_from)**t
+      else
+        t = sweep_from + (sweep_to - sweep_from) * t
+      end if
+      points(:, n_list + k) = t * sweep_direction
+    end do
+  end subroutine creepage_points
 
 end module kcreep_nml_config

@@ -4,7 +4,7 @@ module kcreep_nml_fastsim
   use kcreep_status, only: status_t, fail, exit_bad_input
   use kcreep_strings, only: itoa, rtoa, lower, resolve_path, folder_of
   use kcreep, only: source_names, flexibility_rule_of
-  use kcreep_nml_config, only: config_t, input_where, default_output_name, unset, max_creepages
+  use kcreep_nml_config, only: config_t, input_where, default_output_name, unset, max_creepages, creepage_points
   implicit none
   private
   public :: fastsim_variables, fastsim_group_t, read_fastsim_group, apply_fastsim_group
@@ -92,8 +92,7 @@ contains
     type(status_t), intent(inout) :: status
     character(len=:), allocatable :: where, word
     character(len=len(grp%flexibility)) :: rest
-    integer :: n_values, n_list, k, cut, s
-    real(real64) :: t
+    integer :: k, cut, s
 
     cfg%fastsim_on = present
     cfg%pressure_input_file = resolve_path(trim(grp%pressure_input_file), folder_of(cfg%input_path))
@@ -111,69 +110,9 @@ contains
       return
     end if
     cfg%fastsim%mu = grp%mu
-    ! the list: numbers up to the last one given, three per point
-    n_values = size(grp%creepages)
-    do while (n_values > 0)
-      if (grp%creepages(n_values) /= unset) exit
-      n_values = n_values - 1
-    end do
-    if (n_values > 3 * max_creepages) then
-      call fail(status, exit_bad_input, where//'creepages: more than '//itoa(max_creepages)//' points')
-      return
-    end if
-    if (mod(n_values, 3) /= 0) then
-      call fail(status, exit_bad_input, where//'creepages: '//itoa(n_values)//' numbers given (allowed: '// &
-                '(xi, eta, phi) triples, a multiple of 3)')
-      return
-    end if
-    if (any(grp%creepages(1:n_values) == unset) .or. .not. all(abs(grp%creepages(1:n_values)) <= 1e6_real64)) then
-      call fail(status, exit_bad_input, where//'creepages: a value is missing or not finite (allowed: '// &
-                'finite numbers, |value| <= 1e6)')
-      return
-    end if
-    n_list = n_values / 3
-    if (grp%sweep_points /= 0) then
-      if (grp%sweep_points < 2 .or. grp%sweep_points > max_creepages - n_list) then
-        call fail(status, exit_bad_input, where//'sweep_points = '//itoa(grp%sweep_points)//' (allowed: 0 for '// &
-                  'no sweep, or 2 to '//itoa(max_creepages - n_list)//')')
-        return
-      end if
-      if (.not. any(grp%sweep_direction /= 0) .or. .not. all(abs(grp%sweep_direction) <= 1e6_real64)) then
-        call fail(status, exit_bad_input, where//'sweep_direction = '//rtoa(grp%sweep_direction(1))//', '// &
-                  rtoa(grp%sweep_direction(2))//', '//rtoa(grp%sweep_direction(3))//' (a finite (xi, eta, phi), not all 0)')
-        return
-      end if
-      select case (lower(trim(adjustl(grp%sweep_spacing))))
-      case ('linear')
-        if (.not. (abs(grp%sweep_from) <= 1e6_real64 .and. abs(grp%sweep_to) <= 1e6_real64)) call fail(status, &
-            exit_bad_input, where//'sweep_from, sweep_to = '//rtoa(grp%sweep_from)//', '//rtoa(grp%sweep_to)// &
-            ' (allowed: finite, |value| <= 1e6)')
-      case ('log')
-        if (.not. (grp%sweep_from > 0 .and. grp%sweep_to > 0 .and. grp%sweep_from <= 1e6_real64 .and. &
-                   grp%sweep_to <= 1e6_real64)) call fail(status, exit_bad_input, where//'sweep_from, sweep_to = '// &
-            rtoa(grp%sweep_from)//', '//rtoa(grp%sweep_to)//' (sweep_spacing = ''log'' needs 0 < value <= 1e6)')
-      case default
-        call fail(status, exit_bad_input, where//'sweep_spacing = '''//trim(grp%sweep_spacing)// &
-                  ''' (allowed: ''linear'', ''log'')')
-      end select
-      if (status%failed()) return
-    end if
-    if (n_list + grp%sweep_points == 0) then
-      call fail(status, exit_bad_input, where//'no creepage: give creepages (xi, eta, phi triples) or a sweep '// &
-                '(sweep_direction, sweep_from, sweep_to, sweep_points)')
-      return
-    end if
-    allocate (cfg%fastsim%creepages(3, n_list + grp%sweep_points))
-    cfg%fastsim%creepages(:, 1:n_list) = reshape(grp%creepages(1:n_values), [3, n_list])
-    do k = 1, grp%sweep_points
-      t = real(k - 1, real64) / (grp%sweep_points - 1)
-      if (lower(trim(adjustl(grp%sweep_spacing))) == 'log') then
-        t = grp%sweep_from * (grp%sweep_to / grp%sweep_from)**t
-      else
-        t = grp%sweep_from + (grp%sweep_to - grp%sweep_from) * t
-      end if
-      cfg%fastsim%creepages(:, n_list + k) = t * grp%sweep_direction
-    end do
+    call creepage_points(grp%creepages, grp%sweep_direction, grp%sweep_from, grp%sweep_to, grp%sweep_points, &
+                         grp%sweep_spacing, max_creepages, where, cfg%fastsim%creepages, status)
+    if (status%failed()) return
 
     cfg%fastsim%rule = flexibility_rule_of(lower(trim(adjustl(grp%rule))))
     if (cfg%fastsim%rule == 0) then

@@ -16,7 +16,7 @@ module kcreep_nml_rolling
   use kcreep_status, only: status_t, fail, exit_bad_input
   use kcreep_strings, only: itoa, rtoa, lower, resolve_path, folder_of
   use kcreep, only: default_rolling_tolerance
-  use kcreep_nml_config, only: rolling_config_t, max_rolling_points
+  use kcreep_nml_config, only: rolling_config_t, max_rolling_points, creepage_points
   implicit none
   private
   public :: rolling_variables, read_rolling_group
@@ -39,9 +39,9 @@ contains
     logical, intent(in) :: given, closed_open, extrapolate
     type(rolling_config_t), intent(out) :: config
     type(status_t), intent(inout) :: status
-    real(real64) :: mu, fn, sweep_direction(3), sweep_from, sweep_to, tolerance, t
+    real(real64) :: mu, fn, sweep_direction(3), sweep_from, sweep_to, tolerance
     real(real64), allocatable :: creepages(:)
-    integer :: sweep_points, ios, n_values, n_list, k
+    integer :: sweep_points, ios
     character(len=16) :: sweep_spacing, pressure
     character(len=4096) :: pressure_input_file
     character(len=512) :: msg
@@ -92,70 +92,9 @@ contains
       return
     end if
     config%request%tolerance = tolerance
-    ! the list: numbers up to the last one given, three per point
-    n_values = size(creepages)
-    do while (n_values > 0)
-      if (creepages(n_values) /= unset) exit
-      n_values = n_values - 1
-    end do
-    if (n_values > 3 * max_rolling_points) then
-      call fail(status, exit_bad_input, where//'creepages: more than '//itoa(max_rolling_points)//' points')
-      return
-    end if
-    if (mod(n_values, 3) /= 0) then
-      call fail(status, exit_bad_input, where//'creepages: '//itoa(n_values)//' numbers given (allowed: '// &
-                '(xi, eta, phi) triples, a multiple of 3)')
-      return
-    end if
-    if (any(creepages(1:n_values) == unset) .or. .not. all(abs(creepages(1:n_values)) <= 1e6_real64)) then
-      call fail(status, exit_bad_input, where//'creepages: a value is missing or not finite (allowed: '// &
-                'finite numbers, |value| <= 1e6)')
-      return
-    end if
-    n_list = n_values / 3
-    sweep_spacing = lower(trim(adjustl(sweep_spacing)))
-    if (sweep_points /= 0) then
-      if (sweep_points < 2 .or. sweep_points > max_rolling_points - n_list) then
-        call fail(status, exit_bad_input, where//'sweep_points = '//itoa(sweep_points)//' (allowed: 0 for '// &
-                  'no sweep, or 2 to '//itoa(max_rolling_points - n_list)//')')
-        return
-      end if
-      if (.not. any(sweep_direction /= 0) .or. .not. all(abs(sweep_direction) <= 1e6_real64)) then
-        call fail(status, exit_bad_input, where//'sweep_direction = '//rtoa(sweep_direction(1))//', '// &
-                  rtoa(sweep_direction(2))//', '//rtoa(sweep_direction(3))//' (a finite (xi, eta, phi), not all 0)')
-        return
-      end if
-      select case (sweep_spacing)
-      case ('linear')
-        if (.not. (abs(sweep_from) <= 1e6_real64 .and. abs(sweep_to) <= 1e6_real64)) call fail(status, &
-            exit_bad_input, where//'sweep_from, sweep_to = '//rtoa(sweep_from)//', '//rtoa(sweep_to)// &
-            ' (allowed: finite, |value| <= 1e6)')
-      case ('log')
-        if (.not. (sweep_from > 0 .and. sweep_to > 0 .and. sweep_from <= 1e6_real64 .and. &
-                   sweep_to <= 1e6_real64)) call fail(status, exit_bad_input, where//'sweep_from, sweep_to = '// &
-            rtoa(sweep_from)//', '//rtoa(sweep_to)//' (sweep_spacing = ''log'' needs 0 < value <= 1e6)')
-      case default
-        call fail(status, exit_bad_input, where//'sweep_spacing = '''//trim(sweep_spacing)// &
-                  ''' (allowed: ''linear'', ''log'')')
-      end select
-      if (status%failed()) return
-    end if
-    if (n_list + sweep_points == 0) then
-      call fail(status, exit_bad_input, where//'no creepage: give creepages (xi, eta, phi triples) or a sweep '// &
-                '(sweep_direction, sweep_from, sweep_to, sweep_points)')
-      return
-    end if
-    allocate (config%request%creepages(3, n_list + sweep_points))
-    config%request%creepages(:, 1:n_list) = reshape(creepages(1:n_values), [3, n_list])
-    do k = 1, sweep_points
-      t = real(k - 1, real64) / (sweep_points - 1)
-      if (sweep_spacing == 'log') then
-        t = sweep_from * (sweep_to / sweep_from)**t
-      else
-        t = sweep_from + (sweep_to - sweep_from) * t
-      end if
-      config%request%creepages(:, n_list + k) = t * sweep_direction
-    end do
+    call creepage_points(creepages, sweep_direction, sweep_from, sweep_to, sweep_points, sweep_spacing, &
+                         max_rolling_points, where, config%request%creepages, status)
+    if (status%failed()) return
     config%request%maps = maps
 
     ! the pressure: &fastsim's sources and meanings
