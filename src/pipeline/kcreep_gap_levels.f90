@@ -14,7 +14,7 @@
 !> bounding box of that contact area widened by a margin; doubled (reusing
 !> the levels done) while an estimate is above its target, at most
 !> max_refinements times and while the finest level stays within
-!> max_gap_level_cells. Every level's coefficients are normalised by its own
+!> gap_budget_share of the cell budget. Every level's coefficients are normalised by its own
 !> contact area (C_ij = f_ij / (G c^p), c = sqrt(area / pi)): the staircase of
 !> the contact boundary changes the area irregularly from level to level, and
 !> f_ij follows it (measured on a Hertzian gap: this removes 95 % of the
@@ -170,7 +170,7 @@ contains
 
     allocate (done(0), cnorm(3, 3, 0), area(0), warnings(0))
     t = 0
-    budget = cell_budget_or(problem, level_cell_budget(problem%target_error))
+    budget = cell_budget_or(problem, gap_budget_share * level_cell_budget(problem%target_error))
     level_problem = problem
     call level_tolerance(level_problem)
     do refinement = 0, max_refinements

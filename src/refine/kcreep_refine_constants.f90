@@ -37,17 +37,17 @@ module kcreep_refine_constants
   !> as the uncertainty of its order (ellipse_level_estimate).
   real(real64), parameter :: order_margin = 0.1_real64
   !> Patch cells of the finest level kcreep may choose at target_error = 1e-3
-  !> (level_cell_budget). A run-time budget: on the iterative path on two
-  !> threads of the 2-core development machine a level of 40,000 cells takes
-  !> about 0.8 s, and a run whose finest level has N cells costs about 4 such
-  !> levels (the levels below it add up to about 3 N). Looser targets scale it
-  !> by (1e-3 / target)**(1/4); tighter ones by 8 for each factor 10, so that
-  !> the accurate mode (1e-4, 320,000 cells) stops within 10 s over a/b = 0.1
-  !> to 10: 2.2 to 8.8 s on the two cores (docs/accuracy.md section 6), with
-  !> the load cases paired on the transforms and each level started from the
-  !> last one's tractions (docs/performance.md).
-  real(real64), parameter :: cells_at_default_target = 40000
-  real(real64), parameter :: tight_target_budget_growth = 8
+  !> (level_cell_budget). A run-time budget: a solved ellipse long in x
+  !> needs it, its levels being near-square cells over the whole ellipse
+  !> (a/b = 10 at 40,000 cells stopped `uncertain` at 71 cells across, estimates
+  !> 0.08 / 0.13 / 0.23 %; at 160,000 it ends `ok` at 96 across in 2.6 s on one
+  !> core; a/b = 5 `ok` in 0.7 s, docs/accuracy.md section 3); ellipses, masks
+  !> and gaps that meet the target on coarser levels stop there. Looser targets
+  !> scale it by (1e-3 / target)**(1/4); tighter ones by 2 for each factor 10,
+  !> so that the accurate mode (1e-4) keeps the 320,000 cells of its
+  !> calibration (stops within 10 s over a/b = 0.1 to 10, docs/accuracy.md).
+  real(real64), parameter :: cells_at_default_target = 160000
+  real(real64), parameter :: tight_target_budget_growth = 2
   !> The range of a cell budget the caller gives (&solver cell_budget): below
   !> the minimum no ellipse reaches its base levels (32 cells across is 800
   !> cells); the maximum, 10 million patch cells, needs about 3 GB on the
@@ -58,7 +58,7 @@ module kcreep_refine_constants
 
   ! ---- masks and CONTACT's grid: every cell split k x k (the same patch on every level) ----
   !> Levels of a split patch: k = 1, 2, 3, ... while the split patch keeps to
-  !> the cell budget (level_cell_budget: 40,000 cells at 1e-3, 320,000 at
+  !> the cell budget (level_cell_budget: 160,000 cells at 1e-3, 320,000 at
   !> 1e-4), at least split_min_levels of them whatever the budget; the fit
   !> runs through the finest split_fit_width. (calibration) Measured on the
   !> seven shipped masks against references from splits up to 11-56
@@ -114,11 +114,13 @@ module kcreep_refine_constants
   integer, parameter :: max_refinements = 2
   !> Levels: cells across the contact area's hydraulic diameter (contact_diameter).
   integer, parameter :: gap_base_levels(8) = [24, 28, 32, 36, 40, 44, 48, 56]
-  !> The finest level's contact area has at most about this many cells (a
-  !> run-time budget, as for ellipses: a circle at 112 across is 9,900 cells,
-  !> at 224 across 39,000; the two lobes of input/wheel_rail.nml at 56 across
-  !> 6,000, at 112 across 24,000).
-  integer, parameter :: max_gap_level_cells = 20000
+  !> A gap's levels get this share of the cell budget (contact cells of the
+  !> finest level): every level solves the normal problem as well, on a grid
+  !> 2-3 times the contact area. The wheel on rail (input/wheel_rail.nml)
+  !> stops at 112 cells across its lobes (23,879 cells) in 2.8 s on one core;
+  !> the next doubling, 224 across, took 17 s for estimates of 0.06 / 0.09 /
+  !> 0.15 %, and moved C11 by 0.21 % (docs/accuracy.md section 5).
+  real(real64), parameter :: gap_budget_share = 0.25_real64
   !> The level grids cover the contact area's bounding box on the given grid
   !> widened by this fraction of its size on every side (and by two cells of
   !> the given grid): the contact area moves by less than a cell between levels.

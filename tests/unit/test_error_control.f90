@@ -42,8 +42,8 @@ program test_error_control
   call t%check(abs(level_cell_budget(1e-2_real64) / level_cell_budget(1e-3_real64) - 10**(-0.25_real64)) < 1e-12, &
                'budget above the default target: as target**(-1/4)')
   call t%check(abs(level_cell_budget(1e-4_real64) - 320000) < 1e-6 .and. &
-               abs(level_cell_budget(1e-5_real64) / level_cell_budget(1e-4_real64) - 8) < 1e-12, &
-               'budget below the default target: 320,000 cells at 1e-4, 8 times per factor 10')
+               abs(level_cell_budget(1e-5_real64) / level_cell_budget(1e-4_real64) - 2) < 1e-12, &
+               'budget below the default target: 320,000 cells at 1e-4, 2 times per factor 10')
 
   ! an exact straight line: the fit recovers it and the standard error is round-off
   h = [3.0_real64, 2.0_real64, 1.5_real64, 1.0_real64] / 48

@@ -1,0 +1,37 @@
+#!/usr/bin/python3
+"""Solved ellipses a/b = 0.1 to 10 at the default target (docs/accuracy.md
+section 3): each ellipse solved by kcreep's levels (method 'iterative', the
+library's default call otherwise) against the refined table (method
+'table', its stated uncertainty u printed beside), with verdict, estimate,
+error against the table and wall time.
+
+  OMP_NUM_THREADS=1 flock /tmp/kcreep-bench.lock /usr/bin/python3 scripts/studies/solved_ellipse_check.py
+
+Needs numpy and build/libkcreep; about 7 s on one core.
+"""
+import os
+import sys
+import time
+
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "python"))
+import numpy as np  # noqa: E402
+import kcreep  # noqa: E402
+
+RATIOS = (0.1, 0.2, 0.5, 1.0, 2.0, 3.33, 5.0, 10.0)
+
+
+def main():
+    print("| a/b | verdict | estimate C11 / C22 / C23 % | error against the table % | table u % | wall s |")
+    print("|---|---|---|---|---|---|")
+    for ratio in RATIOS:
+        start = time.perf_counter()
+        solved = kcreep.solve_ellipse(ratio, 1.0, nu=0.25, method="iterative")
+        wall = time.perf_counter() - start
+        table = kcreep.solve_ellipse(ratio, 1.0, nu=0.25, method="table")
+        error = np.abs(solved.c / table.c - 1)
+        fmt = lambda v: " / ".join(f"{100 * x:.3f}" for x in v)  # noqa: E731
+        print(f"| {ratio:g} | {solved.verdict} | {fmt(solved.err)} | {fmt(error)} | {fmt(table.err)} | {wall:.2f} |")
+
+
+if __name__ == "__main__":
+    main()
