@@ -143,7 +143,7 @@ contains
     ! &rolling reads and checks its group itself, for the patch's shape
     if (present(8) .and. .not. status%failed()) then
       call read_rolling_group(unit, path, .true., closed(8) .and. last_line_open, cfg%shape, cfg%extrapolate, &
-                              cfg%rolling, status)
+                              cfg%wheel_rail_on, cfg%rolling, status)
       if (.not. status%failed()) call apply_rolling_output(cfg, output%rolling_file, output%rolling_map_file, status)
     end if
     close (unit)
@@ -205,7 +205,8 @@ contains
   end subroutine read_config
 
   !> &output's rolling_file [<input name>.roll] and rolling_map_file
-  !> [<input name>.rollmap with maps] for &rolling, which needs the backward scheme.
+  !> [<input name>.rollmap with maps; not with &wheel_rail] for &rolling, which
+  !> needs the backward scheme.
   subroutine apply_rolling_output(cfg, rolling_file, rolling_map_file, status)
     type(config_t), intent(inout) :: cfg
     character(len=*), intent(in) :: rolling_file, rolling_map_file
@@ -215,6 +216,9 @@ contains
     cfg%rolling%rolling_file = resolve_path(trim(rolling_file), folder)
     if (len(cfg%rolling%rolling_file) == 0) cfg%rolling%rolling_file = default_output_name(cfg%input_path, '.roll')
     cfg%rolling%rolling_map_file = resolve_path(trim(rolling_map_file), folder)
+    if (cfg%wheel_rail_on .and. len(cfg%rolling%rolling_map_file) > 0) call fail(status, exit_bad_input, &
+        input_where(cfg)//'&output rolling_map_file with &wheel_rail: not available (the rolling table has each '// &
+        'patch''s forces)')
     if (cfg%rolling%request%maps .and. len(cfg%rolling%rolling_map_file) == 0) &
       cfg%rolling%rolling_map_file = default_output_name(cfg%input_path, '.rollmap')
     cfg%rolling%request%maps = cfg%rolling%request%maps .or. len(cfg%rolling%rolling_map_file) > 0

@@ -32,11 +32,12 @@ contains
 
   !> Read &rolling from unit (rewound here) and validate it for a patch of
   !> the given shape. given: the group is in the file; closed_open: its /
-  !> was read and only the last newline is missing (a complete group).
-  subroutine read_rolling_group(unit, path, given, closed_open, shape, extrapolate, config, status)
+  !> was read and only the last newline is missing (a complete group);
+  !> wheel_rail: with &wheel_rail, each patch's normal pressure (no maps).
+  subroutine read_rolling_group(unit, path, given, closed_open, shape, extrapolate, wheel_rail, config, status)
     integer, intent(in) :: unit
     character(len=*), intent(in) :: path, shape
-    logical, intent(in) :: given, closed_open, extrapolate
+    logical, intent(in) :: given, closed_open, extrapolate, wheel_rail
     type(rolling_config_t), intent(out) :: config
     type(status_t), intent(inout) :: status
     real(real64) :: mu, fn, sweep_direction(3), sweep_from, sweep_to, tolerance
@@ -100,6 +101,16 @@ contains
     ! the pressure: &fastsim's sources and meanings
     config%pressure_input_file = resolve_path(trim(pressure_input_file), folder_of(path))
     config%pressure = lower(trim(adjustl(pressure)))
+    if (wheel_rail) then
+      ! each patch of &wheel_rail is a normal problem: its pressure, its own geometric spin
+      if (config%pressure /= 'auto' .and. config%pressure /= 'normal') call fail(status, exit_bad_input, where// &
+          'pressure = '''//config%pressure//''' with &wheel_rail (allowed: ''auto'' or ''normal'', each '// &
+          'patch''s normal pressure)')
+      if (maps) call fail(status, exit_bad_input, where//'maps with &wheel_rail: not available (the rolling '// &
+          'table has each patch''s forces)')
+      if (status%failed()) return
+      config%pressure = 'normal'
+    end if
     if (config%pressure == 'auto') then
       select case (shape)
       case ('ellipse')
@@ -120,8 +131,8 @@ contains
       if (shape /= 'contact') call fail(status, exit_bad_input, where//'pressure = ''contact'' needs '// &
           '&patch shape = ''contact''')
     case ('normal')
-      if (shape /= 'gap') call fail(status, exit_bad_input, where//'pressure = ''normal'' needs '// &
-          '&patch shape = ''gap'' (the normal problem gives the pressure)')
+      if (shape /= 'gap' .and. .not. wheel_rail) call fail(status, exit_bad_input, where// &
+          'pressure = ''normal'' needs &patch shape = ''gap'' (the normal problem gives the pressure)')
     case ('file')
       if (len(config%pressure_input_file) == 0) call fail(status, exit_bad_input, where//'pressure = ''file'' '// &
           'needs pressure_input_file (the pressure per cell on the patch''s grid)')

@@ -7,7 +7,7 @@ module kcreep_rolling_table
   use kcreep, only: creep_map_t
   implicit none
   private
-  public :: rolling_lines, rolling_map_lines, rolling_columns
+  public :: rolling_lines, rolling_map_lines, rolling_columns, rolling_notes, rolling_row
 
   character(len=*), parameter :: rolling_columns = 'xi eta phi fx fy mz fn adhesion fx_mufn fy_mufn newton residual'
 
@@ -20,29 +20,43 @@ contains
     type(rolling_point_t), intent(in) :: points(:)
     character(len=400), allocatable :: lines(:)
     integer, parameter :: nh = 6
-    real(real64) :: mufn
     integer :: k
-    character(len=400) :: buf
 
     allocate (lines(nh + size(points)))
     lines(1) = '# kcreep exact steady rolling with Coulomb friction, case '//case_name// &
                ' (backward scheme on the patch grid, semi-smooth Newton)'
     write (lines(2), '(a, es12.5, a, es9.2)') '# mu = ', request%mu, ', pressure '//pressure// &
       ', tolerance', request%tolerance
-    lines(3) = '# (Fx, Fy, Mz) = -f (xi, eta, phi) at small creepage; adhesion: fraction of the patch cells in adhesion'
-    lines(4) = '# fx_mufn = fx / (mu fn), fy_mufn = fy / (mu fn); newton: Newton steps of the point'
-    lines(5) = '# residual: max |F_i| / max(mu pn) of the Coulomb conditions F(p) = p - Proj(p - rho s(p)) = 0 '// &
-               '(checked at the solution)'
+    lines(3:5) = rolling_notes()
     lines(nh) = '# '//rolling_columns
     do k = 1, size(points)
-      associate (p => points(k), f => points(k)%force)
-        mufn = request%mu * f%fn
-        write (buf, '(7(es23.15e3, 1x), f8.6, 2(1x, es23.15e3), 1x, i0, 1x, es10.3e3)') p%creep, f%fx, f%fy, &
-          f%mz, f%fn, f%adhesion, f%fx / mufn, f%fy / mufn, p%info%newton, p%info%residual
-        lines(nh + k) = buf
-      end associate
+      lines(nh + k) = rolling_row(request%mu, points(k))
     end do
   end function rolling_lines
+
+  !> The comment lines that explain the table's columns (also &wheel_rail's rolling table).
+  pure function rolling_notes() result(lines)
+    character(len=160) :: lines(3)
+    lines(1) = '# (Fx, Fy, Mz) = -f (xi, eta, phi) at small creepage; adhesion: fraction of the patch cells in adhesion'
+    lines(2) = '# fx_mufn = fx / (mu fn), fy_mufn = fy / (mu fn); newton: Newton steps of the point'
+    lines(3) = '# residual: max |F_i| / max(mu pn) of the Coulomb conditions F(p) = p - Proj(p - rho s(p)) = 0 '// &
+               '(checked at the solution)'
+  end function rolling_notes
+
+  !> One point's row, the columns rolling_columns (friction coefficient mu).
+  function rolling_row(mu, point) result(row)
+    real(real64), intent(in) :: mu
+    type(rolling_point_t), intent(in) :: point
+    character(len=:), allocatable :: row
+    character(len=400) :: buf
+    real(real64) :: mufn
+    associate (f => point%force)
+      mufn = mu * f%fn
+      write (buf, '(7(es23.15e3, 1x), f8.6, 2(1x, es23.15e3), 1x, i0, 1x, es10.3e3)') point%creep, f%fx, f%fy, &
+        f%mz, f%fn, f%adhesion, f%fx / mufn, f%fy / mufn, point%info%newton, point%info%residual
+    end associate
+    row = trim(buf)
+  end function rolling_row
 
   !> The maps: per point a comment line naming it, then one row per patch cell:
   !> ix iy x y pn px py state (state 1 adhesion, 2 slip); blocks separated by two blank lines.

@@ -1,19 +1,26 @@
 !> The contact table of &wheel_rail as text lines (&output wheel_rail_file):
 !> comment lines starting with '#', the last naming the columns, then one row
 !> per shift and patch (the facade's wheel_rail_columns). python/kcreep
-!> table.read reads it.
+!> table.read reads it. Also the per-patch tables of &fastsim (creep_file)
+!> and &rolling (rolling_file) with &wheel_rail.
 module kcreep_wheel_rail_table
   use, intrinsic :: iso_fortran_env, only: real64
   use kcreep, only: wheel_rail_row_t, wheel_rail_setup_t, wheel_rail_columns, creep_request_t, creep_point_t, &
-                    source_names, flexibility_rule_name
+                    source_names, flexibility_rule_name, rolling_request_t, rolling_point_t
   use kcreep_strings, only: rtoa
+  use kcreep_rolling_table, only: rolling_columns, rolling_notes, rolling_row
   implicit none
   private
   public :: wheel_rail_lines, line_length, wheel_rail_creep_header, wheel_rail_creep_rows, wheel_rail_creep_columns
+  public :: wheel_rail_rolling_header, wheel_rail_rolling_rows, wheel_rail_rolling_columns
 
+  !> The columns that lead each row of the per-patch tables: which shift and patch, its geometric spin.
+  character(len=*), parameter :: patch_columns = 'shift yaw patch spin'
   !> The creep table of &fastsim with &wheel_rail: one block of rows per shift and patch.
-  character(len=*), parameter :: wheel_rail_creep_columns = 'shift yaw patch spin xi eta phi fx fy mz fn adhesion '// &
+  character(len=*), parameter :: wheel_rail_creep_columns = patch_columns//' xi eta phi fx fy mz fn adhesion '// &
                                                           'source fx_mufn fy_mufn'
+  !> The rolling table of &rolling with &wheel_rail: one block of rows per shift and patch.
+  character(len=*), parameter :: wheel_rail_rolling_columns = patch_columns//' '//rolling_columns
 
   integer, parameter :: line_length = 600
 
@@ -63,8 +70,7 @@ contains
                setup%rail_name//')'
     write (lines(2), '(a, es12.5, a)') '# mu = ', request%mu, ', flexibility rule '// &
       flexibility_rule_name(request%rule)//', pressure: each patch''s normal solve, L1 L2 L3 per patch'
-    lines(3) = '# spin: the patch''s geometric spin sin(delta)/r_wheel (1/mm); phi = the given phi + spin '// &
-               '(the creepage FASTSIM ran with)'
+    lines(3) = spin_note('FASTSIM')
     lines(4) = '# (Fx, Fy, Mz) = -f (xi, eta, phi) at small creepage; adhesion: fraction of the area in adhesion; '// &
                'fx_mufn = fx / (mu fn)'
     lines(5) = '# '//wheel_rail_creep_columns
@@ -76,18 +82,62 @@ contains
     type(creep_request_t), intent(in) :: request
     type(creep_point_t), intent(in) :: points(:)
     character(len=line_length), allocatable :: lines(:)
+    character(len=line_length) :: buf
     real(real64) :: mufn
     integer :: k
     allocate (lines(size(points)))
     do k = 1, size(points)
       associate (p => points(k), f => points(k)%force)
         mufn = request%mu * f%fn
-        write (lines(k), '(2(es15.7), i4, es15.7, 7(1x, es23.15e3), 1x, f8.6, 1x, a, 2(1x, es23.15e3))') &
-          row%shift, row%yaw, row%patch, row%spin, p%creep, f%fx, f%fy, f%mz, f%fn, f%adhesion, &
-          trim(source_names(p%source)), f%fx / mufn, f%fy / mufn
+        write (buf, '(7(1x, es23.15e3), 1x, f8.6, 1x, a, 2(1x, es23.15e3))') p%creep, f%fx, f%fy, f%mz, f%fn, &
+          f%adhesion, trim(source_names(p%source)), f%fx / mufn, f%fy / mufn
+        lines(k) = patch_prefix(row)//trim(buf)
       end associate
     end do
   end function wheel_rail_creep_rows
+
+  !> The rolling table's comment lines and column names.
+  function wheel_rail_rolling_header(setup, request) result(lines)
+    type(wheel_rail_setup_t), intent(in) :: setup
+    type(rolling_request_t), intent(in) :: request
+    character(len=line_length), allocatable :: lines(:)
+    allocate (lines(7))
+    lines(1) = '# kcreep exact steady rolling with Coulomb friction on each patch of a wheel on a rail ('// &
+               setup%wheel_name//' on '//setup%rail_name//')'
+    write (lines(2), '(a, es12.5, a, es9.2, a)') '# mu = ', request%mu, ', tolerance', request%tolerance, &
+      '; pressure: each patch''s normal solve, on its finest grid (backward scheme, semi-smooth Newton)'
+    lines(3) = spin_note('rolling')
+    lines(4:6) = rolling_notes()
+    lines(7) = '# '//wheel_rail_rolling_columns
+  end function wheel_rail_rolling_header
+
+  !> The rows of one patch: its rolling points (at phi + spin) prefixed by shift, yaw, patch, spin.
+  function wheel_rail_rolling_rows(row, request, points) result(lines)
+    type(wheel_rail_row_t), intent(in) :: row
+    type(rolling_request_t), intent(in) :: request
+    type(rolling_point_t), intent(in) :: points(:)
+    character(len=line_length), allocatable :: lines(:)
+    integer :: k
+    allocate (lines(size(points)))
+    do k = 1, size(points)
+      lines(k) = patch_prefix(row)//' '//rolling_row(request%mu, points(k))
+    end do
+  end function wheel_rail_rolling_rows
+
+  !> The columns patch_columns of a row: shift, yaw, patch, spin.
+  function patch_prefix(row) result(text)
+    type(wheel_rail_row_t), intent(in) :: row
+    character(len=49) :: text
+    write (text, '(2(es15.7), i4, es15.7)') row%shift, row%yaw, row%patch, row%spin
+  end function patch_prefix
+
+  !> The comment line on the spin column, for the engine that ran.
+  pure function spin_note(engine) result(line)
+    character(len=*), intent(in) :: engine
+    character(len=:), allocatable :: line
+    line = '# spin: the patch''s geometric spin sin(delta)/r_wheel (1/mm); phi = the given phi + spin '// &
+           '(the creepage '//engine//' ran with)'
+  end function spin_note
 
   !> A verdict of several words as one column ('ok' or 'uncertain,coarse').
   pure function no_blanks(text) result(out)
