@@ -52,6 +52,7 @@ from scipy.special import ellipe, ellipk  # noqa: E402
 sys.path.insert(0, os.path.join(ROOT, "python"))
 from kcreep import contact_inp  # noqa: E402  (standard library only)
 sys.path.insert(0, HERE)
+sys.path.insert(0, os.path.join(ROOT, "scripts"))   # wheel_rail_gap.py, the profiles of input/wheel_rail.gap
 from kcreep_levels import student_t95  # noqa: E402  (standard library only)
 
 KEYS = ("c11", "c22", "c23")
@@ -266,7 +267,7 @@ def main(args):
           "worst error | median estimate |")
     print("|---|---|---|---|---|---|---|---|---|")
     for group in ("hertz", "non-elliptic"):
-        sel = [r for r in rows if os.path.basename(r["case"]).startswith("hertz") == (group == "hertz")]
+        sel = [r for r in rows if r["case"].startswith("hertz") == (group == "hertz")]
         for est in dict.fromkeys(r["estimator"] for r in sel):
             for k in ("C11", "C22", "C23"):
                 s = [r for r in sel if r["estimator"] == est and r["coefficient"] == k]
@@ -281,11 +282,11 @@ def main(args):
     print("|---|---|---|---|---|---|---|")
     seen = {}
     for r in rows:
-        seen.setdefault((os.path.basename(r["case"]), r["estimator"]), []).append(r)
+        seen.setdefault((r["case"], r["estimator"]), []).append(r)
     for (case, est), s in seen.items():
         cells = " | ".join(f"{100 * r['error']:.3f} / {100 * r['estimate']:.3f} %" for r in s)
         print(f"| {case} | {est} | {cells} | {s[0]['verdict']} | {s[0]['wall']:.2f} |")
-    hz = [r for r in rows if os.path.basename(r["case"]).startswith("hertz") and r["estimator"].startswith("levels")
+    hz = [r for r in rows if r["case"].startswith("hertz") and r["estimator"].startswith("levels")
           and r["coefficient"] == "C11"]
     if hz:
         ae = [abs(r["area_error"]) for r in hz]

@@ -9,18 +9,19 @@ error against the table and wall time.
 
 Needs numpy and build/libkcreep; about 7 s on one core.
 """
+import argparse
 import os
 import sys
 import time
-
-sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "python"))
-import numpy as np  # noqa: E402
-import kcreep  # noqa: E402
 
 RATIOS = (0.1, 0.2, 0.5, 1.0, 2.0, 3.33, 5.0, 10.0)
 
 
 def main():
+    argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter).parse_args()
+    sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "python"))
+    import numpy as np
+    import kcreep
     print("| a/b | verdict | estimate C11 / C22 / C23 % | error against the table % | table u % | wall s |")
     print("|---|---|---|---|---|---|")
     for ratio in RATIOS:

@@ -1,8 +1,11 @@
-!> The creep matrix of an ellipse's staircase (the grid cells whose centres
-!> lie inside it) referred to the ellipse itself.
+!> The creep matrix of a staircase (the grid cells whose centres lie inside a
+!> shape) referred to the shape itself: an ellipse, or a contact area known
+!> on a much finer grid (a gap's, kcreep_region). The shape enters through its
+!> moment reference (moment_reference_t: centre, the semi-axes of the ellipse
+!> with its second moments, its own four-fold harmonic).
 !>
 !> The staircase is compared with the ellipse of the same second moments of
-!> area about the centre: semi-axes a_s = 2 sqrt(Ixx / A), b_s = 2 sqrt(Iyy / A)
+!> area about the reference centre: semi-axes a_s = 2 sqrt(Ixx / A), b_s = 2 sqrt(Iyy / A)
 !> (each cell counted with its own moment, dx^2/12 and dy^2/12). Its size is
 !> taken out as c^p (c = sqrt(ab), p = 2, 3, 4 for the force, force-spin and
 !> moment-spin entries), its aspect ratio with the local slope of ln C against
@@ -22,6 +25,19 @@ module kcreep_staircase_normalisation
   implicit none
   private
   public :: staircase_semi_axes, staircase_harmonic4, aspect_slopes, ellipse_normalised
+  public :: moment_reference_t, ellipse_reference, staircase_reference, referred_f, shape_defect
+
+  !> What a level's staircase is referred to: the shape's centre, the
+  !> semi-axes of the ellipse with its second moments, and its own four-fold
+  !> harmonic about them (0 for an ellipse). own_centre: a level's moments
+  !> are taken about its own centroid, and its f moved from there to the
+  !> shape's centre (a contact area's level wanders by a fraction of a cell,
+  !> and C23 about the shape's centre follows C22 times that wander); an
+  !> ellipse's symmetric levels are centred on the ellipse already.
+  type :: moment_reference_t
+    real(real64) :: centre(2) = 0, semi_a = 0, semi_b = 0, harmonic4 = 0
+    logical :: own_centre = .false.
+  end type moment_reference_t
 
   !> Power of c in f_ij = G c^p C_ij.
   integer, parameter :: c_power(3, 3) = reshape([2, 2, 3, 2, 2, 3, 3, 3, 4], [3, 3])
@@ -31,18 +47,44 @@ module kcreep_staircase_normalisation
 
 contains
 
+  !> The reference of an ellipse patch: its ellipse.
+  pure function ellipse_reference(patch) result(ref)
+    type(patch_t), intent(in) :: patch
+    type(moment_reference_t) :: ref
+    ref = moment_reference_t(patch%ellipse_centre(), patch%semi_a, patch%semi_b, 0.0_real64, .false.)
+  end function ellipse_reference
+
+  !> The reference of a staircase taken as the shape itself (a contact area
+  !> on a fine grid): its centroid, its second-moment ellipse, its harmonic.
+  pure function staircase_reference(patch) result(ref)
+    type(patch_t), intent(in) :: patch
+    type(moment_reference_t) :: ref
+    ref%centre = patch%centroid()
+    call moment_semi_axes(patch, ref%centre, ref%semi_a, ref%semi_b)
+    ref%harmonic4 = harmonic4_about(patch, ref)
+    ref%own_centre = .true.
+  end function staircase_reference
+
   !> Semi-axes of the ellipse with the staircase's area moments about the
   !> ellipse's centre (patch: an ellipse patch).
   pure subroutine staircase_semi_axes(patch, a_s, b_s)
     type(patch_t), intent(in) :: patch
     real(real64), intent(out) :: a_s, b_s
-    real(real64) :: centre(2), ixx, iyy
-    centre = patch%ellipse_centre()
+    call moment_semi_axes(patch, patch%ellipse_centre(), a_s, b_s)
+  end subroutine staircase_semi_axes
+
+  !> Semi-axes 2 sqrt(Ixx / A), 2 sqrt(Iyy / A) of the staircase's area
+  !> moments about centre (each cell counted with its own dx^2/12, dy^2/12).
+  pure subroutine moment_semi_axes(patch, centre, a_s, b_s)
+    type(patch_t), intent(in) :: patch
+    real(real64), intent(in) :: centre(2)
+    real(real64), intent(out) :: a_s, b_s
+    real(real64) :: ixx, iyy
     ixx = sum((patch%cell_x(patch%ix) - centre(1))**2) + patch%n * patch%dx**2 / 12
     iyy = sum((patch%cell_y(patch%iy) - centre(2))**2) + patch%n * patch%dy**2 / 12
     a_s = 2 * sqrt(ixx / patch%n)
     b_s = 2 * sqrt(iyy / patch%n)
-  end subroutine staircase_semi_axes
+  end subroutine moment_semi_axes
 
   !> The staircase's four-fold harmonic in the ellipse's own coordinates
   !> (X, Y) = ((x - xc)/a, (y - yc)/b): the sum over the cells of
@@ -52,13 +94,26 @@ contains
   !> the scatter of the levels again (docs/accuracy.md).
   pure real(real64) function staircase_harmonic4(patch) result(h4)
     type(patch_t), intent(in) :: patch
-    real(real64) :: centre(2)
-    real(real64), allocatable :: x(:), y(:)
-    centre = patch%ellipse_centre()
-    x = (patch%cell_x(patch%ix) - centre(1)) / patch%semi_a
-    y = (patch%cell_y(patch%iy) - centre(2)) / patch%semi_b
-    h4 = sum(x**4 - 6 * x**2 * y**2 + y**4) * (patch%dx / patch%semi_a) * (patch%dy / patch%semi_b)
+    h4 = harmonic4_about(patch, ellipse_reference(patch))
   end function staircase_harmonic4
+
+  !> A level's four-fold harmonic about the reference minus the shape's own:
+  !> what distinguishes the level's staircase from the shape beyond its
+  !> second moments (0 in the limit).
+  pure real(real64) function shape_defect(patch, ref)
+    type(patch_t), intent(in) :: patch
+    type(moment_reference_t), intent(in) :: ref
+    shape_defect = harmonic4_about(patch, ref) - ref%harmonic4
+  end function shape_defect
+
+  pure real(real64) function harmonic4_about(patch, ref) result(h4)
+    type(patch_t), intent(in) :: patch
+    type(moment_reference_t), intent(in) :: ref
+    real(real64), allocatable :: x(:), y(:)
+    x = (patch%cell_x(patch%ix) - ref%centre(1)) / ref%semi_a
+    y = (patch%cell_y(patch%iy) - ref%centre(2)) / ref%semi_b
+    h4 = sum(x**4 - 6 * x**2 * y**2 + y**4) * (patch%dx / ref%semi_a) * (patch%dy / ref%semi_b)
+  end function harmonic4_about
 
   !> d ln C / d ln(a/b) of C11 C22 C23 C33 from the refined table, by a central
   !> difference (one-sided at the table's ends; a/b and nu beyond them clamped:
@@ -78,25 +133,37 @@ contains
     slope = (log(c_hi) - log(c_lo)) / log(hi / lo)
   end function aspect_slopes
 
-  !> f of the staircase `patch` (about the origin, where the patch was placed)
-  !> referred to its ellipse: taken to the ellipse's centre, scaled entry by
-  !> entry, taken back. NaN columns (creepages not requested) stay NaN.
+  !> f of an ellipse's staircase `patch` (about the origin, where the patch
+  !> was placed) referred to the ellipse.
   pure function ellipse_normalised(patch, nu, f) result(fn)
     type(patch_t), intent(in) :: patch
     real(real64), intent(in) :: nu, f(3, 3)
     real(real64) :: fn(3, 3)
-    real(real64) :: a_s, b_s, slope(4), log_scale, log_aspect, centre(2), t(3, 3), t_inv(3, 3), f0(3, 3)
+    fn = referred_f(patch, ellipse_reference(patch), nu, f)
+  end function ellipse_normalised
+
+  !> f of the staircase `patch` (about the origin) referred to the shape
+  !> `ref` describes: taken to the reference centre, scaled entry by entry
+  !> for the staircase's size and aspect ratio against the reference's,
+  !> taken back. NaN columns (creepages not requested) stay NaN.
+  pure function referred_f(patch, ref, nu, f) result(fn)
+    type(patch_t), intent(in) :: patch
+    type(moment_reference_t), intent(in) :: ref
+    real(real64), intent(in) :: nu, f(3, 3)
+    real(real64) :: fn(3, 3)
+    real(real64) :: a_s, b_s, slope(4), log_scale, log_aspect, t(3, 3), t_inv(3, 3), f0(3, 3), own(2)
     logical :: missing(3, 3)
     integer :: i, j
 
-    call staircase_semi_axes(patch, a_s, b_s)
-    slope = aspect_slopes(patch%semi_a / patch%semi_b, nu)
-    log_scale = 0.5_real64 * log(patch%semi_a * patch%semi_b / (a_s * b_s))
-    log_aspect = log((a_s / b_s) / (patch%semi_a / patch%semi_b))
+    own = ref%centre
+    if (ref%own_centre) own = patch%centroid()
+    call moment_semi_axes(patch, own, a_s, b_s)
+    slope = aspect_slopes(ref%semi_a / ref%semi_b, nu)
+    log_scale = 0.5_real64 * log(ref%semi_a * ref%semi_b / (a_s * b_s))
+    log_aspect = log((a_s / b_s) / (ref%semi_a / ref%semi_b))
     ! f = T' f0 T (kcreep_creep_matrix centre_transfer)
-    centre = patch%ellipse_centre()
-    t = centre_transfer(centre)
-    t_inv = centre_transfer(-centre)
+    t = centre_transfer(ref%centre)
+    t_inv = centre_transfer(-own)
     missing = ieee_is_nan(f)
     ! without every column the move is not exact: then scale f where it is
     ! (exact about the centre; the off-centre terms are scaled as the centred)
@@ -115,6 +182,6 @@ contains
     else
       fn = matmul(transpose(t), matmul(f0, t))
     end if
-  end function ellipse_normalised
+  end function referred_f
 
 end module kcreep_staircase_normalisation

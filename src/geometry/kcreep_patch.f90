@@ -14,7 +14,7 @@ module kcreep_patch
   use kcreep_limits, only: check_grid_size
   implicit none
   private
-  public :: patch_t, ellipse_patch, mask_patch, place_like, near_square_cells
+  public :: patch_t, ellipse_patch, mask_patch, place_like, near_square_cells, connected_parts, part_patch
 
   type :: patch_t
     character(len=:), allocatable :: kind     !< 'ellipse', 'mask' or 'contact'
@@ -26,7 +26,7 @@ module kcreep_patch
     integer :: n = 0                          !< number of patch cells
     integer, allocatable :: ix(:), iy(:)      !< grid indices of patch cell k
   contains
-    procedure :: cell_x, cell_y, area, equivalent_radius, centroid, grid_box, ellipse_centre
+    procedure :: cell_x, cell_y, area, equivalent_radius, centroid, grid_box, cells_box, ellipse_centre
     procedure :: mirror_symmetric_in_x, mirror_symmetric_in_y
   end type patch_t
 
@@ -127,6 +127,60 @@ contains
     end do
   end subroutine index_cells
 
+  !> The patch's cells labelled by the connected part (edge-neighbours) they
+  !> belong to, 1 to n_parts.
+  pure subroutine connected_parts(patch, part, n_parts)
+    type(patch_t), intent(in) :: patch
+    integer, intent(out) :: part(patch%n), n_parts
+    integer, allocatable :: cell_of(:, :), stack(:)
+    integer :: k, top, c, i, d
+    integer, parameter :: di(4) = [1, -1, 0, 0], dj(4) = [0, 0, 1, -1]
+    allocate (cell_of(0:patch%mx + 1, 0:patch%my + 1), source=0)
+    do k = 1, patch%n
+      cell_of(patch%ix(k), patch%iy(k)) = k
+    end do
+    part = 0
+    n_parts = 0
+    allocate (stack(patch%n))
+    do k = 1, patch%n
+      if (part(k) /= 0) cycle
+      n_parts = n_parts + 1
+      part(k) = n_parts
+      top = 1
+      stack(1) = k
+      do while (top > 0)
+        c = stack(top)
+        top = top - 1
+        do d = 1, 4
+          i = cell_of(patch%ix(c) + di(d), patch%iy(c) + dj(d))
+          if (i == 0) cycle
+          if (part(i) /= 0) cycle
+          part(i) = n_parts
+          top = top + 1
+          stack(top) = i
+        end do
+      end do
+    end do
+  end subroutine connected_parts
+
+  !> The cells of patch where keep is true, on the same grid and in the same
+  !> order (keep has one entry per patch cell).
+  pure function part_patch(patch, keep) result(part)
+    type(patch_t), intent(in) :: patch
+    logical, intent(in) :: keep(:)
+    type(patch_t) :: part
+    integer :: k
+    part = patch
+    part%inside = .false.
+    do k = 1, patch%n
+      if (.not. keep(k)) cycle
+      part%inside(patch%ix(k), patch%iy(k)) = .true.
+    end do
+    part%n = count(keep)
+    part%ix = pack(patch%ix, keep)
+    part%iy = pack(patch%iy, keep)
+  end function part_patch
+
   elemental real(real64) function cell_x(self, ix)
     class(patch_t), intent(in) :: self
     integer, intent(in) :: ix
@@ -151,6 +205,14 @@ contains
     box = [self%x0 - self%dx / 2, self%x0 + (self%mx - 0.5_real64) * self%dx, &
            self%y0 - self%dy / 2, self%y0 + (self%my - 0.5_real64) * self%dy]
   end function grid_box
+
+  !> xmin xmax ymin ymax of the patch cells (cell edges).
+  pure function cells_box(self) result(box)
+    class(patch_t), intent(in) :: self
+    real(real64) :: box(4)
+    box = [self%cell_x(minval(self%ix)) - self%dx / 2, self%cell_x(maxval(self%ix)) + self%dx / 2, &
+           self%cell_y(minval(self%iy)) - self%dy / 2, self%cell_y(maxval(self%iy)) + self%dy / 2]
+  end function cells_box
 
   !> c of the normalisation: sqrt(a b) for an ellipse, sqrt(area/pi) otherwise.
   pure real(real64) function equivalent_radius(self)

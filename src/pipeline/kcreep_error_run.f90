@@ -2,16 +2,11 @@
 !> kcreep_refine_estimate, the extrapolated coefficients and their error
 !> estimates, or the estimate of a single given grid.
 !>
-!> target > 0 on an ellipse without a given grid: kcreep chooses near-square
-!>   grids (for targets tighter than the default, an ellipse long in y gets
-!>   cells long in y: ellipse_cells_long_in_y), levels 56, 64, 72, 84, 96
-!>   cells across the shorter axis, then one
-!>   level about 15 % finer at a time (112, 128, 148, ...) while an estimate is
-!>   above its target, each level referred to the ellipse by its staircase's
-!>   second moments (kcreep_staircase_normalisation), each fit (with the
-!>   staircase's four-fold harmonic, ellipse_level_estimate) through the finest
-!>   8 levels, as long as the next level stays within the cell budget of the
-!>   target (level_cell_budget).
+!> target > 0 on an ellipse without a given grid: the ladder of
+!>   kcreep_level_ladder (near-square grids, or for targets tighter than the
+!>   default cells long in y on an ellipse long in y: ellipse_cells_long_in_y).
+!> a gap: kcreep_gap_levels (the normal problem on a fine grid, then the same
+!>   ladder on the contact area found).
 !> target > 0 on a mask: every cell is split into k x k subcells, k = 1, 2,
 !>   3, ... while the estimates miss the target and the split patch keeps to
 !>   the cell budget (run_mask_levels; the staircase is the patch the user
@@ -31,11 +26,11 @@ module kcreep_error_run
   use kcreep_run, only: run_case, solve_cache_t
   use kcreep_extrapolation, only: refined_patch
   use kcreep_verdict, only: message_length
-  use kcreep_fastsim, only: fastsim_flexibilities
   use kcreep_refine_estimate
   use kcreep_refine_constants
-  use kcreep_staircase_normalisation, only: ellipse_normalised, staircase_harmonic4
+  use kcreep_staircase_normalisation, only: ellipse_normalised
   use kcreep_gap_levels, only: run_gap_patch
+  use kcreep_level_ladder, only: run_shape_levels, ellipse_base_levels, run_level, fit_levels, finish_result
   use kcreep_grid_transfer, only: transferred_traction
   implicit none
   private
@@ -60,7 +55,7 @@ contains
       call run_gap_patch(problem, result, status, cache)   ! the geometry is refined: kcreep_gap_levels
     else if (problem%target_error > 0 .and. problem%refine_grid) then
       if (problem%patch%kind == 'ellipse') then
-        call run_ellipse_levels(problem, result, status)
+        call run_shape_levels(problem, result, status)
       else
         call run_mask_levels(problem, result, status)
       end if
@@ -133,76 +128,6 @@ contains
       end do
     end associate
   end subroutine run_single
-
-  !> Ellipse levels chosen by kcreep: the base levels, then one finer level
-  !> at a time (next_level), each fit through the finest ellipse_fit_width levels,
-  !> until the estimates meet the target or the next level would exceed the
-  !> cell budget of the target.
-  subroutine run_ellipse_levels(problem, result, status)
-    type(problem_t), intent(in) :: problem
-    type(result_t), intent(out) :: result
-    type(status_t), intent(inout) :: status
-    type(problem_t) :: level_problem
-    integer, allocatable :: levels(:)              !< cells across the shorter axis (the ladder)
-    real(real64), allocatable :: fnorm(:, :, :)    !< (3, 3, level) f referred to the patch (kcreep_staircase_normalisation)
-    real(real64), allocatable :: harmonic4(:)      !< (level) the staircase's four-fold harmonic
-    character(len=message_length), allocatable :: warnings(:)
-    character(len=message_length) :: line
-    integer :: k, mx, my, finest, first
-    real(real64), allocatable :: guess(:, :)     !< the last level's tractions on this level's cells
-    real(real64) :: t(4), budget
-    logical :: long_in_y
-
-    allocate (fnorm(3, 3, 0), harmonic4(0), warnings(0))
-    t = 0
-    level_problem = problem
-    call level_tolerance(level_problem)
-    budget = cell_budget_or(problem, level_cell_budget(problem%target_error))
-    long_in_y = ellipse_cells_long_in_y(problem%target_error, problem%scheme%name)
-    associate (a => problem%patch%semi_a, b => problem%patch%semi_b)
-      levels = ellipse_base_levels(a, b, budget, long_in_y)
-      k = 1
-      do
-        call ellipse_level_grid(a, b, levels(k), mx, my, long_in_y)
-        call ellipse_patch(a, b, mx, my, level_problem%patch, status)
-        if (status%failed()) return
-        call place_like(level_problem%patch, problem%patch)
-        ! the last level's tractions carried over: GMRES starts closer (fewer
-        ! iterations); unallocated on the first level, where it counts as absent
-        if (k > 1) guess = transferred_traction(result%patch, result%traction, level_problem%patch)
-        call run_level(level_problem, levels(k), result, fnorm, warnings, t, status, guess)
-        if (status%failed()) return
-        harmonic4 = [harmonic4, staircase_harmonic4(level_problem%patch)]
-        if (k == size(levels) .and. k >= ellipse_fit_min) then
-          first = max(1, k - ellipse_fit_width + 1)
-          call fit_levels(1.0_real64 / levels(first:k), fnorm(:, :, first:k), result, shape=harmonic4(first:k))
-          if (within_target(result%err, coefficient_targets(problem%target_error))) exit
-          finest = next_level(levels(k))
-          call ellipse_level_grid(a, b, finest, mx, my, long_in_y)
-          if (ellipse_fill * mx * my > budget) then
-            line = 'error control: the next level, '//itoa(mx)//' x '//itoa(my)//', would exceed the budget of '// &
-                   itoa(nint(budget))//' patch cells at target_error '//rtoa(problem%target_error)// &
-                   ', stopped at '//itoa(levels(k))//' cells across (&solver cell_budget raises it)'
-            warnings = [warnings, line]
-            exit
-          end if
-          levels = [levels, finest]
-        end if
-        k = k + 1
-      end do
-    end associate
-    call finish_result(result, t)
-    result%warnings = warnings
-  end subroutine run_ellipse_levels
-
-  !> An ellipse's base levels; a long one's scaled down so that the finest keeps to the budget.
-  pure function ellipse_base_levels(a, b, budget, long_in_y) result(levels)
-    real(real64), intent(in) :: a, b, budget
-    logical, intent(in) :: long_in_y
-    integer :: levels(size(base_levels)), mx, my
-    call ellipse_level_grid(a, b, base_levels(size(base_levels)), mx, my, long_in_y)
-    levels = max(min_base_cells, nint(base_levels * min(1.0_real64, sqrt(budget / (ellipse_fill * mx * my)))))
-  end function ellipse_base_levels
 
   !> The largest patch a run under error control may solve (ellipse: the
   !> finest level within the budget; mask: the finest split), for the memory
@@ -293,78 +218,5 @@ contains
     call finish_result(result, t)
     result%warnings = warnings
   end subroutine run_mask_levels
-
-  !> One level: solve, keep its normalised f and its warnings; the result is
-  !> the level's. guess: tractions to start the iterative solver from.
-  subroutine run_level(level_problem, label, result, fnorm, warnings, t, status, guess)
-    type(problem_t), intent(in) :: level_problem
-    integer, intent(in) :: label
-    type(result_t), intent(inout) :: result
-    real(real64), allocatable, intent(inout) :: fnorm(:, :, :)
-    character(len=message_length), allocatable, intent(inout) :: warnings(:)
-    real(real64), intent(inout) :: t(4)
-    type(status_t), intent(inout) :: status
-    real(real64), intent(in), optional :: guess(:, :)
-    real(real64), allocatable :: f(:, :, :)
-
-    call run_case(level_problem, result, status, guess=guess)
-    if (status%failed()) return
-    t = t + [result%t_assemble, result%t_factor, result%t_solve, result%t_total]
-    allocate (f(3, 3, size(fnorm, 3) + 1))
-    f(:, :, 1:size(fnorm, 3)) = fnorm
-    if (level_problem%patch%kind == 'ellipse') then
-      f(:, :, size(f, 3)) = ellipse_normalised(level_problem%patch, level_problem%nu, result%f)
-    else
-      f(:, :, size(f, 3)) = result%f
-    end if
-    call move_alloc(f, fnorm)
-    call append_prefixed(warnings, 'level '//itoa(label)//' ('//itoa(level_problem%patch%mx)//' x '// &
-                         itoa(level_problem%patch%my)//'): ', result%warnings)
-  end subroutine run_level
-
-  !> The fit of every f entry: the result gets the limits, err those of C11, C22, C23.
-  subroutine fit_levels(h, fnorm, result, split, shape)
-    real(real64), intent(in) :: h(:), fnorm(:, :, :)
-    type(result_t), intent(inout) :: result
-    logical, intent(in), optional :: split   !< levels of a split patch (split_level_estimate)
-    real(real64), intent(in), optional :: shape(:)   !< an ellipse's staircase harmonic per level (ellipse_level_estimate)
-    real(real64) :: limit, rel
-    integer :: i, j
-    result%err = ieee_value(1.0_real64, ieee_quiet_nan)
-    do j = 1, 3
-      do i = 1, 3
-        if (any(ieee_is_nan(fnorm(i, j, :)))) then
-          result%f(i, j) = ieee_value(1.0_real64, ieee_quiet_nan)
-          cycle
-        end if
-        if (present(split)) then
-          call split_level_estimate(h, fnorm(i, j, :), limit, rel)
-        else if (present(shape)) then
-          call ellipse_level_estimate(h, fnorm(i, j, :), shape, limit, rel)
-        else
-          call level_estimate(h, fnorm(i, j, :), limit, rel)
-        end if
-        result%f(i, j) = limit
-        if (i == 1 .and. j == 1) result%err(1) = rel
-        if (i == 2 .and. j == 2) result%err(2) = rel
-        if (i == 2 .and. j == 3) result%err(3) = rel
-      end do
-    end do
-  end subroutine fit_levels
-
-  !> result%f holds the limits referred to the patch (an ellipse: the ellipse
-  !> itself, not its staircase; a mask: its cells). The C's and summed times.
-  subroutine finish_result(result, t)
-    type(result_t), intent(inout) :: result
-    real(real64), intent(in) :: t(4)
-    result%cn = [result%f(1, 1) / (result%g * result%c**2), result%f(2, 2) / (result%g * result%c**2), &
-                 result%f(2, 3) / (result%g * result%c**3)]
-    ! FASTSIM's flexibilities of the finest patch with the extrapolated f
-    result%fastsim = fastsim_flexibilities(result%patch, result%f(1, 1), result%f(2, 2), result%f(2, 3))
-    result%t_assemble = t(1)
-    result%t_factor = t(2)
-    result%t_solve = t(3)
-    result%t_total = t(4)
-  end subroutine finish_result
 
 end module kcreep_error_run

@@ -7,24 +7,18 @@
 !> the contact area found. Splitting the cells of one contact area would only
 !> refine its staircase, not its boundary.
 !>
-!> Levels (target_error > 0 and refine_grid): square cells with N = 24, 28,
-!> 32, 36, 40, 44, 48, 56 cells across the contact area's hydraulic diameter
-!> 4 area / perimeter (contact_diameter; from a normal solve on the given
-!> grid: the diameter of a circle, of each lobe of two round ones), over the
-!> bounding box of that contact area widened by a margin; doubled (reusing
-!> the levels done) while an estimate is above its target, at most
-!> max_refinements times and while the finest level stays within
-!> gap_budget_share of the cell budget. Every level's coefficients are normalised by its own
-!> contact area (C_ij = f_ij / (G c^p), c = sqrt(area / pi)): the staircase of
-!> the contact boundary changes the area irregularly from level to level, and
-!> f_ij follows it (measured on a Hertzian gap: this removes 95 % of the
-!> scatter about the first-order line, docs/accuracy.md). Each C_ij and the
-!> area are fitted by f0 + K h (order fixed at 1) and estimated as in
-!> kcreep_refine_estimate level_estimate; the result has c = sqrt(A0 / pi) of
-!> the fitted area A0 and f_ij = G c^p C_ij. err(1:3) are the estimates of
-!> C11, C22, C23; the f_ij carry in addition p/2 times the area's relative
-!> error (the contact area itself converges slowly: about 1 % at 50 cells
-!> across).
+!> Error control (target_error > 0 and refine_grid): the normal problem on
+!> the given grid finds where the contact area is and its hydraulic diameter
+!> 4 area / perimeter (contact_diameter); then again on square cells of
+!> gap_normal_cells across that diameter over the area's bounding box
+!> widened by a margin, and on cells twice that size. The tangential
+!> levels (kcreep_level_ladder, the ellipses' ladder) sample the fine
+!> contact area, each referred to it by its second moments, so every level
+!> describes the same shape and the staircase's wander from level to level
+!> is taken out as on an ellipse. The estimate adds to the ladder's the
+!> normal grid's own (normal_grid_estimate: the contact area's aspect ratio
+!> between the two normal grids). c = sqrt(area / pi) of the fine contact
+!> area; FASTSIM's pressure is the fine pressure at the finest level's cells.
 !>
 !> A single grid (target_error = 0, or refine_grid off): the gap's grid as
 !> given, and as estimate gap_single_estimate from the geometry on cells 1.5
@@ -38,23 +32,24 @@ module kcreep_gap_levels
   use kcreep_patch, only: patch_t
   use kcreep_gap, only: gap_t, gap_resampled, gap_from_polynomial
   use kcreep_wheel_rail_geometry, only: plane_gap_grid
-  use kcreep_problem, only: problem_t, result_t, append_prefixed, level_tolerance, cell_budget_or
+  use kcreep_problem, only: problem_t, result_t
   use kcreep_normal_stage, only: normal_patch, store_normal
   use kcreep_normal_solve, only: normal_result_t
   use kcreep_check, only: check_problem
   use kcreep_run, only: run_case, solve_cache_t
   use kcreep_verdict, only: message_length
-  use kcreep_fastsim, only: fastsim_flexibilities
+  use kcreep_region, only: region_t, sampled_region, region_pressure, contact_diameter, level_size
+  use kcreep_level_ladder, only: run_shape_levels
+  use kcreep_staircase_normalisation, only: moment_reference_t, staircase_reference, aspect_slopes
+  use kcreep_table_interpolation, only: table_coefficients, table_ratio_range, table_nu_range
   use kcreep_refine_constants
-  use kcreep_refine_estimate, only: level_estimate, within_target, coefficient_targets, min_estimate_cells, &
-                                    level_cell_budget
+  use kcreep_refine_estimate, only: min_estimate_cells, default_target_error
   implicit none
   private
   public :: run_gap_patch, gap_single_estimate
 
-  !> Power of c in f_ij = G c^p C_ij.
-  integer, parameter :: c_power(3, 3) = reshape([2, 2, 3, 2, 2, 3, 3, 3, 4], [3, 3])
   real(real64), parameter :: pi = acos(-1.0_real64)
+
 
 contains
 
@@ -146,110 +141,96 @@ contains
     rel_error = gap_single_factor * max(abs(f_h - f_2h), 2 * abs(f_h - f_15h)) / abs(f_h)
   end function gap_single_estimate
 
-  !> Levels of finer geometry, refined until the estimates meet the target.
+  !> The normal problem on a fine grid, then the ladder of kcreep_level_ladder
+  !> on the contact area found; its estimates plus the normal grid's own
+  !> (normal_grid_estimate).
   subroutine run_gap_levels(problem, result, status)
     type(problem_t), intent(in) :: problem
     type(result_t), intent(out) :: result
     type(status_t), intent(inout) :: status
-    type(patch_t) :: first
-    type(normal_result_t) :: nres
-    type(gap_t) :: gap
-    integer, allocatable :: done(:), want(:), idx(:)
-    real(real64), allocatable :: cnorm(:, :, :), area(:)
-    character(len=message_length), allocatable :: warnings(:)
-    character(len=message_length) :: line
-    real(real64) :: box(4), diameter, t(4), budget
-    integer :: refinement, k
-    type(problem_t) :: level_problem
+    type(patch_t) :: first, fine, coarse
+    type(normal_result_t) :: nres, fine_normal, coarse_normal
+    type(region_t) :: region, coarse_region
+    real(real64) :: box(4), across
 
     ! the contact area on the given grid: its size and where it is
     call normal_patch(problem, first, nres, status)
     if (status%failed()) return
-    diameter = contact_diameter(first)
     box = level_box(problem%normal%gap, first%grid_box())
-
-    allocate (done(0), cnorm(3, 3, 0), area(0), warnings(0))
-    t = 0
-    budget = cell_budget_or(problem, gap_budget_share * level_cell_budget(problem%target_error))
-    level_problem = problem
-    call level_tolerance(level_problem)
-    do refinement = 0, max_refinements
-      want = gap_base_levels * 2**refinement
-      if (refinement > 0) then
-        ! contact cells of the finest new level: area / h^2
-        if (first%area() * (want(size(want)) / diameter)**2 > budget) then
-          line = 'error control: refining to '//itoa(want(size(want)))//' cells across the contact area would '// &
-                 'exceed about '//itoa(nint(budget))//' contact cells, stopped at '// &
-                 itoa(want(size(want)) / 2)//' cells across (&solver cell_budget raises it)'
-          warnings = [warnings, line]
-          want = gap_base_levels * 2**(refinement - 1)
-          exit
-        end if
-      end if
-      do k = 1, size(want)
-        if (any(done == want(k))) cycle
-        call level_gap(problem, box, diameter / want(k), gap, status)
-        if (status%failed()) return
-        call run_gap_level(level_problem, gap, want(k), result, cnorm, area, warnings, t, status)
-        if (status%failed()) return
-        done = [done, want(k)]
-      end do
-      idx = [(findloc(done, want(k), 1), k=1, size(want))]
-      call fit_gap_levels(1.0_real64 / want, cnorm(:, :, idx), area(idx), result)
-      if (within_target(result%err, coefficient_targets(problem%target_error))) exit
-    end do
-    result%t_assemble = t(1)
-    result%t_factor = t(2)
-    result%t_solve = t(3)
-    result%t_total = t(4)
-    result%warnings = warnings
+    across = level_size(first) / gap_normal_cells(problem%target_error)
+    ! a long thin area (a flange contact) on so fine a grid would fill millions
+    ! of cells: the grid is coarsened to max_normal_grid_cells (the normal
+    ! grid's estimate grows with it)
+    if ((box(2) - box(1)) * (box(4) - box(3)) / across**2 > max_normal_grid_cells) &
+      across = sqrt((box(2) - box(1)) * (box(4) - box(3)) / max_normal_grid_cells)
+    call contact_area_on(problem, box, across, fine, fine_normal, status)
+    if (status%failed()) return
+    call contact_area_on(problem, box, 2 * across, coarse, coarse_normal, status)
+    if (status%failed()) return
+    region = sampled_region(fine, fine_normal%pressure, status)
+    if (status%failed()) return
+    coarse_region = sampled_region(coarse, coarse_normal%pressure, status)
+    if (status%failed()) return
+    call run_shape_levels(problem, result, status, region, normal_grid_estimate(region, coarse_region, problem%nu))
+    if (status%failed()) return
+    call store_normal(fine_normal, fine, result)
+    ! the pressure at the finest level's cells, scaled to the normal force
+    ! found (sampling the interpolated pressure moves its sum by about 1e-4)
+    result%pressure = region_pressure(region, result%patch)
+    result%pressure = result%pressure * (fine_normal%fn / (sum(result%pressure) * result%patch%dx * result%patch%dy))
+    result%bbox = region%reference%cells_box()
   end subroutine run_gap_levels
 
-  !> One level: solve, keep its own-area normalised coefficients, area and warnings.
-  subroutine run_gap_level(problem, gap, label, result, cnorm, area, warnings, t, status)
+  !> The contact area of the normal problem on square cells of size h over box.
+  subroutine contact_area_on(problem, box, h, patch, nres, status)
     type(problem_t), intent(in) :: problem
-    type(gap_t), intent(in) :: gap
-    integer, intent(in) :: label
-    type(result_t), intent(inout) :: result
-    real(real64), allocatable, intent(inout) :: cnorm(:, :, :), area(:)
-    character(len=message_length), allocatable, intent(inout) :: warnings(:)
-    real(real64), intent(inout) :: t(4)
+    real(real64), intent(in) :: box(4), h
+    type(patch_t), intent(out) :: patch
+    type(normal_result_t), intent(out) :: nres
     type(status_t), intent(inout) :: status
-    real(real64), allocatable :: c(:, :, :)
-
-    call solve_gap(problem, gap, result, status)
+    type(problem_t) :: on_grid
+    on_grid = problem
+    call level_gap(problem, box, h, on_grid%normal%gap, status)
     if (status%failed()) return
-    t = t + [result%t_assemble, result%t_factor, result%t_solve, result%t_total]
-    allocate (c(3, 3, size(cnorm, 3) + 1))
-    c(:, :, 1:size(cnorm, 3)) = cnorm
-    c(:, :, size(c, 3)) = result%f / (result%g * result%c**c_power)
-    call move_alloc(c, cnorm)
-    area = [area, pi * result%c**2]
-    call append_prefixed(warnings, 'level '//itoa(label)//' (gap grid '//itoa(gap%mx)//' x '//itoa(gap%my)//'): ', &
-                         result%warnings)
-  end subroutine run_gap_level
+    call normal_patch(on_grid, patch, nres, status)
+  end subroutine contact_area_on
 
-  !> The fits: C_ij and the area extrapolated; f_ij = G c^p C_ij with c from
-  !> the fitted area; err the estimates of C11, C22, C23.
-  subroutine fit_gap_levels(h, cnorm, area, result)
-    real(real64), intent(in) :: h(:), cnorm(:, :, :), area(:)
-    type(result_t), intent(inout) :: result
-    real(real64) :: limit(3, 3), rel(3, 3), a0, rel_area
-    integer :: i, j
-    do j = 1, 3
-      do i = 1, 3
-        call level_estimate(h, cnorm(i, j, :), limit(i, j), rel(i, j))
-      end do
-    end do
-    call level_estimate(h, area, a0, rel_area)
-    if (.not. (a0 > 0)) a0 = area(minloc(h, 1))   ! a degenerate fit: the finest level's area
-    result%c = sqrt(a0 / pi)
-    result%f = result%g * result%c**c_power * limit
-    result%cn = [limit(1, 1), limit(2, 2), limit(2, 3)]
-    result%err = [rel(1, 1), rel(2, 2), rel(2, 3)]
-    ! FASTSIM's flexibilities of the finest contact area with the extrapolated f
-    result%fastsim = fastsim_flexibilities(result%patch, result%f(1, 1), result%f(2, 2), result%f(2, 3))
-  end subroutine fit_gap_levels
+  !> Cells across the contact area's hydraulic diameter of the normal
+  !> problem's fine grid: gap_normal_cells_at_default at the default target
+  !> and looser, twice that for tighter targets.
+  pure real(real64) function gap_normal_cells(target) result(cells)
+    real(real64), intent(in) :: target
+    cells = gap_normal_cells_at_default
+    if (target < default_target_error) cells = 2 * cells
+  end function gap_normal_cells
+
+  !> The error the normal problem's grid leaves in C11, C22, C23, from the
+  !> contact areas of the fine and the coarse normal grid: at second order
+  !> the fine one is a third as far from the continuum as from the coarse one
+  !> (normal_grid_order). Their
+  !> aspect ratios (second moments) differ by r(h) / r(2h), and the C's follow
+  !> with the refined table's slope d ln C / d ln(a/b) (their size is
+  !> normalised out); their centres differ by dx along the rolling
+  !> direction, and C23 about a fixed spin centre follows as C22 dx / (C23 c).
+  !> Both times normal_grid_factor.
+  function normal_grid_estimate(fine, coarse, nu) result(rel_error)
+    type(region_t), intent(in) :: fine, coarse
+    real(real64), intent(in) :: nu
+    real(real64) :: rel_error(3), slope(4), r_fine, r_coarse, c(4), rel(4), radius
+    type(moment_reference_t) :: m_fine, m_coarse
+    type(status_t) :: lookup
+    m_fine = staircase_reference(fine%reference)
+    m_coarse = staircase_reference(coarse%reference)
+    r_fine = m_fine%semi_a / m_fine%semi_b
+    r_coarse = m_coarse%semi_a / m_coarse%semi_b
+    slope = aspect_slopes(r_fine, nu)
+    call table_coefficients(min(max(r_fine, table_ratio_range(1)), table_ratio_range(2)), &
+                            min(max(nu, table_nu_range(1)), table_nu_range(2)), c, rel, lookup)
+    radius = sqrt(fine%reference%area() / pi)
+    rel_error = abs(slope(1:3) * log(r_fine / r_coarse))
+    rel_error(3) = rel_error(3) + c(2) / c(3) * abs(m_fine%centre(1) - m_coarse%centre(1)) / radius
+    rel_error = normal_grid_factor * rel_error / (2**normal_grid_order - 1)
+  end function normal_grid_estimate
 
   !> The region the level grids cover: the contact area's bounding box (cell
   !> edges, xmin xmax ymin ymax) widened by gap_level_margin of its size and two
@@ -286,23 +267,5 @@ contains
     end if
   end subroutine level_gap
 
-  !> The size the levels are counted across: 4 area / perimeter of the contact
-  !> area (its hydraulic diameter: a circle's diameter, 0.79 times the short axis
-  !> of a long ellipse, each lobe's diameter for two equal round lobes), the
-  !> perimeter from the staircase's, times pi/4 (the mean ratio of a curve's
-  !> length to that of its staircase over all directions).
-  pure real(real64) function contact_diameter(patch) result(d)
-    type(patch_t), intent(in) :: patch
-    logical, allocatable :: inside(:, :)
-    integer :: k, edges_x, edges_y
-    allocate (inside(0:patch%mx + 1, 0:patch%my + 1))
-    inside = .false.
-    do k = 1, patch%n
-      inside(patch%ix(k), patch%iy(k)) = .true.
-    end do
-    edges_x = count(inside(0:patch%mx, :) .neqv. inside(1:patch%mx + 1, :))   ! edges of length dy
-    edges_y = count(inside(:, 0:patch%my) .neqv. inside(:, 1:patch%my + 1))   ! edges of length dx
-    d = 4 * patch%area() / (pi / 4 * (edges_x * patch%dy + edges_y * patch%dx))
-  end function contact_diameter
 
 end module kcreep_gap_levels

@@ -109,22 +109,35 @@ module kcreep_refine_constants
   !> above it the given grid gets no estimate (a run-time bound).
   integer, parameter :: max_level_cells = 20000
 
-  ! ---- patches from a gap function (the geometry sampled on finer grids) ----
-  !> At most this many doublings of the levels (56 -> 112 -> 224 across).
-  integer, parameter :: max_refinements = 2
-  !> Levels: cells across the contact area's hydraulic diameter (contact_diameter).
-  integer, parameter :: gap_base_levels(8) = [24, 28, 32, 36, 40, 44, 48, 56]
-  !> A gap's levels get this share of the cell budget (contact cells of the
-  !> finest level): every level solves the normal problem as well, on a grid
-  !> 2-3 times the contact area. The wheel on rail (input/wheel_rail.nml)
-  !> stops at 112 cells across its lobes (23,879 cells) in 2.8 s on one core;
-  !> the next doubling, 224 across, took 17 s for estimates of 0.06 / 0.09 /
-  !> 0.15 %, and moved C11 by 0.21 % (docs/accuracy.md section 5).
-  real(real64), parameter :: gap_budget_share = 0.25_real64
-  !> The level grids cover the contact area's bounding box on the given grid
-  !> widened by this fraction of its size on every side (and by two cells of
-  !> the given grid): the contact area moves by less than a cell between levels.
-  real(real64), parameter :: gap_level_margin = 0.2_real64
+  ! ---- patches from a gap function (the normal problem on a fine grid) ----
+  !> Cells across the contact area's hydraulic diameter of the normal
+  !> problem's fine grid at the default target (twice this below it). The
+  !> levels sample the zero level of the interpolated p^2 (kcreep_region), so
+  !> the contact boundary lies inside the fine cells. Measured on the Hertzian
+  !> gaps a/b = 2 and 0.5 (scripts/studies/gap_hertz_check.py, default run):
+  !> at 64, 96, 128 and 192 cells the C11 / C22 errors are at most 0.065,
+  !> 0.083, 0.081 and 0.055 %; C23 0.41, 0.26, 0.12, 0.14 %. 128 is the
+  !> coarsest with C23 inside its 0.3 % and takes 0.6 s per gap where 192
+  !> takes 1.1-1.6 s (the normal solves dominate).
+  real(real64), parameter :: gap_normal_cells_at_default = 128
+  !> The normal grid's estimate (kcreep_gap_levels normal_grid_estimate): the
+  !> contact boundary is placed to second order (kcreep_region), so the fine
+  !> grid's error is |change from the coarse grid| / (2^normal_grid_order - 1),
+  !> times normal_grid_factor for what the two grids' moments do not see.
+  !> (calibration) Measured on 15 Hertzian gaps (scripts/studies/
+  !> gap_error_calibration.py, docs/accuracy.md section 5).
+  !> The fine normal grid has at most this many cells (coarser cells on a
+  !> long thin contact area, whose bounding box is large for its width): a
+  !> run-time bound; 200,000 cells take about 0.5 s on one core.
+  real(real64), parameter :: max_normal_grid_cells = 200000
+  integer, parameter :: normal_grid_order = 2
+  real(real64), parameter :: normal_grid_factor = 2
+  !> The fine normal grids cover the contact area's bounding box on the given
+  !> grid widened by this fraction of its size on every side and by two cells
+  !> of the given grid: the contact area found on the given grid is within a
+  !> cell of the fine one's, and a larger grid only costs (the normal solves
+  !> are most of a gap's run time).
+  real(real64), parameter :: gap_level_margin = 0.05_real64
   !> A gap's grid given as is: the geometry on cells gap_single_sizes times
   !> the size, estimate gap_single_factor max(|C(h) - C(2h)|, 2 |C(h) -
   !> C(1.5h)|) / C(h) (the contact boundary moves between the grids: 97 of

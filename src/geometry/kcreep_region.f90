@@ -1,0 +1,200 @@
+!> A contact area known on a fine grid, sampled by coarser level grids.
+!>
+!> A gap's contact area comes from the normal problem on a grid (cells with
+!> positive pressure). Error control solves the normal problem once on a
+!> fine grid and lets the tangential levels sample that one area, so every
+!> level describes the same shape, as an ellipse's levels do, instead of a
+!> new contact boundary per level.
+!>
+!> The area is not taken as the fine grid's staircase but as the zero level
+!> of p^2 interpolated bilinearly between the fine cell centres: near the
+!> edge of a contact area p^2 falls linearly to zero (Hertz: p^2 = p0^2 (1 -
+!> r^2/a^2)), so the boundary is placed inside the cells, to second order,
+!> rather than on cell edges. Outside the contact cells p^2 is continued
+!> linearly from the two contact cells behind it along each grid direction
+!> (mirrored where only one is there). A level cell belongs to the patch
+!> when its centre lies inside.
+module kcreep_region
+  use, intrinsic :: iso_fortran_env, only: real64
+  use kcreep_status, only: status_t
+  use kcreep_patch, only: patch_t, mask_patch
+  implicit none
+  private
+  public :: region_t, sampled_region, region_level_patch, region_pressure, contact_diameter, level_size
+
+  real(real64), parameter :: pi = acos(-1.0_real64)
+  !> Cells of the fine grid around its contact cells, for the continued p^2.
+  integer, parameter :: pad = 2
+  !> The region's reference staircase (moments, area) is sampled on cells
+  !> this many times smaller than the fine grid's.
+  integer, parameter :: reference_split = 4
+
+  type :: region_t
+    integer :: mx = 0, my = 0                    !< the fine grid, padded
+    real(real64) :: x0 = 0, y0 = 0, h = 0        !< centre of its cell (1, 1); square cells
+    real(real64), allocatable :: level(:, :)     !< (mx, my) p^2, continued below zero outside
+    type(patch_t) :: reference                   !< the region on cells h / reference_split
+    real(real64) :: diameter = 0                 !< the size levels are counted across (level_size)
+  end type region_t
+
+contains
+
+  !> The region of the contact cells `fine` (square cells) with the pressure
+  !> on the same grid.
+  function sampled_region(fine, pressure, status) result(region)
+    type(patch_t), intent(in) :: fine
+    real(real64), intent(in) :: pressure(:, :)
+    type(status_t), intent(inout) :: status
+    type(region_t) :: region
+    region%mx = fine%mx + 2 * pad
+    region%my = fine%my + 2 * pad
+    region%h = fine%dx
+    region%x0 = fine%x0 - pad * fine%dx
+    region%y0 = fine%y0 - pad * fine%dy
+    allocate (region%level(region%mx, region%my), source=0.0_real64)
+    where (pressure > 0) region%level(pad + 1:pad + fine%mx, pad + 1:pad + fine%my) = pressure**2
+    call continue_outside(region%level)
+    call region_patch(region, region%h / reference_split, fine%grid_box(), region%reference, status)
+    if (status%failed()) return
+    region%diameter = level_size(region%reference)
+  end function sampled_region
+
+  !> Outside the contact cells (level = 0): the level continued linearly
+  !> from the contact cells behind it along the 8 grid directions (the mean
+  !> over those directions), at most -tiny; farther cells get -max(level).
+  pure subroutine continue_outside(level)
+    real(real64), intent(inout) :: level(:, :)
+    real(real64), allocatable :: inside(:, :)
+    real(real64) :: total, far
+    integer :: i, j, di, dj, n, mx, my
+    mx = size(level, 1)
+    my = size(level, 2)
+    inside = level
+    far = -maxval(inside)
+    do j = 1, my
+      do i = 1, mx
+        if (inside(i, j) > 0) cycle
+        total = 0
+        n = 0
+        do dj = -1, 1
+          do di = -1, 1
+            if (di == 0 .and. dj == 0) cycle
+            if (.not. in_contact(i + di, j + dj)) cycle
+            n = n + 1
+            if (in_contact(i + 2 * di, j + 2 * dj)) then
+              total = total + 2 * inside(i + di, j + dj) - inside(i + 2 * di, j + 2 * dj)
+            else
+              total = total - inside(i + di, j + dj)
+            end if
+          end do
+        end do
+        if (n > 0) then
+          level(i, j) = min(total / n, -tiny(1.0_real64))
+        else
+          level(i, j) = far
+        end if
+      end do
+    end do
+  contains
+    pure logical function in_contact(i, j)
+      integer, intent(in) :: i, j
+      in_contact = .false.
+      if (i >= 1 .and. i <= mx .and. j >= 1 .and. j <= my) in_contact = inside(i, j) > 0
+    end function in_contact
+  end subroutine continue_outside
+
+  !> The level interpolated bilinearly at (x, y).
+  pure real(real64) function level_at(region, x, y) result(value)
+    type(region_t), intent(in) :: region
+    real(real64), intent(in) :: x, y
+    real(real64) :: u, v, s, t
+    integer :: i, j
+    u = (x - region%x0) / region%h + 1
+    v = (y - region%y0) / region%h + 1
+    i = min(max(floor(u), 1), region%mx - 1)
+    j = min(max(floor(v), 1), region%my - 1)
+    s = min(max(u - i, 0.0_real64), 1.0_real64)
+    t = min(max(v - j, 0.0_real64), 1.0_real64)
+    value = (1 - s) * (1 - t) * region%level(i, j) + s * (1 - t) * region%level(i + 1, j) + &
+            (1 - s) * t * region%level(i, j + 1) + s * t * region%level(i + 1, j + 1)
+  end function level_at
+
+  !> The cells of size h over box (centred on it, one cell wider on every
+  !> side) whose centres lie in the region.
+  subroutine region_patch(region, h, box, patch, status)
+    type(region_t), intent(in) :: region
+    real(real64), intent(in) :: h, box(4)
+    type(patch_t), intent(out) :: patch
+    type(status_t), intent(inout) :: status
+    real(real64) :: x0, y0
+    logical, allocatable :: inside(:, :)
+    integer :: mx, my, ix, iy
+    mx = ceiling((box(2) - box(1)) / h) + 2
+    my = ceiling((box(4) - box(3)) / h) + 2
+    x0 = (box(1) + box(2)) / 2 - (mx - 1) * h / 2
+    y0 = (box(3) + box(4)) / 2 - (my - 1) * h / 2
+    allocate (inside(mx, my))
+    do iy = 1, my
+      do ix = 1, mx
+        inside(ix, iy) = level_at(region, x0 + (ix - 1) * h, y0 + (iy - 1) * h) > 0
+      end do
+    end do
+    call mask_patch(inside, h, h, x0, y0, 'contact area level', patch, status)
+    if (status%failed()) return
+    patch%kind = 'gap'
+  end subroutine region_patch
+
+  !> A level of `cells` across the region's diameter.
+  subroutine region_level_patch(region, cells, patch, status)
+    type(region_t), intent(in) :: region
+    integer, intent(in) :: cells
+    type(patch_t), intent(out) :: patch
+    type(status_t), intent(inout) :: status
+    call region_patch(region, region%diameter / cells, region%reference%grid_box(), patch, status)
+  end subroutine region_level_patch
+
+  !> The pressure at the centres of patch's cells: sqrt of the interpolated p^2.
+  pure function region_pressure(region, patch) result(p)
+    type(region_t), intent(in) :: region
+    type(patch_t), intent(in) :: patch
+    real(real64) :: p(patch%n)
+    integer :: k
+    do k = 1, patch%n
+      p(k) = sqrt(max(level_at(region, patch%cell_x(patch%ix(k)), patch%cell_y(patch%iy(k))), 0.0_real64))
+    end do
+  end function region_pressure
+
+  !> The size a contact area's levels are counted across: its hydraulic
+  !> diameter (contact_diameter), or the shorter axis of its second-moment
+  !> ellipse where that is shorter (a long area: a/b = 2.9 has 1.45 times
+  !> as many cells across its width on the hydraulic diameter's count).
+  pure real(real64) function level_size(area)
+    type(patch_t), intent(in) :: area
+    real(real64) :: x(area%n), y(area%n), ixx, iyy
+    x = area%cell_x(area%ix)
+    y = area%cell_y(area%iy)
+    ixx = sum((x - sum(x) / area%n)**2) / area%n + area%dx**2 / 12
+    iyy = sum((y - sum(y) / area%n)**2) / area%n + area%dy**2 / 12
+    level_size = min(contact_diameter(area), 4 * sqrt(min(ixx, iyy)))
+  end function level_size
+
+  !> The size the levels are counted across: 4 area / perimeter of the contact
+  !> area (its hydraulic diameter: a circle's diameter, 0.79 times the short axis
+  !> of a long ellipse, each lobe's diameter for two equal round lobes), the
+  !> perimeter from the staircase's, times pi/4 (the mean ratio of a curve's
+  !> length to that of its staircase over all directions).
+  pure real(real64) function contact_diameter(patch) result(d)
+    type(patch_t), intent(in) :: patch
+    logical, allocatable :: inside(:, :)
+    integer :: k, edges_x, edges_y
+    allocate (inside(0:patch%mx + 1, 0:patch%my + 1))
+    inside = .false.
+    do k = 1, patch%n
+      inside(patch%ix(k), patch%iy(k)) = .true.
+    end do
+    edges_x = count(inside(0:patch%mx, :) .neqv. inside(1:patch%mx + 1, :))   ! edges of length dy
+    edges_y = count(inside(:, 0:patch%my) .neqv. inside(:, 1:patch%my + 1))   ! edges of length dx
+    d = 4 * patch%area() / (pi / 4 * (edges_x * patch%dy + edges_y * patch%dx))
+  end function contact_diameter
+
+end module kcreep_region

@@ -1,0 +1,297 @@
+!> The one driver of kcreep's level ladders: levels of a shape chosen by
+!> kcreep, solved from coarse to fine until the estimates meet the target or
+!> the cell budget stops them.
+!>
+!> The shape is an ellipse (problem%patch, kind 'ellipse') or a contact area
+!> found by the normal problem on a fine grid (a kcreep_region). Levels: 56,
+!> 64, 72, 84, 96 cells across (an ellipse's shorter axis; a contact area's
+!> hydraulic diameter), then one level about 15 % finer at a time
+!> (next_level) while an estimate is above its target. Each level is the
+!> staircase of the level's cells whose centres lie in the shape, referred
+!> to the shape by its second moments (kcreep_staircase_normalisation
+!> referred_f: size and aspect ratio), and each fit (ellipse_level_estimate:
+!> f0 + K h + B shape, the shape column the staircase's four-fold harmonic
+!> against the shape's) runs through the finest ellipse_fit_width levels.
+!>
+!> Masks are split k x k instead (kcreep_error_run run_mask_levels) and share
+!> run_level, fit_levels and finish_result.
+module kcreep_level_ladder
+  use, intrinsic :: iso_fortran_env, only: real64
+  use, intrinsic :: ieee_arithmetic, only: ieee_value, ieee_quiet_nan, ieee_is_nan
+  use kcreep_status, only: status_t
+  use kcreep_strings, only: itoa, rtoa
+  use kcreep_patch, only: patch_t, ellipse_patch, place_like, connected_parts, part_patch
+  use kcreep_region, only: region_t, region_level_patch
+  use kcreep_problem, only: problem_t, result_t, append_prefixed, level_tolerance, cell_budget_or
+  use kcreep_run, only: run_case
+  use kcreep_verdict, only: message_length
+  use kcreep_fastsim, only: fastsim_flexibilities
+  use kcreep_creep_matrix, only: creep_matrix
+  use kcreep_refine_estimate
+  use kcreep_refine_constants
+  use kcreep_staircase_normalisation, only: moment_reference_t, ellipse_reference, staircase_reference, &
+                                            referred_f, shape_defect
+  use kcreep_grid_transfer, only: transferred_traction
+  implicit none
+  private
+  public :: run_shape_levels, ellipse_base_levels, run_level, fit_levels, finish_result
+
+  real(real64), parameter :: pi = acos(-1.0_real64)
+
+contains
+
+  !> The ladder of an ellipse (problem%patch), or of the contact area
+  !> `region`; other_error: estimates of C11, C22, C23 the levels cannot
+  !> reduce (a contact area's normal grid), added to the ladder's own.
+  subroutine run_shape_levels(problem, result, status, region, other_error)
+    type(problem_t), intent(in) :: problem
+    type(result_t), intent(out) :: result
+    type(status_t), intent(inout) :: status
+    type(region_t), intent(in), optional :: region
+    real(real64), intent(in), optional :: other_error(3)
+    type(problem_t) :: level_problem
+    type(moment_reference_t) :: ref
+    type(moment_reference_t), allocatable :: parts(:)   !< a contact area's separate parts
+    integer, allocatable :: levels(:)              !< cells across (the ladder)
+    real(real64), allocatable :: fnorm(:, :, :)    !< (3, 3, level) f referred to the shape
+    real(real64), allocatable :: defect(:)         !< (level) the staircase's four-fold harmonic against the shape's
+    real(real64), allocatable :: guess(:, :)       !< the last level's tractions on this level's cells
+    character(len=message_length), allocatable :: warnings(:)
+    character(len=message_length) :: line
+    integer :: k, finest, first
+    real(real64) :: t(4), budget
+    logical :: long_in_y
+
+    allocate (fnorm(3, 3, 0), defect(0), warnings(0))
+    t = 0
+    level_problem = problem
+    call level_tolerance(level_problem)
+    budget = cell_budget_or(problem, level_cell_budget(problem%target_error))
+    long_in_y = .not. present(region) .and. ellipse_cells_long_in_y(problem%target_error, problem%scheme%name)
+    if (present(region)) then
+      ref = staircase_reference(region%reference)
+      parts = part_references(region%reference)
+      levels = max(min_base_cells, nint(base_levels * min(1.0_real64, sqrt(budget / region_cells(region, &
+                                                                              base_levels(size(base_levels)))))))
+    else
+      levels = ellipse_base_levels(problem%patch%semi_a, problem%patch%semi_b, budget, long_in_y)
+    end if
+    k = 1
+    do
+      call level_patch(levels(k), level_problem%patch, status)
+      if (status%failed()) return
+      if (.not. present(region)) ref = ellipse_reference(level_problem%patch)
+      ! the last level's tractions carried over: GMRES starts closer (fewer
+      ! iterations); unallocated on the first level, where it counts as absent
+      if (k > 1) guess = transferred_traction(result%patch, result%traction, level_problem%patch)
+      call run_level(level_problem, levels(k), result, fnorm, warnings, t, status, guess, ref, parts)
+      if (status%failed()) return
+      defect = [defect, shape_defect(level_problem%patch, ref)]
+      if (k == size(levels) .and. k >= ellipse_fit_min) then
+        first = max(1, k - ellipse_fit_width + 1)
+        call fit_levels(1.0_real64 / levels(first:k), fnorm(:, :, first:k), result, shape=defect(first:k))
+        if (present(other_error)) result%err = result%err + other_error
+        if (within_target(result%err, coefficient_targets(problem%target_error))) exit
+        finest = next_level(levels(k))
+        line = stop_reason(finest)
+        if (len_trim(line) > 0) then
+          warnings = [warnings, line]
+          exit
+        end if
+        levels = [levels, finest]
+      end if
+      k = k + 1
+    end do
+    if (present(region)) result%c = sqrt(region%reference%area() / pi)
+    call finish_result(result, t)
+    result%warnings = warnings
+
+  contains
+
+    subroutine level_patch(cells, patch, status)
+      integer, intent(in) :: cells
+      type(patch_t), intent(out) :: patch
+      type(status_t), intent(inout) :: status
+      integer :: mx, my
+      if (present(region)) then
+        call region_level_patch(region, cells, patch, status)
+      else
+        call ellipse_level_grid(problem%patch%semi_a, problem%patch%semi_b, cells, mx, my, long_in_y)
+        call ellipse_patch(problem%patch%semi_a, problem%patch%semi_b, mx, my, patch, status)
+        if (.not. status%failed()) call place_like(patch, problem%patch)
+      end if
+    end subroutine level_patch
+
+    !> Why the ladder may not go on to a level of `cells` across ('' if it may).
+    function stop_reason(cells) result(why)
+      integer, intent(in) :: cells
+      character(len=message_length) :: why
+      integer :: mx, my
+      real(real64) :: patch_cells
+      why = ''
+      if (present(region)) then
+        patch_cells = region_cells(region, cells)
+      else
+        call ellipse_level_grid(problem%patch%semi_a, problem%patch%semi_b, cells, mx, my, long_in_y)
+        patch_cells = ellipse_fill * mx * my
+      end if
+      if (patch_cells > budget) &
+        why = 'error control: the next level, '//itoa(cells)//' cells across ('//itoa(nint(patch_cells))// &
+              ' cells), would exceed the budget of '//itoa(nint(budget))//' patch cells at target_error '// &
+              rtoa(problem%target_error)//', stopped at '//itoa(levels(size(levels)))// &
+              ' cells across (&solver cell_budget raises it)'
+    end function stop_reason
+
+  end subroutine run_shape_levels
+
+  !> What a contact area's level of `cells` across counts against the budget:
+  !> the cells of its grid (the area's bounding box), not only its patch
+  !> cells; the iterative solver's transforms run over the whole grid, and a
+  !> thin curved area (a flange contact) fills a small part of its box.
+  pure real(real64) function region_cells(region, cells)
+    type(region_t), intent(in) :: region
+    integer, intent(in) :: cells
+    real(real64) :: box(4)
+    box = region%reference%grid_box()
+    region_cells = (box(2) - box(1)) * (box(4) - box(3)) * (cells / region%diameter)**2
+  end function region_cells
+
+  !> An ellipse's base levels; a long one's scaled down so that the finest keeps to the budget.
+  pure function ellipse_base_levels(a, b, budget, long_in_y) result(levels)
+    real(real64), intent(in) :: a, b, budget
+    logical, intent(in) :: long_in_y
+    integer :: levels(size(base_levels)), mx, my
+    call ellipse_level_grid(a, b, base_levels(size(base_levels)), mx, my, long_in_y)
+    levels = max(min_base_cells, nint(base_levels * min(1.0_real64, sqrt(budget / (ellipse_fill * mx * my)))))
+  end function ellipse_base_levels
+
+  !> One level: solve, keep its f (referred to the shape when ref is given)
+  !> and its warnings; the result is the level's. guess: tractions to start
+  !> the iterative solver from.
+  subroutine run_level(level_problem, label, result, fnorm, warnings, t, status, guess, ref, parts)
+    type(problem_t), intent(in) :: level_problem
+    integer, intent(in) :: label
+    type(result_t), intent(inout) :: result
+    real(real64), allocatable, intent(inout) :: fnorm(:, :, :)
+    character(len=message_length), allocatable, intent(inout) :: warnings(:)
+    real(real64), intent(inout) :: t(4)
+    type(status_t), intent(inout) :: status
+    real(real64), intent(in), optional :: guess(:, :)
+    type(moment_reference_t), intent(in), optional :: ref
+    type(moment_reference_t), intent(in), optional :: parts(:)
+    real(real64), allocatable :: f(:, :, :)
+
+    call run_case(level_problem, result, status, guess=guess)
+    if (status%failed()) return
+    t = t + [result%t_assemble, result%t_factor, result%t_solve, result%t_total]
+    allocate (f(3, 3, size(fnorm, 3) + 1))
+    f(:, :, 1:size(fnorm, 3)) = fnorm
+    if (present(parts)) then
+      f(:, :, size(f, 3)) = referred_by_parts(level_problem, result, ref, parts)
+    else if (present(ref)) then
+      f(:, :, size(f, 3)) = referred_f(level_problem%patch, ref, level_problem%nu, result%f)
+    else
+      f(:, :, size(f, 3)) = result%f
+    end if
+    call move_alloc(f, fnorm)
+    call append_prefixed(warnings, 'level '//itoa(label)//' ('//itoa(level_problem%patch%mx)//' x '// &
+                         itoa(level_problem%patch%my)//'): ', result%warnings)
+  end subroutine run_level
+
+  !> The moment references of the separate parts of a contact area.
+  function part_references(area) result(refs)
+    type(patch_t), intent(in) :: area
+    type(moment_reference_t), allocatable :: refs(:)
+    integer :: part(area%n), n_parts, k
+    call connected_parts(area, part, n_parts)
+    allocate (refs(n_parts))
+    do k = 1, n_parts
+      refs(k) = staircase_reference(part_patch(area, part == k))
+    end do
+  end function part_references
+
+  !> A level's f referred to the shape part by part when the shape has
+  !> several (two lobes wander independently from level to level): each
+  !> part's share of f (the sum of its cells' tractions) referred to its own
+  !> part of the shape, the part with the nearest centre; the whole level
+  !> referred to the whole shape when the parts do not match one to one.
+  function referred_by_parts(level_problem, result, ref, parts) result(f)
+    type(problem_t), intent(in) :: level_problem
+    type(result_t), intent(in) :: result
+    type(moment_reference_t), intent(in) :: ref, parts(:)
+    real(real64) :: f(3, 3)
+    type(patch_t) :: piece
+    integer :: part(level_problem%patch%n), n_parts, k, j, i, n
+    integer, allocatable :: cells(:)
+    logical :: used(size(parts))
+    real(real64) :: centre(2)
+    associate (patch => level_problem%patch)
+      call connected_parts(patch, part, n_parts)
+      if (size(parts) < 2 .or. n_parts /= size(parts)) then
+        f = referred_f(patch, ref, level_problem%nu, result%f)
+        return
+      end if
+      n = patch%n
+      f = 0
+      used = .false.
+      do k = 1, n_parts
+        piece = part_patch(patch, part == k)
+        centre = piece%centroid()
+        j = minloc([(norm2(parts(i)%centre - centre), i=1, size(parts))], 1, mask=.not. used)
+        used(j) = .true.
+        cells = pack([(i, i=1, n)], part == k)
+        f = f + referred_f(piece, parts(j), level_problem%nu, &
+                           creep_matrix(piece, result%traction([cells, n + cells], :), level_problem%requested))
+      end do
+    end associate
+  end function referred_by_parts
+
+  !> The fit of every f entry: the result gets the limits, err those of C11, C22, C23.
+  subroutine fit_levels(h, fnorm, result, split, shape, margin)
+    real(real64), intent(in) :: h(:), fnorm(:, :, :)
+    type(result_t), intent(inout) :: result
+    logical, intent(in), optional :: split   !< levels of a split patch (split_level_estimate)
+    real(real64), intent(in), optional :: shape(:)   !< the staircase's harmonic per level (ellipse_level_estimate)
+    logical, intent(in), optional :: margin  !< f0 + K h with the order's margin (line_level_estimate)
+    real(real64) :: limit, rel
+    integer :: i, j
+    result%err = ieee_value(1.0_real64, ieee_quiet_nan)
+    do j = 1, 3
+      do i = 1, 3
+        if (any(ieee_is_nan(fnorm(i, j, :)))) then
+          result%f(i, j) = ieee_value(1.0_real64, ieee_quiet_nan)
+          cycle
+        end if
+        if (present(split)) then
+          call split_level_estimate(h, fnorm(i, j, :), limit, rel)
+        else if (present(shape)) then
+          call ellipse_level_estimate(h, fnorm(i, j, :), shape, limit, rel)
+        else if (present(margin)) then
+          call line_level_estimate(h, fnorm(i, j, :), limit, rel)
+        else
+          call level_estimate(h, fnorm(i, j, :), limit, rel)
+        end if
+        result%f(i, j) = limit
+        if (i == 1 .and. j == 1) result%err(1) = rel
+        if (i == 2 .and. j == 2) result%err(2) = rel
+        if (i == 2 .and. j == 3) result%err(3) = rel
+      end do
+    end do
+  end subroutine fit_levels
+
+  !> result%f holds the limits referred to the shape (an ellipse: the ellipse
+  !> itself, not its staircase; a mask: its cells). The C's and summed times.
+  subroutine finish_result(result, t)
+    type(result_t), intent(inout) :: result
+    real(real64), intent(in) :: t(4)
+    result%cn = [result%f(1, 1) / (result%g * result%c**2), result%f(2, 2) / (result%g * result%c**2), &
+                 result%f(2, 3) / (result%g * result%c**3)]
+    ! FASTSIM's flexibilities of the finest patch with the extrapolated f
+    result%fastsim = fastsim_flexibilities(result%patch, result%f(1, 1), result%f(2, 2), result%f(2, 3))
+    result%t_assemble = t(1)
+    result%t_factor = t(2)
+    result%t_solve = t(3)
+    result%t_total = t(4)
+  end subroutine finish_result
+
+end module kcreep_level_ladder
