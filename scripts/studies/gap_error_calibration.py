@@ -40,6 +40,10 @@ def arguments():
     p.add_argument("--samples", default=os.path.join(ROOT, "..", "shared", "contact-samples"))
     p.add_argument("--out", default=None)
     p.add_argument("--quick", action="store_true")
+    p.add_argument("--check", action="store_true",
+                   help="the Hertzian gaps only; exit 1 unless every default-run estimate bounds its error "
+                        "(allowing the reference's u), C11, C22 errors <= 1e-3, C23 <= 3e-3, and the median "
+                        "estimate / error <= 3 (ctest -L calibration)")
     return p
 
 
@@ -249,7 +253,9 @@ def main(args):
     samples = args.samples if os.path.isdir(args.samples) else None
     with tempfile.TemporaryDirectory() as work:
         runner = Runner(os.path.abspath(args.kcreep), work)
-        rows = hertz_cases(runner, args.quick) + nonelliptic_cases(runner, samples, args.quick)
+        rows = hertz_cases(runner, args.quick)
+        if not args.check:
+            rows += nonelliptic_cases(runner, samples, args.quick)
     for r in rows:
         r["error"] = abs(r["value"] / r["ref"] - 1)
         r["bounded"] = r["error"] <= r["estimate"]
@@ -286,12 +292,34 @@ def main(args):
     for (case, est), s in seen.items():
         cells = " | ".join(f"{100 * r['error']:.3f} / {100 * r['estimate']:.3f} %" for r in s)
         print(f"| {case} | {est} | {cells} | {s[0]['verdict']} | {s[0]['wall']:.2f} |")
+    if args.check:
+        sys.exit(check(rows))
     hz = [r for r in rows if r["case"].startswith("hertz") and r["estimator"].startswith("levels")
           and r["coefficient"] == "C11"]
     if hz:
         ae = [abs(r["area_error"]) for r in hz]
         print(f"\ncontact area of the default run against pi a b (Hertz): median {100 * np.median(ae):.3f} %, "
               f"worst {100 * max(ae):.3f} %")
+
+
+def check(rows):
+    """The default run's honesty and accuracy on the Hertzian gaps (issue 29's bar)."""
+    dflt = [r for r in rows if r["case"].startswith("hertz") and r["estimator"] == "levels (default)"]
+    failures = []
+    for r in dflt:
+        limit = 3e-3 if r["coefficient"] == "C23" else 1e-3
+        if not r["bounded_u"]:
+            failures.append(f"{r['case']} {r['coefficient']}: error {r['error']:.2e} above estimate {r['estimate']:.2e}")
+        if r["error"] > limit:
+            failures.append(f"{r['case']} {r['coefficient']}: error {r['error']:.2e} above {limit:g}")
+    ratio = float(np.median([r["estimate"] / max(r["error"], 1e-12) for r in dflt]))
+    if ratio > 3:
+        failures.append(f"median estimate / error {ratio:.2f} above 3")
+    print(f"\ncheck: {len(dflt)} coefficient cases, median estimate / error {ratio:.2f}, "
+          f"{sum(r['verdict'] == 'ok' for r in dflt) // 3} of {len(dflt) // 3} runs ok")
+    for f in failures:
+        print("FAIL " + f)
+    return 1 if failures else 0
 
 
 if __name__ == "__main__":

@@ -11,8 +11,9 @@
 !> edge of a contact area p^2 falls linearly to zero (Hertz: p^2 = p0^2 (1 -
 !> r^2/a^2)), so the boundary is placed inside the cells, to second order,
 !> rather than on cell edges. Outside the contact cells p^2 is continued
-!> linearly from the two contact cells behind it along each grid direction
-!> (mirrored where only one is there). A level cell belongs to the patch
+!> from the contact cells behind it along each of the 8 grid directions:
+!> by the parabola through three (exact for Hertz's p^2 along any line),
+!> the line through two, or mirrored where only one is there. A level cell belongs to the patch
 !> when its centre lies inside.
 module kcreep_region
   use, intrinsic :: iso_fortran_env, only: real64
@@ -59,9 +60,10 @@ contains
     region%diameter = level_size(region%reference)
   end function sampled_region
 
-  !> Outside the contact cells (level = 0): the level continued linearly
-  !> from the contact cells behind it along the 8 grid directions (the mean
-  !> over those directions), at most -tiny; farther cells get -max(level).
+  !> Outside the contact cells (level = 0): the level continued from the
+  !> contact cells behind it along the 8 grid directions (quadratically,
+  !> linearly or mirrored; the mean over those directions), at most -tiny;
+  !> farther cells get -max(level).
   pure subroutine continue_outside(level)
     real(real64), intent(inout) :: level(:, :)
     real(real64), allocatable :: inside(:, :)
@@ -81,7 +83,10 @@ contains
             if (di == 0 .and. dj == 0) cycle
             if (.not. in_contact(i + di, j + dj)) cycle
             n = n + 1
-            if (in_contact(i + 2 * di, j + 2 * dj)) then
+            if (in_contact(i + 3 * di, j + 3 * dj) .and. in_contact(i + 2 * di, j + 2 * dj)) then
+              total = total + 3 * inside(i + di, j + dj) - 3 * inside(i + 2 * di, j + 2 * dj) + &
+                      inside(i + 3 * di, j + 3 * dj)
+            else if (in_contact(i + 2 * di, j + 2 * dj)) then
               total = total + 2 * inside(i + di, j + dj) - inside(i + 2 * di, j + 2 * dj)
             else
               total = total - inside(i + di, j + dj)
