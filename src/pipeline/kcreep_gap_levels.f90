@@ -1,16 +1,14 @@
 !> Error control of a patch found by the normal contact problem (shape 'gap').
 !>
-!> The patch is the set of cells with positive pressure, so a finer grid is a
-!> finer geometry: the gap is sampled on smaller cells (the polynomial
-!> evaluated, a gap given on a grid resampled by kcreep_gap gap_resampled),
-!> the normal problem solved again, and the creep coefficients computed on
-!> the contact area found. Splitting the cells of one contact area would only
-!> refine its staircase, not its boundary.
+!> The contact area is where the pressure is positive; its boundary is only
+!> resolved by the normal problem on a finer grid (the polynomial evaluated,
+!> a gap given on a grid resampled by kcreep_gap gap_resampled). Splitting the
+!> cells of one contact area would only refine its staircase.
 !>
 !> Error control (target_error > 0 and refine_grid): the normal problem on
 !> the given grid finds where the contact area is and its hydraulic diameter
 !> 4 area / perimeter (contact_diameter); then again on square cells of
-!> gap_normal_cells across that diameter over the area's bounding box
+!> gap_normal_cells across its level_size (kcreep_region) over the area's bounding box
 !> widened by a margin, and on cells twice that size. The tangential
 !> levels (kcreep_level_ladder, the ellipses' ladder) sample the fine
 !> contact area, each referred to it by its second moments, so every level
