@@ -27,14 +27,17 @@ module kcreep_region
   !> Cells of the fine grid around its contact cells, for the continued p^2.
   integer, parameter :: pad = 2
   !> The region's reference staircase (moments, area) is sampled on cells
-  !> this many times smaller than the fine grid's.
+  !> up to this many times smaller than the fine grid's, on at most
+  !> max_reference_cells grid cells (memory and time: 1e6 cells are about
+  !> 50 ms).
   integer, parameter :: reference_split = 4
+  real(real64), parameter :: max_reference_cells = 1e6_real64
 
   type :: region_t
     integer :: mx = 0, my = 0                    !< the fine grid, padded
     real(real64) :: x0 = 0, y0 = 0, h = 0        !< centre of its cell (1, 1); square cells
     real(real64), allocatable :: level(:, :)     !< (mx, my) p^2, continued below zero outside
-    type(patch_t) :: reference                   !< the region on cells h / reference_split
+    type(patch_t) :: reference                   !< the region on cells h / 4 (or larger, max_reference_cells)
     real(real64) :: diameter = 0                 !< the size levels are counted across (level_size)
   end type region_t
 
@@ -47,6 +50,7 @@ contains
     real(real64), intent(in) :: pressure(:, :)
     type(status_t), intent(inout) :: status
     type(region_t) :: region
+    integer :: split
     region%mx = fine%mx + 2 * pad
     region%my = fine%my + 2 * pad
     region%h = fine%dx
@@ -55,7 +59,8 @@ contains
     allocate (region%level(region%mx, region%my), source=0.0_real64)
     where (pressure > 0) region%level(pad + 1:pad + fine%mx, pad + 1:pad + fine%my) = pressure**2
     call continue_outside(region%level)
-    call region_patch(region, region%h / reference_split, fine%grid_box(), region%reference, status)
+    split = max(1, min(reference_split, floor(sqrt(max_reference_cells / (real(fine%mx, real64) * fine%my)))))
+    call region_patch(region, region%h / split, fine%grid_box(), region%reference, status)
     if (status%failed()) return
     region%diameter = level_size(region%reference)
   end function sampled_region
