@@ -79,11 +79,10 @@ contains
     type(patch_t), intent(in) :: patch
     real(real64), intent(in) :: centre(2)
     real(real64), intent(out) :: a_s, b_s
-    real(real64) :: ixx, iyy
-    ixx = sum((patch%cell_x(patch%ix) - centre(1))**2) + patch%n * patch%dx**2 / 12
-    iyy = sum((patch%cell_y(patch%iy) - centre(2))**2) + patch%n * patch%dy**2 / 12
-    a_s = 2 * sqrt(ixx / patch%n)
-    b_s = 2 * sqrt(iyy / patch%n)
+    real(real64) :: m(2)
+    m = patch%second_moments(centre)
+    a_s = 2 * sqrt(m(1) / patch%n)
+    b_s = 2 * sqrt(m(2) / patch%n)
   end subroutine moment_semi_axes
 
   !> The staircase's four-fold harmonic in the ellipse's own coordinates

@@ -27,6 +27,7 @@ module kcreep_patch
     integer, allocatable :: ix(:), iy(:)      !< grid indices of patch cell k
   contains
     procedure :: cell_x, cell_y, area, equivalent_radius, centroid, grid_box, cells_box, ellipse_centre
+    procedure :: second_moments
     procedure :: mirror_symmetric_in_x, mirror_symmetric_in_y
   end type patch_t
 
@@ -232,6 +233,17 @@ contains
     real(real64) :: xy(2)
     xy = [self%x0 - (-self%semi_a + self%dx / 2), self%y0 - (-self%semi_b + self%dy / 2)]
   end function ellipse_centre
+
+  !> Second moments of area about centre in cell units (sum over the cells of
+  !> (x - xc)^2 and (y - yc)^2, each cell counted with its own dx^2/12, dy^2/12):
+  !> times dx dy they are Ixx, Iyy.
+  pure function second_moments(self, centre) result(m)
+    class(patch_t), intent(in) :: self
+    real(real64), intent(in) :: centre(2)
+    real(real64) :: m(2)
+    m = [sum((self%cell_x(self%ix) - centre(1))**2) + self%n * self%dx**2 / 12, &
+         sum((self%cell_y(self%iy) - centre(2))**2) + self%n * self%dy**2 / 12]
+  end function second_moments
 
   !> Centre of area of the patch cells.
   pure function centroid(self) result(xy)

@@ -180,12 +180,9 @@ contains
   !> as many cells across its width on the hydraulic diameter's count).
   pure real(real64) function level_size(area)
     type(patch_t), intent(in) :: area
-    real(real64) :: x(area%n), y(area%n), ixx, iyy
-    x = area%cell_x(area%ix)
-    y = area%cell_y(area%iy)
-    ixx = sum((x - sum(x) / area%n)**2) / area%n + area%dx**2 / 12
-    iyy = sum((y - sum(y) / area%n)**2) / area%n + area%dy**2 / 12
-    level_size = min(contact_diameter(area), 4 * sqrt(min(ixx, iyy)))
+    real(real64) :: m(2)
+    m = area%second_moments(area%centroid())
+    level_size = min(contact_diameter(area), 4 * sqrt(minval(m) / area%n))
   end function level_size
 
   !> The size the levels are counted across: 4 area / perimeter of the contact

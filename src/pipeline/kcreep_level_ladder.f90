@@ -247,12 +247,11 @@ contains
   end function referred_by_parts
 
   !> The fit of every f entry: the result gets the limits, err those of C11, C22, C23.
-  subroutine fit_levels(h, fnorm, result, split, shape, margin)
+  subroutine fit_levels(h, fnorm, result, split, shape)
     real(real64), intent(in) :: h(:), fnorm(:, :, :)
     type(result_t), intent(inout) :: result
     logical, intent(in), optional :: split   !< levels of a split patch (split_level_estimate)
     real(real64), intent(in), optional :: shape(:)   !< the staircase's harmonic per level (ellipse_level_estimate)
-    logical, intent(in), optional :: margin  !< f0 + K h with the order's margin (line_level_estimate)
     real(real64) :: limit, rel
     integer :: i, j
     result%err = ieee_value(1.0_real64, ieee_quiet_nan)
@@ -266,8 +265,6 @@ contains
           call split_level_estimate(h, fnorm(i, j, :), limit, rel)
         else if (present(shape)) then
           call ellipse_level_estimate(h, fnorm(i, j, :), shape, limit, rel)
-        else if (present(margin)) then
-          call line_level_estimate(h, fnorm(i, j, :), limit, rel)
         else
           call level_estimate(h, fnorm(i, j, :), limit, rel)
         end if

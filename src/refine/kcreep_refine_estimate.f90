@@ -27,7 +27,7 @@ module kcreep_refine_estimate
   public :: default_target_error, c23_target_factor, min_estimate_cells, nominal_ellipse_cells
   public :: coefficient_targets, ellipse_level_grid, ellipse_cells_long_in_y, next_level, level_cell_budget, student_t95
   public :: cell_budget_allowed, cell_budget_range, level_solver_tolerance
-  public :: first_order_fit, level_estimate, ellipse_level_estimate, line_level_estimate, split_level_estimate, basis_fit
+  public :: first_order_fit, level_estimate, ellipse_level_estimate, split_level_estimate, basis_fit
   public :: single_grid_estimate, ellipse_fit_min, ellipse_fit_width
   public :: split_grid_estimate, within_target, uncertain_flag
 
@@ -204,19 +204,6 @@ contains
     call three_column_fit(h, f, shape, limit, se)
     rel_error = (student_t95(size(h) - 3) * se + order_margin * abs(limit - f(minloc(h, 1)))) / abs(limit)
   end subroutine ellipse_level_estimate
-
-  !> Limit and relative 95 % error estimate from a contact area's levels
-  !> (kcreep_level_ladder): the fit f0 + K h, the estimate t95 x the standard
-  !> error of f0 plus order_margin x |f0 - f(finest)|, as for an ellipse but
-  !> without the harmonic column (a contact area's own harmonic follows the
-  !> cell size, so the column would be nearly a multiple of h).
-  pure subroutine line_level_estimate(h, f, limit, rel_error)
-    real(real64), intent(in) :: h(:), f(:)
-    real(real64), intent(out) :: limit, rel_error
-    real(real64) :: slope, se
-    call first_order_fit(h, f, limit, slope, se)
-    rel_error = (student_t95(size(h) - 2) * se + order_margin * abs(limit - f(minloc(h, 1)))) / abs(limit)
-  end subroutine line_level_estimate
 
   !> Least-squares fit f = f0 + K h + L g(h) with g(h) = h**1.5 (kind 1) or
   !> h log h (kind 2); std_error of f0 (NaN without degrees of freedom left).
