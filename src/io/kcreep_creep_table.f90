@@ -7,7 +7,7 @@ module kcreep_creep_table
                     flexibility_rule_name
   implicit none
   private
-  public :: creep_lines, creep_map_lines, creep_columns
+  public :: creep_lines, creep_map_lines, creep_columns, traction_map_lines
 
   character(len=*), parameter :: creep_columns = 'xi eta phi fx fy mz fn adhesion source fx_mufn fy_mufn'
 
@@ -58,20 +58,40 @@ contains
     type(creep_point_t), intent(in) :: points(:)
     type(creep_map_t), intent(in) :: maps(:)
     character(len=200), allocatable :: lines(:)
+    character(len=200) :: titles(size(points))
+    integer :: k
+    do k = 1, size(points)
+      write (titles(k), '(a, i0, a, 3es14.6, a)') '# point ', k, ': xi eta phi =', points(k)%creep, &
+        ', source '//trim(source_names(points(k)%source))
+    end do
+    lines = traction_map_lines(patch, pn, maps, &
+                               '# kcreep FASTSIM traction and stick/slip maps: one block per creepage point and source', &
+                               titles)
+  end function creep_map_lines
+
+  !> Traction and stick/slip maps as text (FASTSIM's and exact rolling's):
+  !> the header, the columns, then per map its title line and one row per
+  !> patch cell: ix iy x y pn px py state (state 1 adhesion, 2 slip); blocks
+  !> separated by two blank lines.
+  function traction_map_lines(patch, pn, maps, header, titles) result(lines)
+    type(patch_t), intent(in) :: patch
+    real(real64), intent(in) :: pn(:, :)
+    type(creep_map_t), intent(in) :: maps(:)
+    character(len=*), intent(in) :: header, titles(:)
+    character(len=200), allocatable :: lines(:)
     integer :: k, c, n, ix, iy
 
-    allocate (lines(2 + size(points) * (patch%n + 1) + 2 * max(0, size(points) - 1)))
-    lines(1) = '# kcreep FASTSIM traction and stick/slip maps: one block per creepage point and source'
+    allocate (lines(2 + size(titles) * (patch%n + 1) + 2 * max(0, size(titles) - 1)))
+    lines(1) = header
     lines(2) = '# ix iy x y pn px py state   (state 1 adhesion, 2 slip; blocks separated by two blank lines)'
     n = 2
-    do k = 1, size(points)
+    do k = 1, size(titles)
       if (k > 1) then          ! two blank lines: gnuplot's 'index k-1' selects block k
         lines(n + 1:n + 2) = ''
         n = n + 2
       end if
       n = n + 1
-      write (lines(n), '(a, i0, a, 3es14.6, a)') '# point ', k, ': xi eta phi =', points(k)%creep, &
-        ', source '//trim(source_names(points(k)%source))
+      lines(n) = titles(k)
       do c = 1, patch%n
         ix = patch%ix(c)
         iy = patch%iy(c)
@@ -80,6 +100,6 @@ contains
           pn(ix, iy), maps(k)%px(ix, iy), maps(k)%py(ix, iy), maps(k)%state(ix, iy)
       end do
     end do
-  end function creep_map_lines
+  end function traction_map_lines
 
 end module kcreep_creep_table

@@ -5,6 +5,7 @@ module kcreep_rolling_table
   use kcreep_patch, only: patch_t
   use kcreep, only: rolling_request_t, rolling_point_t
   use kcreep, only: creep_map_t
+  use kcreep_creep_table, only: traction_map_lines
   implicit none
   private
   public :: rolling_lines, rolling_map_lines, rolling_columns, rolling_notes, rolling_row
@@ -66,27 +67,13 @@ contains
     type(rolling_point_t), intent(in) :: points(:)
     type(creep_map_t), intent(in) :: maps(:)
     character(len=200), allocatable :: lines(:)
-    integer :: k, c, n, ix, iy
-
-    allocate (lines(2 + size(maps) * (patch%n + 1) + 2 * max(0, size(maps) - 1)))
-    lines(1) = '# kcreep exact rolling: traction and stick/slip maps, one block per creepage point'
-    lines(2) = '# ix iy x y pn px py state   (state 1 adhesion, 2 slip; blocks separated by two blank lines)'
-    n = 2
+    character(len=200) :: titles(size(maps))
+    integer :: k
     do k = 1, size(maps)
-      if (k > 1) then
-        lines(n + 1:n + 2) = ''
-        n = n + 2
-      end if
-      n = n + 1
-      write (lines(n), '(a, i0, a, 3es14.6)') '# point ', k, ': xi eta phi =', points(k)%creep
-      do c = 1, patch%n
-        ix = patch%ix(c)
-        iy = patch%iy(c)
-        n = n + 1
-        write (lines(n), '(2(i0, 1x), 5(es16.8, 1x), i0)') ix, iy, patch%cell_x(ix), patch%cell_y(iy), &
-          pn(ix, iy), maps(k)%px(ix, iy), maps(k)%py(ix, iy), maps(k)%state(ix, iy)
-      end do
+      write (titles(k), '(a, i0, a, 3es14.6)') '# point ', k, ': xi eta phi =', points(k)%creep
     end do
+    lines = traction_map_lines(patch, pn, maps, &
+                               '# kcreep exact rolling: traction and stick/slip maps, one block per creepage point', titles)
   end function rolling_map_lines
 
 end module kcreep_rolling_table
