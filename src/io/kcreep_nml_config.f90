@@ -11,7 +11,7 @@ module kcreep_nml_config
   use kcreep_contact_reader, only: contact_case_t
   implicit none
   private
-  public :: config_t, rolling_config_t, input_where, default_output_name, creepage_points
+  public :: config_t, rolling_config_t, input_where, default_output_name, creepage_points, pressure_source
 
   integer, parameter, public :: max_inline_rows = 2048, max_row_length = 2048
   integer, parameter, public :: max_creepages = 100000   !< creepage points of &fastsim (list and sweep together)
@@ -187,5 +187,61 @@ contains
       points(:, n_list + k) = t * sweep_direction
     end do
   end subroutine creepage_points
+
+  !> The pressure &fastsim or &rolling runs on: `given` ('auto', 'hertz',
+  !> 'contact', 'normal', 'file', 'parabolic'; any case) resolved for the
+  !> patch's shape and checked against it. With &wheel_rail every patch is a
+  !> normal problem: only 'auto' or 'normal', and no maps (`table`: the
+  !> table that has each patch's forces, for the message).
+  subroutine pressure_source(given, shape, wheel_rail, maps, table, pressure_input_file, where, pressure, status)
+    character(len=*), intent(in) :: given, shape, table, pressure_input_file, where
+    logical, intent(in) :: wheel_rail, maps
+    character(len=:), allocatable, intent(out) :: pressure
+    type(status_t), intent(inout) :: status
+    pressure = lower(trim(adjustl(given)))
+    if (wheel_rail) then
+      ! each patch of &wheel_rail is a normal problem: its pressure, its own geometric spin
+      if (pressure /= 'auto' .and. pressure /= 'normal') call fail(status, exit_bad_input, where// &
+          'pressure = '''//trim(adjustl(given))//''' with &wheel_rail (allowed: ''auto'' or ''normal'', each '// &
+          'patch''s normal pressure)')
+      if (maps) call fail(status, exit_bad_input, where//'maps with &wheel_rail: not available (the '//table// &
+          ' table has each patch''s forces)')
+      if (status%failed()) return
+      pressure = 'normal'
+    end if
+    if (pressure == 'auto') then
+      select case (shape)
+      case ('ellipse')
+        pressure = 'hertz'
+      case ('contact')
+        pressure = 'contact'
+      case ('gap')
+        pressure = 'normal'
+      case default
+        pressure = trim(merge('file     ', 'parabolic', len(pressure_input_file) > 0))
+      end select
+    end if
+    select case (pressure)
+    case ('hertz')
+      if (shape /= 'ellipse') call fail(status, exit_bad_input, where//'pressure = ''hertz'' needs '// &
+          '&patch shape = ''ellipse'' (for other patches: ''file'', ''contact'' or ''parabolic'')')
+    case ('contact')
+      if (shape /= 'contact') call fail(status, exit_bad_input, where//'pressure = ''contact'' needs '// &
+          '&patch shape = ''contact''')
+    case ('normal')
+      if (shape /= 'gap' .and. .not. wheel_rail) call fail(status, exit_bad_input, where// &
+          'pressure = ''normal'' needs &patch shape = ''gap'' (the normal problem gives the pressure)')
+    case ('file')
+      if (len(pressure_input_file) == 0) call fail(status, exit_bad_input, where//'pressure = ''file'' '// &
+          'needs pressure_input_file (the pressure per cell on the patch''s grid)')
+    case ('parabolic')
+    case default
+      call fail(status, exit_bad_input, where//'pressure = '''//pressure//''' (allowed: ''auto'', '// &
+                '''hertz'', ''contact'', ''normal'', ''file'', ''parabolic'')')
+    end select
+    if (status%failed()) return
+    if (len(pressure_input_file) > 0 .and. pressure /= 'file') call fail(status, exit_bad_input, where// &
+        'pressure_input_file is read with pressure = ''file'' only (pressure = '''//pressure//''')')
+  end subroutine pressure_source
 
 end module kcreep_nml_config

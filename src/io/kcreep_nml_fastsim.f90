@@ -4,7 +4,8 @@ module kcreep_nml_fastsim
   use kcreep_status, only: status_t, fail, exit_bad_input
   use kcreep_strings, only: itoa, rtoa, lower, resolve_path, folder_of
   use kcreep, only: source_names, flexibility_rule_of
-  use kcreep_nml_config, only: config_t, input_where, default_output_name, unset, max_creepages, creepage_points
+  use kcreep_nml_config, only: config_t, input_where, default_output_name, unset, max_creepages, creepage_points, &
+                               pressure_source
   implicit none
   private
   public :: fastsim_variables, fastsim_group_t, read_fastsim_group, apply_fastsim_group
@@ -168,54 +169,9 @@ contains
     end if
     cfg%fastsim%maps = grp%maps .or. len(cfg%creep_map_file) > 0
 
-    cfg%pressure = lower(trim(adjustl(grp%pressure)))
-    if (cfg%wheel_rail_on) then
-      ! each patch of &wheel_rail is a normal problem: its pressure, its own geometric spin
-      if (cfg%pressure /= 'auto' .and. cfg%pressure /= 'normal') call fail(status, exit_bad_input, where// &
-          'pressure = '''//trim(grp%pressure)//''' with &wheel_rail (allowed: ''auto'' or ''normal'', each '// &
-          'patch''s normal pressure)')
-      if (grp%maps .or. len(cfg%creep_map_file) > 0) call fail(status, exit_bad_input, where// &
-          'maps with &wheel_rail: not available (the creep table has each patch''s forces)')
-      if (status%failed()) return
-      cfg%pressure = 'normal'
-    end if
-    if (cfg%pressure == 'auto') then
-      select case (cfg%shape)
-      case ('ellipse')
-        cfg%pressure = 'hertz'
-      case ('contact')
-        cfg%pressure = 'contact'
-      case ('gap')
-        cfg%pressure = 'normal'
-      case default
-        cfg%pressure = trim(merge('file     ', 'parabolic', len(cfg%pressure_input_file) > 0))
-      end select
-    end if
-    select case (cfg%pressure)
-    case ('hertz')
-      if (cfg%shape /= 'ellipse') call fail(status, exit_bad_input, where//'pressure = ''hertz'' needs '// &
-          '&patch shape = ''ellipse'' (for other patches: ''file'', ''contact'' or ''parabolic'')')
-    case ('contact')
-      if (cfg%shape /= 'contact') call fail(status, exit_bad_input, where//'pressure = ''contact'' needs '// &
-          '&patch shape = ''contact''')
-    case ('normal')
-      if (cfg%shape /= 'gap' .and. .not. cfg%wheel_rail_on) call fail(status, exit_bad_input, where// &
-          'pressure = ''normal'' needs '// &
-          '&patch shape = ''gap'' (the normal problem gives the pressure)')
-    case ('file')
-      if (len(cfg%pressure_input_file) == 0) call fail(status, exit_bad_input, where//'pressure = ''file'' needs '// &
-          'pressure_input_file')
-    case ('parabolic')
-    case default
-      call fail(status, exit_bad_input, where//'pressure = '''//cfg%pressure//''' (allowed: ''auto'', '// &
-                '''hertz'', ''contact'', ''normal'', ''file'', ''parabolic'')')
-    end select
+    call pressure_source(grp%pressure, cfg%shape, cfg%wheel_rail_on, grp%maps .or. len(cfg%creep_map_file) > 0, &
+                         'creep', cfg%pressure_input_file, where, cfg%pressure, status)
     if (status%failed()) return
-    if (len(cfg%pressure_input_file) > 0 .and. cfg%pressure /= 'file') then
-      call fail(status, exit_bad_input, where//'pressure_input_file is read with pressure = ''file'' only (pressure = '''// &
-                cfg%pressure//''')')
-      return
-    end if
     if (grp%fn /= unset) then
       if (cfg%pressure /= 'hertz' .and. cfg%pressure /= 'parabolic') then  ! contact, normal, file: their own load
         call fail(status, exit_bad_input, where//'fn applies to pressure = ''hertz'' or ''parabolic'' only '// &

@@ -16,7 +16,7 @@ module kcreep_nml_rolling
   use kcreep_status, only: status_t, fail, exit_bad_input
   use kcreep_strings, only: itoa, rtoa, lower, resolve_path, folder_of
   use kcreep, only: default_rolling_tolerance
-  use kcreep_nml_config, only: rolling_config_t, max_rolling_points, creepage_points
+  use kcreep_nml_config, only: rolling_config_t, max_rolling_points, creepage_points, pressure_source
   implicit none
   private
   public :: rolling_variables, read_rolling_group
@@ -100,53 +100,9 @@ contains
 
     ! the pressure: &fastsim's sources and meanings
     config%pressure_input_file = resolve_path(trim(pressure_input_file), folder_of(path))
-    config%pressure = lower(trim(adjustl(pressure)))
-    if (wheel_rail) then
-      ! each patch of &wheel_rail is a normal problem: its pressure, its own geometric spin
-      if (config%pressure /= 'auto' .and. config%pressure /= 'normal') call fail(status, exit_bad_input, where// &
-          'pressure = '''//config%pressure//''' with &wheel_rail (allowed: ''auto'' or ''normal'', each '// &
-          'patch''s normal pressure)')
-      if (maps) call fail(status, exit_bad_input, where//'maps with &wheel_rail: not available (the rolling '// &
-          'table has each patch''s forces)')
-      if (status%failed()) return
-      config%pressure = 'normal'
-    end if
-    if (config%pressure == 'auto') then
-      select case (shape)
-      case ('ellipse')
-        config%pressure = 'hertz'
-      case ('contact')
-        config%pressure = 'contact'
-      case ('gap')
-        config%pressure = 'normal'
-      case default
-        config%pressure = trim(merge('file     ', 'parabolic', len(config%pressure_input_file) > 0))
-      end select
-    end if
-    select case (config%pressure)
-    case ('hertz')
-      if (shape /= 'ellipse') call fail(status, exit_bad_input, where//'pressure = ''hertz'' needs '// &
-          '&patch shape = ''ellipse'' (for other patches: ''file'', ''contact'' or ''parabolic'')')
-    case ('contact')
-      if (shape /= 'contact') call fail(status, exit_bad_input, where//'pressure = ''contact'' needs '// &
-          '&patch shape = ''contact''')
-    case ('normal')
-      if (shape /= 'gap' .and. .not. wheel_rail) call fail(status, exit_bad_input, where// &
-          'pressure = ''normal'' needs &patch shape = ''gap'' (the normal problem gives the pressure)')
-    case ('file')
-      if (len(config%pressure_input_file) == 0) call fail(status, exit_bad_input, where//'pressure = ''file'' '// &
-          'needs pressure_input_file (the pressure per cell on the patch''s grid)')
-    case ('parabolic')
-    case default
-      call fail(status, exit_bad_input, where//'pressure = '''//config%pressure//''' (allowed: ''auto'', '// &
-                '''hertz'', ''contact'', ''normal'', ''file'', ''parabolic'')')
-    end select
+    call pressure_source(pressure, shape, wheel_rail, maps, 'rolling', config%pressure_input_file, where, &
+                         config%pressure, status)
     if (status%failed()) return
-    if (len(config%pressure_input_file) > 0 .and. config%pressure /= 'file') then
-      call fail(status, exit_bad_input, where//'pressure_input_file is read with pressure = ''file'' only '// &
-                '(pressure = '''//config%pressure//''')')
-      return
-    end if
     if (fn /= unset) then
       if (config%pressure /= 'hertz' .and. config%pressure /= 'parabolic') then
         call fail(status, exit_bad_input, where//'fn applies to pressure = ''hertz'' or ''parabolic'' only '// &
