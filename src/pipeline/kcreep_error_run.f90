@@ -8,8 +8,8 @@
 !> a gap: kcreep_gap_levels (the normal problem on a fine grid, then the same
 !>   ladder on the contact area found).
 !> target > 0 on a mask: every cell is split into k x k subcells, k = 1, 2,
-!>   3, ... while the estimates miss the target and the split patch keeps to
-!>   the cell budget (run_mask_levels; the staircase is the patch the user
+!>   3, ... (at most max_split) while the estimates miss the target and the
+!>   split patch keeps to the cell budget (run_mask_levels; the staircase is the patch the user
 !>   gave, it is not smoothed).
 !> a given grid (ellipse with mx, my; CONTACT's grid) or target = 0: the grid
 !>   as given, and as estimate the difference to the grid with twice the cell
@@ -161,11 +161,12 @@ contains
   end subroutine controlled_finest_patch
 
   !> The finest split a patch of n cells may get: the largest k with n k^2
-  !> within the budget, at least split_min_levels (the fewest the fit needs).
+  !> within the budget, at most max_split, at least split_min_levels (the
+  !> fewest the fit needs).
   pure integer function finest_split(n, budget) result(k)
     integer, intent(in) :: n
     real(real64), intent(in) :: budget
-    k = max(split_min_levels, floor(sqrt(budget / max(n, 1))))
+    k = max(split_min_levels, min(max_split, floor(sqrt(budget / max(n, 1)))))
   end function finest_split
 
   !> Levels of a split patch: every cell split into k x k subcells, k = 1,
@@ -205,8 +206,12 @@ contains
       if (k >= split_min_levels) then
         first = max(1, k - split_fit_width + 1)
         call fit_levels([(1.0_real64 / j, j = first, k)], fnorm(:, :, first:k), result, split=.true.)
-        if (within_target(result%err, coefficient_targets(problem%target_error))) exit
-        if (k == last) then
+        if (within_target(result%err, coefficient_targets(problem%target_error), problem%requested)) exit
+        if (k == last .and. k == max_split) then
+          line = 'error control: stopped at '//itoa(k)//' x '//itoa(k)//' subcells per cell, the finest split '// &
+                 'kcreep tries (the estimates did not come down to the target)'
+          warnings = [warnings, line]
+        else if (k == last) then
           line = 'error control: splitting every cell in '//itoa(k + 1)//' x '//itoa(k + 1)//' would exceed '// &
                  'the budget of '//itoa(nint(budget))//' patch cells at target_error '// &
                  rtoa(problem%target_error)//', stopped at '//itoa(k)//' x '//itoa(k)// &

@@ -91,7 +91,7 @@ contains
         first = max(1, k - ellipse_fit_width + 1)
         call fit_levels(1.0_real64 / levels(first:k), fnorm(:, :, first:k), result, shape=defect(first:k))
         if (present(other_error)) result%err = result%err + other_error
-        if (within_target(result%err, coefficient_targets(problem%target_error))) exit
+        if (within_target(result%err, coefficient_targets(problem%target_error), problem%requested)) exit
         finest = next_level(levels(k))
         line = stop_reason(finest)
         if (len_trim(line) > 0) then

@@ -67,6 +67,13 @@ module kcreep_refine_constants
   !> estimate / error 3.8), 5 levels 88 of 90 (90 allowing the reference's
   !> u; median 3.1). scripts/studies/mask_accuracy_check.py --calibrate.
   integer, parameter :: split_min_levels = 4, split_fit_width = 5
+  !> The finest split the ladder tries, whatever the budget: the shipped
+  !> masks meet 1e-3 by k = 5 and 1e-4 within the budget's k; a mask that
+  !> has not met its target by 32 x 32 subcells will not on the next level.
+  !> Without it a tiny mask ran a level per k up to the budget: 5 cells
+  !> 1e11 from the spin centre went on for minutes through 178 levels (a
+  !> finding of scripts/fuzz.py).
+  integer, parameter :: max_split = 32
   !> The staircase's re-entrant corners make the split levels converge as
   !> f0 + K h + L h^p with p between 4/3 and 3/2 (the slope grows as h
   !> falls): the fit uses split_order; the estimate adds the largest change

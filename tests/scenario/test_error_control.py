@@ -147,4 +147,17 @@ kc.check(code == 0 and "degenerate" in t[0]["verdict"], f"the same grid as given
 code, out, err, t = kc.run(nml("semi_a=5, semi_b=1", solver="scheme='collocation', target_error=0.01"), folder, "colsq")
 kc.check(code == 0 and abs(t[0]["mx"] / t[0]["my"] - 5) < 0.1,
          f"collocation under error control: kcreep's own near-square grid ({t[0]['mx']} x {t[0]['my']})")
+# --- 6. the split ladder ends (scripts/fuzz.py findings): without phi, C23 has
+# no estimate and is not waited for; a mask that does not converge stops at
+# max_split = 32 instead of splitting one level at a time up to the budget
+code, out, err, t = kc.run(nml("shape='mask', mask_rows='.##.', '####', '.##.', dx=0.1, dy=0.1, x0=-0.15, y0=-0.1",
+                               solver="load_cases='xi eta'"), folder, "nophi")
+kc.check(code == 0 and t[0]["mx"] <= 4 * 8 and t[0]["err11"] <= 1e-3 and t[0]["err22"] <= 1e-3,
+         f"load cases xi eta: the ladder stops where C11, C22 meet the target (finest {t[0]['mx']} x {t[0]['my']}, "
+         f"was 141 x 141 splits)")
+code, out, err, t = kc.run(nml("shape='mask', mask_rows='#.#', '.#.', '#.#', dx=1, dy=1, x0=-1, y0=-99999999999"),
+                           folder, "far")
+kc.check(code == 0 and t[0]["mx"] == 3 * 32 and "finest split kcreep tries" in err and t[0]["verdict"] != "ok",
+         f"five cells 1e11 from the spin centre: stopped at 32 x 32 splits, uncertain and saying why "
+         f"({t[0]['mx']} x {t[0]['my']}, {t[0]['verdict']})")
 kc.finish()
