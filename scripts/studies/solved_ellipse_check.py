@@ -18,15 +18,18 @@ RATIOS = (0.1, 0.2, 0.5, 1.0, 2.0, 3.33, 5.0, 10.0)
 
 
 def main():
-    argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter).parse_args()
+    parser = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
+    parser.add_argument("--target", type=float, default=1e-3, help="target_error (default 1e-3)")
+    parser.add_argument("--ratios", type=float, nargs="+", default=RATIOS, help="a/b values (default 0.1 to 10)")
+    args = parser.parse_args()
     sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "python"))
     import numpy as np
     import kcreep
     print("| a/b | verdict | estimate C11 / C22 / C23 % | error against the table % | table u % | wall s |")
     print("|---|---|---|---|---|---|")
-    for ratio in RATIOS:
+    for ratio in args.ratios:
         start = time.perf_counter()
-        solved = kcreep.solve_ellipse(ratio, 1.0, nu=0.25, method="iterative")
+        solved = kcreep.solve_ellipse(ratio, 1.0, nu=0.25, method="iterative", target_error=args.target)
         wall = time.perf_counter() - start
         table = kcreep.solve_ellipse(ratio, 1.0, nu=0.25, method="table")
         error = np.abs(solved.c / table.c - 1)

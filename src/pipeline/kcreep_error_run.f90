@@ -7,10 +7,10 @@
 !>   default cells long in y on an ellipse long in y: ellipse_cells_long_in_y).
 !> a gap: kcreep_gap_levels (the normal problem on a fine grid, then the same
 !>   ladder on the contact area found).
-!> target > 0 on a mask: every cell is split into k x k subcells, k = 1, 2,
-!>   3, ... (at most max_split) while the estimates miss the target and the
-!>   split patch keeps to the cell budget (run_mask_levels; the staircase is the patch the user
-!>   gave, it is not smoothed).
+!> target > 0 on a mask: the same ladder, every cell split into k x k
+!>   subcells, k = 1, 2, 3, ... (at most max_split) while the estimates miss
+!>   the target and the split patch keeps to the cell budget (the staircase
+!>   is the patch the user gave, it is not smoothed).
 !> a given grid (ellipse with mx, my; CONTACT's grid) or target = 0: the grid
 !>   as given, and as estimate the difference to the grid with twice the cell
 !>   size (ellipse) or half the cell size (mask, CONTACT), see
@@ -30,7 +30,7 @@ module kcreep_error_run
   use kcreep_refine_constants
   use kcreep_staircase_normalisation, only: ellipse_normalised
   use kcreep_gap_levels, only: run_gap_patch
-  use kcreep_level_ladder, only: run_shape_levels, ellipse_base_levels, run_level, fit_levels, finish_result
+  use kcreep_level_ladder, only: run_shape_levels, ellipse_base_levels, finest_split
   use kcreep_grid_transfer, only: transferred_traction
   implicit none
   private
@@ -54,11 +54,7 @@ contains
     if (problem%normal%active) then
       call run_gap_patch(problem, result, status, cache)   ! the geometry is refined: kcreep_gap_levels
     else if (problem%target_error > 0 .and. problem%refine_grid) then
-      if (problem%patch%kind == 'ellipse') then
-        call run_shape_levels(problem, result, status)
-      else
-        call run_mask_levels(problem, result, status)
-      end if
+      call run_shape_levels(problem, result, status)   ! an ellipse's levels, or a mask split k x k
     else
       call run_single(problem, result, status, cache)
     end if
@@ -159,69 +155,5 @@ contains
       call refined_patch(problem%patch, used, finest, status)
     end if
   end subroutine controlled_finest_patch
-
-  !> The finest split a patch of n cells may get: the largest k with n k^2
-  !> within the budget, at most max_split, at least split_min_levels (the
-  !> fewest the fit needs).
-  pure integer function finest_split(n, budget) result(k)
-    integer, intent(in) :: n
-    real(real64), intent(in) :: budget
-    k = max(split_min_levels, min(max_split, floor(sqrt(budget / max(n, 1)))))
-  end function finest_split
-
-  !> Levels of a split patch: every cell split into k x k subcells, k = 1,
-  !> 2, 3, ... (the staircase is the patch the user gave; it is not
-  !> smoothed), each fit (split_level_estimate) through the finest
-  !> split_fit_width levels from split_min_levels on, until the estimates
-  !> meet the target or the next split would exceed the cell budget.
-  subroutine run_mask_levels(problem, result, status)
-    type(problem_t), intent(in) :: problem
-    type(result_t), intent(out) :: result
-    type(status_t), intent(inout) :: status
-    type(problem_t) :: level_problem
-    real(real64), allocatable :: fnorm(:, :, :), guess(:, :)
-    character(len=message_length), allocatable :: warnings(:)
-    character(len=message_length) :: line
-    integer :: k, last, first, j
-    real(real64) :: t(4), budget
-
-    allocate (fnorm(3, 3, 0), warnings(0))
-    t = 0
-    level_problem = problem
-    call level_tolerance(level_problem)
-    budget = cell_budget_or(problem, level_cell_budget(problem%target_error))
-    ! the fit amplifies the levels' solver error: a tighter residual (split_tolerance_share)
-    if (.not. problem%solve%tolerance_given) level_problem%solve%tolerance = &
-      min(level_problem%solve%tolerance, split_tolerance_share * problem%target_error)
-    last = finest_split(problem%patch%n, budget)
-    do k = 1, last
-      if (k > 1) then
-        call refined_patch(problem%patch, k, level_problem%patch, status)
-        if (status%failed()) return
-        ! the last level's tractions carried over: GMRES starts closer
-        guess = transferred_traction(result%patch, result%traction, level_problem%patch)
-      end if
-      call run_level(level_problem, k, result, fnorm, warnings, t, status, guess)
-      if (status%failed()) return
-      if (k >= split_min_levels) then
-        first = max(1, k - split_fit_width + 1)
-        call fit_levels([(1.0_real64 / j, j = first, k)], fnorm(:, :, first:k), result, split=.true.)
-        if (within_target(result%err, coefficient_targets(problem%target_error), problem%requested)) exit
-        if (k == last .and. k == max_split) then
-          line = 'error control: stopped at '//itoa(k)//' x '//itoa(k)//' subcells per cell, the finest split '// &
-                 'kcreep tries (the estimates did not come down to the target)'
-          warnings = [warnings, line]
-        else if (k == last) then
-          line = 'error control: splitting every cell in '//itoa(k + 1)//' x '//itoa(k + 1)//' would exceed '// &
-                 'the budget of '//itoa(nint(budget))//' patch cells at target_error '// &
-                 rtoa(problem%target_error)//', stopped at '//itoa(k)//' x '//itoa(k)// &
-                 ' (&solver cell_budget raises it)'
-          warnings = [warnings, line]
-        end if
-      end if
-    end do
-    call finish_result(result, t)
-    result%warnings = warnings
-  end subroutine run_mask_levels
 
 end module kcreep_error_run

@@ -13,8 +13,10 @@
 !> f0 + K h + B shape, the shape column the staircase's four-fold harmonic
 !> against the shape's) runs through the finest ellipse_fit_width levels.
 !>
-!> Masks are split k x k instead (kcreep_error_run run_mask_levels) and share
-!> run_level, fit_levels and finish_result.
+!> A mask's levels are the mask itself with every cell split k x k, k = 1,
+!> 2, 3, ... (the staircase is the patch the user gave: it is not smoothed
+!> and needs no reference), fitted by split_level_estimate through the
+!> finest split_fit_width levels, up to the budget or max_split.
 module kcreep_level_ladder
   use, intrinsic :: iso_fortran_env, only: real64
   use, intrinsic :: ieee_arithmetic, only: ieee_value, ieee_quiet_nan, ieee_is_nan
@@ -32,17 +34,19 @@ module kcreep_level_ladder
   use kcreep_staircase_normalisation, only: moment_reference_t, ellipse_reference, staircase_reference, &
                                             referred_f, shape_defect
   use kcreep_grid_transfer, only: transferred_traction
+  use kcreep_extrapolation, only: refined_patch
   implicit none
   private
-  public :: run_shape_levels, ellipse_base_levels, run_level, fit_levels, finish_result
+  public :: run_shape_levels, ellipse_base_levels, finest_split
 
   real(real64), parameter :: pi = acos(-1.0_real64)
 
 contains
 
-  !> The ladder of an ellipse (problem%patch), or of the contact area
-  !> `region`; other_error: estimates of C11, C22, C23 the levels cannot
-  !> reduce (a contact area's normal grid), added to the ladder's own.
+  !> The ladder of an ellipse (problem%patch), of the contact area `region`,
+  !> or of a mask (problem%patch split k x k); other_error: estimates of
+  !> C11, C22, C23 the levels cannot reduce (a contact area's normal grid),
+  !> added to the ladder's own.
   subroutine run_shape_levels(problem, result, status, region, other_error)
     type(problem_t), intent(in) :: problem
     type(result_t), intent(out) :: result
@@ -52,23 +56,35 @@ contains
     type(problem_t) :: level_problem
     type(moment_reference_t) :: ref
     type(moment_reference_t), allocatable :: parts(:)   !< a contact area's separate parts
-    integer, allocatable :: levels(:)              !< cells across (the ladder)
+    integer, allocatable :: levels(:)              !< cells across, or the split k (the ladder)
     real(real64), allocatable :: fnorm(:, :, :)    !< (3, 3, level) f referred to the shape
     real(real64), allocatable :: defect(:)         !< (level) the staircase's four-fold harmonic against the shape's
     real(real64), allocatable :: guess(:, :)       !< the last level's tractions on this level's cells
     character(len=message_length), allocatable :: warnings(:)
     character(len=message_length) :: line
-    integer :: k, finest, first
+    integer :: k, finest, first, fit_min, fit_width, j
     real(real64) :: t(4), budget
     logical :: long_in_y
+    logical :: split          !< a mask: every cell split k x k, the same staircase on every level
 
     allocate (fnorm(3, 3, 0), defect(0), warnings(0))
     t = 0
     level_problem = problem
     call level_tolerance(level_problem)
     budget = cell_budget_or(problem, level_cell_budget(problem%target_error))
-    long_in_y = .not. present(region) .and. ellipse_cells_long_in_y(problem%target_error, problem%scheme%name)
-    if (present(region)) then
+    split = .not. present(region) .and. problem%patch%kind /= 'ellipse'
+    long_in_y = .not. (split .or. present(region)) .and. &
+                ellipse_cells_long_in_y(problem%target_error, problem%scheme%name)
+    fit_min = ellipse_fit_min
+    fit_width = ellipse_fit_width
+    if (split) then
+      levels = [(j, j=1, split_min_levels)]
+      fit_min = split_min_levels
+      fit_width = split_fit_width
+      ! the fit amplifies the levels' solver error: a tighter residual (split_tolerance_share)
+      if (.not. problem%solve%tolerance_given) level_problem%solve%tolerance = &
+        min(level_problem%solve%tolerance, split_tolerance_share * problem%target_error)
+    else if (present(region)) then
       ref = staircase_reference(region%reference)
       parts = part_references(region%reference)
       levels = max(min_base_cells, nint(base_levels * min(1.0_real64, sqrt(budget / region_cells(region, &
@@ -80,19 +96,33 @@ contains
     do
       call level_patch(levels(k), level_problem%patch, status)
       if (status%failed()) return
-      if (.not. present(region)) ref = ellipse_reference(level_problem%patch)
       ! the last level's tractions carried over: GMRES starts closer (fewer
       ! iterations); unallocated on the first level, where it counts as absent
       if (k > 1) guess = transferred_traction(result%patch, result%traction, level_problem%patch)
-      call run_level(level_problem, levels(k), result, fnorm, warnings, t, status, guess, ref, parts)
-      if (status%failed()) return
-      defect = [defect, shape_defect(level_problem%patch, ref)]
-      if (k == size(levels) .and. k >= ellipse_fit_min) then
-        first = max(1, k - ellipse_fit_width + 1)
-        call fit_levels(1.0_real64 / levels(first:k), fnorm(:, :, first:k), result, shape=defect(first:k))
+      if (split) then
+        ! a mask is its own staircase: nothing to refer to
+        call run_level(level_problem, levels(k), result, fnorm, warnings, t, status, guess)
+        if (status%failed()) return
+      else
+        if (.not. present(region)) ref = ellipse_reference(level_problem%patch)
+        call run_level(level_problem, levels(k), result, fnorm, warnings, t, status, guess, ref, parts)
+        if (status%failed()) return
+        defect = [defect, shape_defect(level_problem%patch, ref)]
+      end if
+      if (k == size(levels) .and. k >= fit_min) then
+        first = max(1, k - fit_width + 1)
+        if (split) then
+          call fit_levels(1.0_real64 / levels(first:k), fnorm(:, :, first:k), result, split=.true.)
+        else
+          call fit_levels(1.0_real64 / levels(first:k), fnorm(:, :, first:k), result, shape=defect(first:k))
+        end if
         if (present(other_error)) result%err = result%err + other_error
         if (within_target(result%err, coefficient_targets(problem%target_error), problem%requested)) exit
-        finest = next_level(levels(k))
+        if (split) then
+          finest = levels(k) + 1
+        else
+          finest = next_level(levels(k))
+        end if
         line = stop_reason(finest)
         if (len_trim(line) > 0) then
           warnings = [warnings, line]
@@ -108,41 +138,64 @@ contains
 
   contains
 
-    subroutine level_patch(cells, patch, status)
-      integer, intent(in) :: cells
+    subroutine level_patch(level, patch, status)
+      integer, intent(in) :: level
       type(patch_t), intent(out) :: patch
       type(status_t), intent(inout) :: status
       integer :: mx, my
-      if (present(region)) then
-        call region_level_patch(region, cells, patch, status)
+      if (split) then
+        call refined_patch(problem%patch, level, patch, status)
+      else if (present(region)) then
+        call region_level_patch(region, level, patch, status)
       else
-        call ellipse_level_grid(problem%patch%semi_a, problem%patch%semi_b, cells, mx, my, long_in_y)
+        call ellipse_level_grid(problem%patch%semi_a, problem%patch%semi_b, level, mx, my, long_in_y)
         call ellipse_patch(problem%patch%semi_a, problem%patch%semi_b, mx, my, patch, status)
         if (.not. status%failed()) call place_like(patch, problem%patch)
       end if
     end subroutine level_patch
 
-    !> Why the ladder may not go on to a level of `cells` across ('' if it may).
-    function stop_reason(cells) result(why)
-      integer, intent(in) :: cells
+    !> Why the ladder may not go on to level `level` ('' if it may).
+    function stop_reason(level) result(why)
+      integer, intent(in) :: level
       character(len=message_length) :: why
       integer :: mx, my
       real(real64) :: patch_cells
       why = ''
+      if (split) then
+        if (level > max_split) then
+          why = 'error control: stopped at '//itoa(level - 1)//' x '//itoa(level - 1)//' subcells per cell, '// &
+                'the finest split kcreep tries (the estimates did not come down to the target)'
+        else if (real(problem%patch%n, real64) * level**2 > budget) then
+          why = 'error control: splitting every cell in '//itoa(level)//' x '//itoa(level)//' would exceed '// &
+                'the budget of '//itoa(nint(budget))//' patch cells at target_error '// &
+                rtoa(problem%target_error)//', stopped at '//itoa(level - 1)//' x '//itoa(level - 1)// &
+                ' (&solver cell_budget raises it)'
+        end if
+        return
+      end if
       if (present(region)) then
-        patch_cells = region_cells(region, cells)
+        patch_cells = region_cells(region, level)
       else
-        call ellipse_level_grid(problem%patch%semi_a, problem%patch%semi_b, cells, mx, my, long_in_y)
+        call ellipse_level_grid(problem%patch%semi_a, problem%patch%semi_b, level, mx, my, long_in_y)
         patch_cells = ellipse_fill * mx * my
       end if
       if (patch_cells > budget) &
-        why = 'error control: the next level, '//itoa(cells)//' cells across ('//itoa(nint(patch_cells))// &
+        why = 'error control: the next level, '//itoa(level)//' cells across ('//itoa(nint(patch_cells))// &
               ' cells), would exceed the budget of '//itoa(nint(budget))//' patch cells at target_error '// &
               rtoa(problem%target_error)//', stopped at '//itoa(levels(size(levels)))// &
               ' cells across (&solver cell_budget raises it)'
     end function stop_reason
 
   end subroutine run_shape_levels
+
+  !> The finest split a patch of n cells may get: the largest k with n k^2
+  !> within the budget, at most max_split, at least split_min_levels (the
+  !> fewest the fit needs).
+  pure integer function finest_split(n, budget) result(k)
+    integer, intent(in) :: n
+    real(real64), intent(in) :: budget
+    k = max(split_min_levels, min(max_split, floor(sqrt(budget / max(n, 1)))))
+  end function finest_split
 
   !> What a contact area's level of `cells` across counts against the budget:
   !> the cells of its grid (the area's bounding box), not only its patch
