@@ -35,7 +35,11 @@ def main():
     with tempfile.TemporaryDirectory() as work:
         runner = Runner(os.path.abspath(args.kcreep), work)
         for ratio in (float(r) for r in args.ratios.split(",")):
-            rx = brentq(lambda rx: hertz(rx, 1.0, 0.01)[0] / hertz(rx, 1.0, 0.01)[1] - ratio, 0.01, 100)
+            def aspect_gap(rx):
+                return hertz(rx, 1.0, 0.01)[0] / hertz(rx, 1.0, 0.01)[1] - ratio
+            # the bracket [0.01, 100] as the documented runs had it (the root's last
+            # digits, and with them the levels, depend on it); wider for a/b > 10
+            rx = brentq(aspect_gap, 0.01, 100.0 if aspect_gap(100.0) > 0 else 1e4)
             a, b = hertz(rx, 1.0, 0.01)
             ref = runner.run(f"&patch semi_a = {a!r}, semi_b = {b!r} /\n&material g = 1, nu = 0.25 /\n"
                              "&solver target_error = 1e-4 /\n")

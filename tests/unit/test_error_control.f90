@@ -129,6 +129,18 @@ program test_error_control
   ! neighbouring rows (table C11 4.776 at 1.667, 5.101 at 2, 5.578 at 2.5: 0.36 and 0.40)
   slopes = aspect_slopes(2.0_real64, 0.25_real64)
   call t%check(slopes(1) > 0.35_real64 .and. slopes(1) < 0.41_real64, 'aspect_slopes: d ln C11 / d ln(a/b) at a/b = 2')
+  ! beyond the table (a/b = 10): continued without a jump, growing, within 2 %
+  ! of the solved ellipses' differences (C11 0.682 at a/b = 15.4, nu = 0.28:
+  ! docs/accuracy.md section 3), held from a/b = 20 on
+  slopes = aspect_slopes(10.0_real64, 0.28_real64)
+  call t%check(all(abs(aspect_slopes(10.001_real64, 0.28_real64) / slopes - 1) < 1e-3_real64), &
+               'aspect_slopes: continuous at the table''s end (a/b = 10)')
+  slopes = aspect_slopes(15.43_real64, 0.28_real64)
+  call t%check(abs(slopes(1) / 0.6823_real64 - 1) < 0.02_real64 .and. abs(slopes(2) / 0.7372_real64 - 1) < 0.02_real64 &
+               .and. abs(slopes(3) / 1.2238_real64 - 1) < 0.02_real64, &
+               'aspect_slopes at a/b = 15.4: within 2 % of the solved ellipses'' 0.682, 0.737, 1.224')
+  call t%check(all(aspect_slopes(40.0_real64, 0.28_real64) == aspect_slopes(20.0_real64, 0.28_real64)), &
+               'aspect_slopes: held beyond a/b = 20')
   ! referring to the ellipse commutes with moving the spin centre: f about a
   ! point off the centre is T' f0 T of the centred one
   call ellipse_patch(1.0_real64, 1.3_real64, 21, 27, patch, status)
