@@ -65,19 +65,32 @@ contains
           ' +- ', record%ext_error(i), '   (order ', record%ext_order(i), ')'
       end do
     end if
-    if (all(record%err == record%err)) then
+    if (any(record%err == record%err)) then
+      ! a coefficient without an estimate (its load case not run) shows '-'
       label = 'estimated relative error of C11 C22 C23:'
       if (record%method == 'table') label = 'stated relative uncertainty of C11 C22 C23:'
       note = ''
       if (cfg%target_error > 0) note = '   (target '//trim(rtoa_short(cfg%target_error))//', C23 3 times it)'
-      write (output_unit, '(2x, a, 3es9.1, a)') trim(label), record%err, trim(note)
+      write (output_unit, '(2x, a)', advance='no') trim(label)
+      do i = 1, 3
+        if (record%err(i) == record%err(i)) then
+          write (output_unit, '(es9.1)', advance='no') record%err(i)
+        else
+          write (output_unit, '(a9)', advance='no') '-'
+        end if
+      end do
+      write (output_unit, '(a)') trim(note)
     else
       write (output_unit, '(2x, a)') 'estimated relative error of C11 C22 C23: none (see the warnings)'
     end if
     write (output_unit, '(2x, a, 3es12.4, a)') 'FASTSIM L1 L2 L3:', record%fastsim, '  (length^3/force)'
     if (patch%kind /= 'ellipse') then
       ! the patch's C23 about its centroid, as Kalker's about the ellipse's centre
-      about_centroid = normalised_about(record%f, record%g, record%c, record%centroid - record%spin_centre)
+      ! (moving the centre mixes f's columns: without the phi case C11 and C22,
+      ! which do not depend on it, as they are)
+      about_centroid = record%cn
+      if (all(record%f == record%f)) &
+        about_centroid = normalised_about(record%f, record%g, record%c, record%centroid - record%spin_centre)
       do i = 1, 2
         associate (e => record%ellipse(i))
           write (output_unit, '(2x, a)') 'equivalent ellipse ('//trim(e%kind)//'): a/b = '// &

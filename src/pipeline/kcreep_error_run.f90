@@ -59,7 +59,7 @@ contains
       call run_single(problem, result, status, cache)
     end if
     if (status%failed()) return
-    call add_uncertain(result, problem%target_error, 'estimated relative errors')
+    call add_uncertain(result, problem%target_error, 'estimated relative errors', solved=problem%requested)
   end subroutine run_controlled
 
   !> The given grid and its error estimate from one auxiliary grid.

@@ -211,7 +211,7 @@ contains
     result%err = (abs(result%cn - result%ext) + result%ext_error) / abs(result%ext)
     result%warnings = warnings
     call add_uncertain(result, problem%target_error, 'the finest level''s estimated relative errors', &
-                       'leave extrapolate out (error control)')
+                       'leave extrapolate out (error control)', problem%requested)
   end subroutine run_extrapolated
 
 end module kcreep_extrapolation

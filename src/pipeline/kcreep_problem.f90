@@ -168,14 +168,15 @@ contains
   !> 'uncertain' in the verdict, with its warning, when an estimate misses its
   !> target. what: the estimates' name in the warning; advice: what could reach
   !> the target (optional, appended).
-  pure subroutine add_uncertain(result, target, what, advice)
+  pure subroutine add_uncertain(result, target, what, advice, solved)
     type(result_t), intent(inout) :: result
     real(real64), intent(in) :: target
     character(len=*), intent(in) :: what
     character(len=*), intent(in), optional :: advice
+    logical, intent(in), optional :: solved(3)   !< load cases xi, eta, phi run (C11, C22, C23's)
     character(len=message_length) :: line
     real(real64) :: targets(3)
-    if (len(uncertain_flag(result%err, target)) == 0) return
+    if (len(uncertain_flag(result%err, target, solved)) == 0) return
     targets = coefficient_targets(target)
     result%verdict_flags = ior(result%verdict_flags, verdict_uncertain)
     if (result%verdict == 'ok') then

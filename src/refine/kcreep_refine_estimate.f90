@@ -327,13 +327,16 @@ contains
   end function within_target
 
   !> The verdict flag for a run with estimates rel_error(1:3) of C11, C22, C23:
-  !> 'uncertain' when target > 0 and any estimate exceeds (or lacks) its target.
-  pure function uncertain_flag(rel_error, target) result(flag)
+  !> 'uncertain' when target > 0 and any estimate exceeds (or lacks) its
+  !> target. solved: the load cases run (within_target); a coefficient whose
+  !> load case was not asked for does not make the run uncertain.
+  pure function uncertain_flag(rel_error, target, solved) result(flag)
     real(real64), intent(in) :: rel_error(3), target
+    logical, intent(in), optional :: solved(3)
     character(len=:), allocatable :: flag
     flag = ''
     if (target > 0) then
-      if (.not. within_target(rel_error, coefficient_targets(target))) flag = 'uncertain'
+      if (.not. within_target(rel_error, coefficient_targets(target), solved)) flag = 'uncertain'
     end if
   end function uncertain_flag
 

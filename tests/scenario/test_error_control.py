@@ -155,6 +155,13 @@ code, out, err, t = kc.run(nml("shape='mask', mask_rows='.##.', '####', '.##.', 
 kc.check(code == 0 and t[0]["mx"] <= 4 * 8 and t[0]["err11"] <= 1e-3 and t[0]["err22"] <= 1e-3,
          f"load cases xi eta: the ladder stops where C11, C22 meet the target (finest {t[0]['mx']} x {t[0]['my']}, "
          f"was 141 x 141 splits)")
+# ... and the run is `ok` (C23 was not asked for), its summary shows C11 and
+# C22's estimates with '-' for C23's and the equivalent ellipses' C11, C22
+# errors (before: verdict uncertain, "none (see the warnings)", NaN %)
+summary = [line for line in out.splitlines() if "estimated relative error" in line or "equivalent ellipse (box)" in line]
+kc.check(t[0]["verdict"] == "ok" and len(summary) == 2 and summary[0].split(":")[1].split()[2] == "-"
+         and "NaN" not in summary[1].split("(")[-1].split()[0:2],
+         f"load cases xi eta: verdict {t[0]['verdict']}; {' | '.join(s.strip() for s in summary)}")
 code, out, err, t = kc.run(nml("shape='mask', mask_rows='#.#', '.#.', '#.#', dx=1, dy=1, x0=-1, y0=-99999999999"),
                            folder, "far")
 kc.check(code == 0 and t[0]["mx"] == 3 * 32 and "finest split kcreep tries" in err and t[0]["verdict"] != "ok",
