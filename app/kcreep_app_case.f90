@@ -4,7 +4,7 @@
 module kcreep_app_case
   use, intrinsic :: iso_fortran_env, only: int64
   use kcreep_status, only: status_t
-  use kcreep, only: problem_t, patch_t, kcreep_solve, kcreep_memory_need
+  use kcreep, only: problem_t, patch_t, kcreep_solve, kcreep_memory_need, kcreep_wheel_rail_memory_need
   use kcreep_namelist, only: config_t, read_config, build_patch, problem_of
   use kcreep_table, only: run_record_t, case_name
   use kcreep_app_files, only: check_output_path
@@ -75,7 +75,11 @@ contains
     type(problem_t) :: problem
     problem = problem_of(cfg, patch)
     problem%solve%memory_limit = memory_limit_bytes()
-    call kcreep_memory_need(problem, bytes, method, status)
+    if (cfg%wheel_rail_on) then
+      call kcreep_wheel_rail_memory_need(problem, bytes, method, status)   ! one patch at a time
+    else
+      call kcreep_memory_need(problem, bytes, method, status)
+    end if
   end subroutine case_memory_bytes
 
 end module kcreep_app_case

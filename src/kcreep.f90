@@ -42,14 +42,17 @@ module kcreep
   use kcreep_equivalent_ellipse, only: equivalent_ellipse_t, equivalent_ellipses
   use kcreep_extrapolation, only: run_extrapolated, memory_need
   use kcreep_error_run, only: run_controlled, controlled_finest_patch
+  use kcreep_refine_constants, only: max_normal_grid_cells
   use kcreep_refine_estimate, only: default_target_error, nominal_ellipse_cells
   use kcreep_normal_influence, only: compliance_from_e_nu, combined_g_nu_from_e_nu
   use kcreep_table_run, only: run_table, table_meets_target
+  use kcreep_wheel_rail_run, only: wheel_rail_base_cells => base_cells
   use kcreep_wheel_rail_run, only: wheel_rail_setup_t, wheel_rail_row_t, run_wheel_rail, wheel_rail_columns, &
                                    check_wheel_rail_setup, max_wheel_rail_shifts
   implicit none
   private
-  public :: kcreep_solve, kcreep_memory_need, kcreep_version, kcreep_version_number, max_threads, serial_blas
+  public :: kcreep_solve, kcreep_memory_need, kcreep_wheel_rail_memory_need
+  public :: kcreep_version, kcreep_version_number, max_threads, serial_blas
   public :: rolling_request_t, rolling_point_t, rolling_curve, default_rolling_tolerance, cell_stick, cell_slip, &
             rolling_residual_of
   public :: creep_request_t, creep_point_t, creep_map_t, creep_curve, source_names, source_flexibilities
@@ -203,6 +206,13 @@ contains
       end associate
       if (status%failed()) return
       bounded%extrapolate = .false.
+      if (problem%target_error > 0 .and. problem%refine_grid) then
+        ! error control (kcreep_gap_levels): the normal problem again on a
+        ! fine grid of at most max_normal_grid_cells, then the levels
+        bytes = max(bytes, 120 * int(max_normal_grid_cells, int64))
+        call controlled_finest_patch(problem, bound, status)
+        if (status%failed()) return
+      end if
     else
       ! under error control: the finest level kcreep may choose
       call controlled_finest_patch(problem, bound, status)
@@ -212,6 +222,27 @@ contains
     call memory_need(bounded, need, method, level, status)
     bytes = bytes + need + process_bytes
   end subroutine kcreep_memory_need
+
+  !> Bytes a wheel/rail table (&wheel_rail) needs at its peak, and its solve
+  !> path there: that of one patch, a gap first solved on at most
+  !> wheel_rail_base_cells x wheel_rail_base_cells cells of its potential
+  !> contact area (kcreep_wheel_rail_run), under error control then on its
+  !> fine normal grid and levels (kcreep_memory_need).
+  subroutine kcreep_wheel_rail_memory_need(problem, bytes, method, status)
+    type(problem_t), intent(in) :: problem
+    integer(int64), intent(out) :: bytes
+    character(len=:), allocatable, intent(out) :: method
+    type(status_t), intent(inout) :: status
+    type(problem_t) :: patch_problem
+    patch_problem = problem
+    patch_problem%normal%active = .true.
+    patch_problem%normal%force_given = .true.
+    call gap_from_array(spread(spread(0.0_real64, 1, wheel_rail_base_cells), 2, wheel_rail_base_cells), &
+                        1.0_real64, 1.0_real64, 0.0_real64, 0.0_real64, 'wheel/rail patch', patch_problem%normal%gap, &
+                        status)
+    if (status%failed()) return
+    call kcreep_memory_need(patch_problem, bytes, method, status)
+  end subroutine kcreep_wheel_rail_memory_need
 
   !> f13, f23, f31, f32, f33 refer to the spin centre: when it lies outside
   !> the patch's bounding box (a mask in profile coordinates, spun about a

@@ -20,7 +20,7 @@ module kcreep_error_run
   use, intrinsic :: ieee_arithmetic, only: ieee_value, ieee_quiet_nan, ieee_is_nan
   use kcreep_status, only: status_t
   use kcreep_strings, only: itoa, rtoa
-  use kcreep_patch, only: patch_t, ellipse_patch, place_like
+  use kcreep_patch, only: patch_t, ellipse_patch, place_like, mask_patch
   use kcreep_problem, only: problem_t, result_t, add_warning, append_prefixed, add_uncertain, level_tolerance, &
                            cell_budget_or
   use kcreep_run, only: run_case, solve_cache_t
@@ -126,8 +126,9 @@ contains
   end subroutine run_single
 
   !> The largest patch a run under error control may solve (ellipse: the
-  !> finest level within the budget; mask: the finest split), for the memory
-  !> a job needs; the problem's own patch when kcreep chooses no grid.
+  !> finest level within the budget; mask: the finest split; a gap: a full
+  !> grid of the budget's cells), for the memory a job needs; the problem's
+  !> own patch when kcreep chooses no grid.
   subroutine controlled_finest_patch(problem, finest, status)
     type(problem_t), intent(in) :: problem
     type(patch_t), intent(out) :: finest
@@ -136,7 +137,16 @@ contains
     real(real64) :: budget
     logical :: long_in_y
     finest = problem%patch
-    if (.not. (problem%target_error > 0 .and. problem%refine_grid) .or. problem%normal%active) return
+    if (.not. (problem%target_error > 0 .and. problem%refine_grid)) return
+    if (problem%normal%active) then
+      ! a contact area's levels count their whole grid (the area's box)
+      ! against the budget (kcreep_level_ladder region_cells): the bound is
+      ! a full grid of that many cells
+      cells = ceiling(sqrt(cell_budget_or(problem, level_cell_budget(problem%target_error))))
+      call mask_patch(spread(spread(.true., 1, cells), 2, cells), 1.0_real64, 1.0_real64, 0.0_real64, 0.0_real64, &
+                      'memory bound', finest, status)
+      return
+    end if
     if (problem%patch%kind == 'ellipse') then
       budget = cell_budget_or(problem, level_cell_budget(problem%target_error))
       long_in_y = ellipse_cells_long_in_y(problem%target_error, problem%scheme%name)

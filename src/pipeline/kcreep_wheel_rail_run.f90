@@ -31,6 +31,7 @@ module kcreep_wheel_rail_run
   use kcreep_threads, only: team_size, enter_team, leave_team, solve_started, solve_ended, cells_per_thread_iterative
   implicit none
   private
+  public :: base_cells
   public :: wheel_rail_setup_t, wheel_rail_row_t, prepare_track, run_wheel_rail, wheel_rail_columns, &
             check_wheel_rail_setup, max_wheel_rail_shifts
 

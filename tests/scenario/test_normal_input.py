@@ -161,6 +161,21 @@ proc = subprocess.run([kc.KCREEP, "--estimate-memory", "est.nml"], cwd=folder, c
 # one line 'FILE BYTES PATH'
 kc.check(proc.returncode == 0 and int(proc.stdout.split()[-2]) > 0,
          f"--estimate-memory of a gap case: exit {proc.returncode}, {proc.stdout.strip()} bytes")
+# ... under error control it bounds the fine normal grid and the levels: at
+# least 200,000 normal cells x 120 bytes + a full grid of the 160,000-cell
+# budget (was the given grid only: input/wheel_rail.nml 45 MB against a
+# 107 MB peak); a wheel/rail table is estimated as one such patch (was 0, 'table')
+rows = [ln for ln in proc.stdout.splitlines() if ln.strip()]
+kc.check(int(rows[0].split()[-2]) > 2e8 and rows[0].split()[-1] == "iterative",
+         f"--estimate-memory of a gap under error control: {rows[0]}")
+shared = os.path.join(kc.REPO, "..", "shared", "profiles")
+if os.path.isdir(shared):
+    with open(os.path.join(folder, "wr.nml"), "w") as f:
+        f.write(f"&wheel_rail wheel_file = '{shared}/MBench_S1002_v3.prw', rail_file = '{shared}/MBench_UIC60_v3.prr', "
+                "shifts = 0, vertical_force = 80000 /\n&material g = 82000, nu = 0.28 /\n")
+    proc = subprocess.run([kc.KCREEP, "--estimate-memory", "wr.nml"], cwd=folder, capture_output=True, text=True)
+    kc.check(proc.returncode == 0 and int(proc.stdout.split()[-2]) > 2e8 and proc.stdout.split()[-1] == "iterative",
+             f"--estimate-memory of a wheel/rail table: {proc.stdout.strip()}")
 
 # 5. bad input
 GOOD = "&patch shape='gap' /\n&material g=1, nu=0.25 /\n"
