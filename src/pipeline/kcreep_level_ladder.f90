@@ -112,7 +112,7 @@ contains
       if (k == size(levels) .and. k >= fit_min) then
         first = max(1, k - fit_width + 1)
         if (split) then
-          call fit_levels(1.0_real64 / levels(first:k), fnorm(:, :, first:k), result, split=.true.)
+          call fit_levels(1.0_real64 / levels(first:k), fnorm(:, :, first:k), result)
         else
           call fit_levels(1.0_real64 / levels(first:k), fnorm(:, :, first:k), result, shape=defect(first:k))
         end if
@@ -300,11 +300,12 @@ contains
   end function referred_by_parts
 
   !> The fit of every f entry: the result gets the limits, err those of C11, C22, C23.
-  subroutine fit_levels(h, fnorm, result, split, shape)
+  subroutine fit_levels(h, fnorm, result, shape)
     real(real64), intent(in) :: h(:), fnorm(:, :, :)
     type(result_t), intent(inout) :: result
-    logical, intent(in), optional :: split   !< levels of a split patch (split_level_estimate)
-    real(real64), intent(in), optional :: shape(:)   !< the staircase's harmonic per level (ellipse_level_estimate)
+    !> the staircase's harmonic per level of a sampled shape (ellipse_level_estimate);
+    !> absent: levels of a split patch (split_level_estimate)
+    real(real64), intent(in), optional :: shape(:)
     real(real64) :: limit, rel
     integer :: i, j
     result%err = ieee_value(1.0_real64, ieee_quiet_nan)
@@ -314,12 +315,10 @@ contains
           result%f(i, j) = ieee_value(1.0_real64, ieee_quiet_nan)
           cycle
         end if
-        if (present(split)) then
-          call split_level_estimate(h, fnorm(i, j, :), limit, rel)
-        else if (present(shape)) then
+        if (present(shape)) then
           call ellipse_level_estimate(h, fnorm(i, j, :), shape, limit, rel)
         else
-          call level_estimate(h, fnorm(i, j, :), limit, rel)
+          call split_level_estimate(h, fnorm(i, j, :), limit, rel)
         end if
         result%f(i, j) = limit
         if (i == 1 .and. j == 1) result%err(1) = rel

@@ -1,19 +1,20 @@
 !> Error control in the mesh size: which grids to run for a target error, the
 !> extrapolation to zero cell size, the error estimate and the verdict.
 !>
-!> The model (measured, docs/accuracy.md sections 1 and 6): with the backward
-!> scheme on near-square cells, and an ellipse's levels referred to the
-!> ellipse by the staircase's second moments (kcreep_staircase_normalisation),
-!> every coefficient behaves as
-!>     f(h) = f0 + K h + L h^2 + B harmonic4 + noise(h),
-!> h = 1 / (cells across the shorter axis), the noise the staircase's
-!> level-to-level scatter (about 0.5 % / N of the coefficient) that no smooth
-!> term takes out. Levels from 56 cells across (coarser ones bend with L h^2)
-!> are fitted by f0 + K h + B harmonic4 as a regression, not an
-!> interpolation, and the estimate is t95 x the standard error of f0 plus a
-!> tenth of the extrapolation (ellipse_level_estimate). Masks and gaps use
-!> their own fits (smooth_level_estimate, level_estimate). Measured honesty:
-!> docs/accuracy.md sections 3 and 6 (45 of 45 and 18 of 18 bounded).
+!> The model (measured, docs/accuracy.md sections 2 to 5): with the backward
+!> scheme, every coefficient of a ladder's levels behaves as
+!>     f(h) = f0 + K h + L g(h) + noise(h),
+!> fitted as a regression through the finest levels; the estimate is t95 x
+!> the standard error of f0 plus what the model itself leaves uncertain.
+!> Sampled shapes (an ellipse, a gap's contact area; levels referred to the
+!> shape by the staircase's second moments, kcreep_staircase_normalisation):
+!> g the staircase's four-fold harmonic, the model's uncertainty a tenth of
+!> the extrapolation (ellipse_level_estimate; levels from 56 cells across,
+!> coarser ones bend with h^2). Split patches (a mask, CONTACT's grid: the
+!> same staircase on every level): g = h^1.5, the uncertainty the change of
+!> f0 for other orders (split_level_estimate). Measured honesty:
+!> docs/accuracy.md (45 of 45 ellipses, 45 of 45 Hertzian gaps, 90 of 90
+!> mask windows bounded, allowing the references' u).
 !>
 !> Everything here is pure: the driver runs the levels and calls these.
 module kcreep_refine_estimate
@@ -27,7 +28,7 @@ module kcreep_refine_estimate
   public :: default_target_error, c23_target_factor, min_estimate_cells, nominal_ellipse_cells
   public :: coefficient_targets, ellipse_level_grid, ellipse_cells_long_in_y, next_level, level_cell_budget, student_t95
   public :: cell_budget_allowed, cell_budget_range, level_solver_tolerance
-  public :: first_order_fit, level_estimate, ellipse_level_estimate, split_level_estimate, basis_fit
+  public :: ellipse_level_estimate, split_level_estimate
   public :: single_grid_estimate, ellipse_fit_min, ellipse_fit_width
   public :: split_grid_estimate, within_target, uncertain_flag
 
@@ -143,45 +144,6 @@ contains
     end if
   end function student_t95
 
-  !> Least-squares fit f = f0 + K h; std_error: the standard error of f0 from the
-  !> residual scatter (NaN with two levels: no scatter left to measure).
-  pure subroutine first_order_fit(h, f, f0, slope, std_error)
-    real(real64), intent(in) :: h(:), f(:)
-    real(real64), intent(out) :: f0, slope, std_error
-    real(real64) :: hm, fm, shh, s2
-    integer :: m
-    m = size(h)
-    hm = sum(h) / m
-    fm = sum(f) / m
-    shh = sum((h - hm)**2)
-    slope = sum((h - hm) * (f - fm)) / shh
-    f0 = fm - slope * hm
-    if (m > 2) then
-      s2 = sum((f - f0 - slope * h)**2) / (m - 2)
-      std_error = sqrt(s2 * (1.0_real64 / m + hm**2 / shh))
-    else
-      std_error = ieee_value(1.0_real64, ieee_quiet_nan)
-    end if
-  end subroutine first_order_fit
-
-  !> Limit and relative 95 % error estimate from the levels (h the cell size of
-  !> each level, any consistent unit; f the normalised coefficient).
-  !> Two levels: the first-order extrapolation, and as estimate the size of the
-  !> correction itself (|limit - f(finest)|, no scatter to measure).
-  pure subroutine level_estimate(h, f, limit, rel_error)
-    real(real64), intent(in) :: h(:), f(:)
-    real(real64), intent(out) :: limit, rel_error
-    real(real64) :: slope, se
-    integer :: finest
-    call first_order_fit(h, f, limit, slope, se)
-    if (size(h) > 2) then
-      rel_error = student_t95(size(h) - 2) * se / abs(limit)
-    else
-      finest = minloc(h, 1)
-      rel_error = abs(limit - f(finest)) / abs(limit)
-    end if
-  end subroutine level_estimate
-
   !> Limit and relative 95 % error estimate from an ellipse's levels (at least
   !> ellipse_fit_min of them, from 56 cells across): the fit f0 + K h + B shape,
   !> shape being each level's four-fold staircase harmonic
@@ -204,19 +166,6 @@ contains
     call three_column_fit(h, f, shape, limit, se)
     rel_error = (student_t95(size(h) - 3) * se + order_margin * abs(limit - f(minloc(h, 1)))) / abs(limit)
   end subroutine ellipse_level_estimate
-
-  !> Least-squares fit f = f0 + K h + L g(h) with g(h) = h**1.5 (kind 1) or
-  !> h log h (kind 2); std_error of f0 (NaN without degrees of freedom left).
-  pure subroutine basis_fit(h, f, kind, f0, std_error)
-    real(real64), intent(in) :: h(:), f(:)
-    integer, intent(in) :: kind
-    real(real64), intent(out) :: f0, std_error
-    if (kind == 1) then
-      call three_column_fit(h, f, h**1.5_real64, f0, std_error)
-    else
-      call three_column_fit(h, f, h * log(h), f0, std_error)
-    end if
-  end subroutine basis_fit
 
   !> Least-squares fit f = f0 + K h + L g; std_error of f0 (NaN without
   !> degrees of freedom left).
