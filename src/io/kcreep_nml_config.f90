@@ -11,7 +11,8 @@ module kcreep_nml_config
   use kcreep_contact_reader, only: contact_case_t
   implicit none
   private
-  public :: config_t, rolling_config_t, input_where, default_output_name, creepage_points, pressure_source
+  public :: config_t, rolling_config_t, input_where, default_output_name, creepage_points, pressure_source, &
+            check_pressure_use
 
   integer, parameter, public :: max_inline_rows = 2048, max_row_length = 2048
   integer, parameter, public :: max_creepages = 100000   !< creepage points of &fastsim (list and sweep together)
@@ -243,5 +244,30 @@ contains
     if (len(pressure_input_file) > 0 .and. pressure /= 'file') call fail(status, exit_bad_input, where// &
         'pressure_input_file is read with pressure = ''file'' only (pressure = '''//pressure//''')')
   end subroutine pressure_source
+
+  !> What the resolved pressure allows (&fastsim and &rolling alike): fn (unset:
+  !> not given) only scales the model pressures 'hertz' and 'parabolic', within
+  !> 0 < fn <= 1e30; a pressure on the patch's own grid ('file', 'contact') is
+  !> not for extrapolation (`solver`, named in the message, runs on the finest level).
+  subroutine check_pressure_use(pressure, fn, extrapolate, solver, where, status)
+    character(len=*), intent(in) :: pressure, solver, where
+    real(real64), intent(in) :: fn
+    logical, intent(in) :: extrapolate
+    type(status_t), intent(inout) :: status
+    if (fn /= unset) then
+      if (pressure /= 'hertz' .and. pressure /= 'parabolic') then  ! contact, normal, file: their own load
+        call fail(status, exit_bad_input, where//'fn applies to pressure = ''hertz'' or ''parabolic'' only '// &
+                  '(the pressure '''//pressure//''' carries its own load)')
+        return
+      end if
+      if (.not. (fn > 0 .and. fn <= 1e30_real64)) then
+        call fail(status, exit_bad_input, where//'fn = '//rtoa(fn)//' (allowed: 0 < fn <= 1e30)')
+        return
+      end if
+    end if
+    if (extrapolate .and. (pressure == 'file' .or. pressure == 'contact')) &
+      call fail(status, exit_bad_input, where//'pressure = '''//pressure//''' is given on the patch''s '// &
+                'own grid: not with &solver extrapolate = .true. ('//solver//' runs on the finest level)')
+  end subroutine check_pressure_use
 
 end module kcreep_nml_config

@@ -5,7 +5,7 @@ module kcreep_nml_fastsim
   use kcreep_strings, only: itoa, rtoa, lower, resolve_path, folder_of
   use kcreep, only: source_names, flexibility_rule_of
   use kcreep_nml_config, only: config_t, input_where, default_output_name, unset, max_creepages, creepage_points, &
-                               pressure_source
+                               pressure_source, check_pressure_use
   implicit none
   private
   public :: fastsim_variables, fastsim_group_t, read_fastsim_group, apply_fastsim_group
@@ -172,22 +172,8 @@ contains
     call pressure_source(grp%pressure, cfg%shape, cfg%wheel_rail_on, grp%maps .or. len(cfg%creep_map_file) > 0, &
                          'creep', cfg%pressure_input_file, where, cfg%pressure, status)
     if (status%failed()) return
-    if (grp%fn /= unset) then
-      if (cfg%pressure /= 'hertz' .and. cfg%pressure /= 'parabolic') then  ! contact, normal, file: their own load
-        call fail(status, exit_bad_input, where//'fn applies to pressure = ''hertz'' or ''parabolic'' only '// &
-                  '(the pressure '''//cfg%pressure//''' carries its own load)')
-        return
-      end if
-      if (.not. (grp%fn > 0 .and. grp%fn <= 1e30_real64)) then
-        call fail(status, exit_bad_input, where//'fn = '//rtoa(grp%fn)//' (allowed: 0 < fn <= 1e30)')
-        return
-      end if
-      cfg%fn = grp%fn
-    end if
-    if (cfg%extrapolate .and. (cfg%pressure == 'file' .or. cfg%pressure == 'contact')) then
-      call fail(status, exit_bad_input, where//'pressure = '''//cfg%pressure//''' is given on the patch''s '// &
-                'own grid: not with &solver extrapolate = .true. (FASTSIM runs on the finest level)')
-      return
-    end if
+    call check_pressure_use(cfg%pressure, grp%fn, cfg%extrapolate, 'FASTSIM', where, status)
+    if (status%failed()) return
+    if (grp%fn /= unset) cfg%fn = grp%fn
   end subroutine apply_fastsim_group
 end module kcreep_nml_fastsim

@@ -16,7 +16,8 @@ module kcreep_nml_rolling
   use kcreep_status, only: status_t, fail, exit_bad_input
   use kcreep_strings, only: itoa, rtoa, lower, resolve_path, folder_of
   use kcreep, only: default_rolling_tolerance
-  use kcreep_nml_config, only: rolling_config_t, max_rolling_points, creepage_points, pressure_source
+  use kcreep_nml_config, only: rolling_config_t, max_rolling_points, creepage_points, pressure_source, &
+                               check_pressure_use, unset
   implicit none
   private
   public :: rolling_variables, read_rolling_group
@@ -48,7 +49,6 @@ contains
     character(len=512) :: msg
     character(len=:), allocatable :: where
     logical :: maps
-    real(real64), parameter :: unset = -huge(1.0_real64)
     namelist /rolling/ mu, creepages, sweep_direction, sweep_from, sweep_to, sweep_points, sweep_spacing, &
                        pressure, pressure_input_file, fn, maps, tolerance
 
@@ -103,23 +103,9 @@ contains
     call pressure_source(pressure, shape, wheel_rail, maps, 'rolling', config%pressure_input_file, where, &
                          config%pressure, status)
     if (status%failed()) return
-    if (fn /= unset) then
-      if (config%pressure /= 'hertz' .and. config%pressure /= 'parabolic') then
-        call fail(status, exit_bad_input, where//'fn applies to pressure = ''hertz'' or ''parabolic'' only '// &
-                  '(the pressure '''//config%pressure//''' carries its own load)')
-        return
-      end if
-      if (.not. (fn > 0 .and. fn <= 1e30_real64)) then
-        call fail(status, exit_bad_input, where//'fn = '//rtoa(fn)//' (allowed: 0 < fn <= 1e30)')
-        return
-      end if
-      config%fn = fn
-    end if
-    if (extrapolate .and. (config%pressure == 'file' .or. config%pressure == 'contact')) then
-      call fail(status, exit_bad_input, where//'pressure = '''//config%pressure//''' is given on the patch''s '// &
-                'own grid: not with &solver extrapolate = .true. (the rolling problem runs on the finest level)')
-      return
-    end if
+    call check_pressure_use(config%pressure, fn, extrapolate, 'the rolling problem', where, status)
+    if (status%failed()) return
+    if (fn /= unset) config%fn = fn
   end subroutine read_rolling_group
 
 end module kcreep_nml_rolling
