@@ -113,6 +113,18 @@ class Result:
         return f"Result(c={self.c.tolist()}, verdict={self.verdict!r}, n={self.n})"
 
 
+def _creep_arrays(creepages, pressure):
+    """FASTSIM's and exact rolling's arguments as the C API takes them: the
+    creepages n x 3 (xi, eta, phi), n, room for the forces and adhesion, and
+    the pressure (None: the normal problem's)."""
+    creep = np.ascontiguousarray(np.atleast_2d(creepages), dtype=np.float64)
+    if creep.ndim != 2 or creep.shape[1] != 3:
+        raise KcreepError(2, "creepages must be n x 3 (xi, eta, phi)")
+    n = creep.shape[0]
+    pressure = None if pressure is None else np.ascontiguousarray(pressure, dtype=np.float64)
+    return creep, n, np.empty((n, 3)), np.empty(n), pressure
+
+
 class Solver:
     """A handle of the C API: settings, geometry, and repeated solves that
     reuse the operator table when grid, scheme and material stay the same.
@@ -197,12 +209,7 @@ class Solver:
         "separate" or "weighted" (docs/fastsim.md); pressure on the patch's grid
         (2-D, rows in increasing y) or None for the normal problem's. Returns
         (forces n x 3: Fx, Fy, Mz; adhesion n: fraction of the area adhering)."""
-        creep = np.ascontiguousarray(np.atleast_2d(creepages), dtype=np.float64)
-        if creep.ndim != 2 or creep.shape[1] != 3:
-            raise KcreepError(2, "creepages must be n x 3 (xi, eta, phi)")
-        n = creep.shape[0]
-        forces, adhesion = np.empty((n, 3)), np.empty(n)
-        p = None if pressure is None else np.ascontiguousarray(pressure, dtype=np.float64)
+        creep, n, forces, adhesion, p = _creep_arrays(creepages, pressure)
         self._check(_lib.kcreep_fastsim(self._handle, mu, n, creep.ctypes.data, None if p is None else p.ctypes.data,
                                         rule.encode(), forces.ctypes.data, adhesion.ctypes.data))
         return forces, adhesion
@@ -240,12 +247,7 @@ class Solver:
         patch's grid (2-D, rows in increasing y) or None for the normal
         problem's. Returns (forces n x 3: Fx, Fy, Mz; adhesion n: fraction of
         the patch cells adhering)."""
-        creep = np.ascontiguousarray(np.atleast_2d(creepages), dtype=np.float64)
-        if creep.ndim != 2 or creep.shape[1] != 3:
-            raise KcreepError(2, "creepages must be n x 3 (xi, eta, phi)")
-        n = creep.shape[0]
-        forces, adhesion = np.empty((n, 3)), np.empty(n)
-        p = None if pressure is None else np.ascontiguousarray(pressure, dtype=np.float64)
+        creep, n, forces, adhesion, p = _creep_arrays(creepages, pressure)
         self._check(_lib.kcreep_rolling(self._handle, mu, n, creep.ctypes.data, None if p is None else p.ctypes.data,
                                         forces.ctypes.data, adhesion.ctypes.data))
         return forces, adhesion
