@@ -186,6 +186,8 @@ contains
     type(patch_t) :: bound
     integer :: level
     integer(int64) :: need
+    !> the normal solve's ~15 doubles per grid cell
+    integer(int64), parameter :: normal_cell_bytes = 120
 
     bytes = 0
     method = 'table'
@@ -195,21 +197,21 @@ contains
     if (problem%normal%active) then
       ! the contact area lies inside the interpenetration area {h < approach}
       ! (the whole grid when the force is given): the tangential solve on that
-      ! bound, plus the normal solve's ~15 doubles per grid cell
+      ! bound, plus the normal solve's (normal_cell_bytes per grid cell)
       associate (gap => problem%normal%gap)
         if (problem%normal%force_given) then
           call mask_patch(gap%h < huge(1.0_real64), gap%dx, gap%dy, gap%x0, gap%y0, 'gap', bound, status)
         else
           call mask_patch(gap%h < problem%normal%approach, gap%dx, gap%dy, gap%x0, gap%y0, 'gap', bound, status)
         end if
-        bytes = 120 * int(gap%mx, int64) * gap%my
+        bytes = normal_cell_bytes * int(gap%mx, int64) * gap%my
       end associate
       if (status%failed()) return
       bounded%extrapolate = .false.
       if (problem%target_error > 0 .and. problem%refine_grid) then
         ! error control (kcreep_gap_levels): the normal problem again on a
         ! fine grid of at most max_normal_grid_cells, then the levels
-        bytes = max(bytes, 120 * int(max_normal_grid_cells, int64))
+        bytes = max(bytes, normal_cell_bytes * int(max_normal_grid_cells, int64))
         call controlled_finest_patch(problem, bound, status)
         if (status%failed()) return
       end if

@@ -162,10 +162,11 @@ contains
       real(real64) :: patch_cells
       why = ''
       if (split) then
+        if (level <= finest_split(problem%patch%n, budget)) return
         if (level > max_split) then
           why = 'error control: stopped at '//itoa(level - 1)//' x '//itoa(level - 1)//' subcells per cell, '// &
                 'the finest split kcreep tries (the estimates did not come down to the target)'
-        else if (real(problem%patch%n, real64) * level**2 > budget) then
+        else
           why = 'error control: splitting every cell in '//itoa(level)//' x '//itoa(level)//' would exceed '// &
                 'the budget of '//itoa(nint(budget))//' patch cells at target_error '// &
                 rtoa(problem%target_error)//', stopped at '//itoa(level - 1)//' x '//itoa(level - 1)// &
