@@ -21,7 +21,7 @@ module kcreep_nml_normal
     character(len=4096) :: gap_file = '', contact_inp = ''
     integer :: contact_inp_case = 1, cells_across = 60, normal_max_iterations = 0
     real(real64) :: rx = 0, ry = 0, lx = 0, ly = 0, cx = 0, cy = 0, approach = unset, normal_force = unset, &
-                    margin = 0.2_real64, e1 = unset, nu1 = unset, e2 = unset, nu2 = unset, normal_tolerance = 0
+                    margin = 0.2_real64, e1 = unset, nu1 = unset, e2 = unset, nu2 = unset, normal_tolerance = unset
   end type normal_group_t
 
   !> The group's variables and their types, as in its namelist statement
@@ -46,7 +46,7 @@ contains
     namelist /normal/ gap_file, contact_inp, contact_inp_case, rx, ry, lx, ly, cx, cy, approach, normal_force, &
                       cells_across, margin, e1, nu1, e2, nu2, normal_tolerance, normal_max_iterations
 
-    grp%normal_tolerance = defaults%tolerance
+    grp%normal_tolerance = unset
     grp%normal_max_iterations = defaults%max_iterations
     gap_file = grp%gap_file
     contact_inp = grp%contact_inp
@@ -100,6 +100,7 @@ contains
     character(len=:), allocatable :: where
     real(real64) :: body(4)
     integer :: sources
+    type(normal_options_t) :: defaults
 
     where = input_where(cfg)
     cfg%gap_file = resolve_path(trim(grp%gap_file), folder_of(cfg%input_path))
@@ -112,7 +113,9 @@ contains
     if (cfg%force_given) cfg%normal_force = grp%normal_force
     cfg%cells_across = grp%cells_across
     cfg%margin = grp%margin
-    cfg%normal%options%tolerance = grp%normal_tolerance
+    cfg%normal%options%tolerance_given = grp%normal_tolerance /= unset
+    cfg%normal%options%tolerance = merge(grp%normal_tolerance, defaults%tolerance, &
+                                         cfg%normal%options%tolerance_given)
     cfg%normal%options%max_iterations = grp%normal_max_iterations
     body = [grp%e1, grp%nu1, grp%e2, grp%nu2]
 

@@ -9,7 +9,8 @@
 !> the given grid finds where the contact area is and its hydraulic diameter
 !> 4 area / perimeter (contact_diameter); then again on square cells of
 !> gap_normal_cells across its level_size (kcreep_region) over the area's bounding box
-!> widened by a margin, and on cells twice that size. The tangential
+!> widened by a margin, and on cells twice that size (solved first: its
+!> pressure starts the fine solve; both to gap_normal_tolerance). The tangential
 !> levels (kcreep_level_ladder, the ellipses' ladder) sample the fine
 !> contact area, each referred to it by its second moments, so every level
 !> describes the same shape and the staircase's wander from level to level
@@ -161,9 +162,10 @@ contains
     ! grid's estimate grows with it)
     if ((box(2) - box(1)) * (box(4) - box(3)) / across**2 > max_normal_grid_cells) &
       across = sqrt((box(2) - box(1)) * (box(4) - box(3)) / max_normal_grid_cells)
-    call contact_area_on(problem, box, across, fine, fine_normal, status)
-    if (status%failed()) return
+    ! the coarse grid first: its pressure starts the fine solve (fewer CG steps)
     call contact_area_on(problem, box, 2 * across, coarse, coarse_normal, status)
+    if (status%failed()) return
+    call contact_area_on(problem, box, across, fine, fine_normal, status, coarse, coarse_normal%pressure)
     if (status%failed()) return
     region = sampled_region(fine, fine_normal%pressure, status)
     if (status%failed()) return
@@ -179,19 +181,54 @@ contains
     result%bbox = region%reference%cells_box()
   end subroutine run_gap_levels
 
-  !> The contact area of the normal problem on square cells of size h over box.
-  subroutine contact_area_on(problem, box, h, patch, nres, status)
+  !> The contact area of the normal problem on square cells of size h over
+  !> box; from_patch, from_pressure: a coarser solution to start from.
+  subroutine contact_area_on(problem, box, h, patch, nres, status, from_patch, from_pressure)
     type(problem_t), intent(in) :: problem
     real(real64), intent(in) :: box(4), h
     type(patch_t), intent(out) :: patch
     type(normal_result_t), intent(out) :: nres
     type(status_t), intent(inout) :: status
+    type(patch_t), intent(in), optional :: from_patch
+    real(real64), intent(in), optional :: from_pressure(:, :)
     type(problem_t) :: on_grid
     on_grid = problem
+    if (.not. problem%normal%options%tolerance_given) on_grid%normal%options%tolerance = gap_normal_tolerance
     call level_gap(problem, box, h, on_grid%normal%gap, status)
     if (status%failed()) return
-    call normal_patch(on_grid, patch, nres, status)
+    if (present(from_patch) .and. present(from_pressure)) then
+      call normal_patch(on_grid, patch, nres, status, start=pressure_on(from_patch, from_pressure, on_grid%normal%gap))
+    else
+      call normal_patch(on_grid, patch, nres, status)
+    end if
   end subroutine contact_area_on
+
+  !> A pressure given on the bounding box of `patch` (its cells' grid) on
+  !> the cells of the gap's grid: bilinear between the given cell centres,
+  !> zero beyond them.
+  pure function pressure_on(patch, pressure, gap) result(p)
+    type(patch_t), intent(in) :: patch
+    real(real64), intent(in) :: pressure(:, :)
+    type(gap_t), intent(in) :: gap
+    real(real64) :: p(gap%mx, gap%my), fx, fy
+    integer :: ix, iy, i, j
+    do iy = 1, gap%my
+      fy = (gap%cell_y(iy) - patch%y0) / patch%dy + 1
+      j = floor(fy)
+      do ix = 1, gap%mx
+        fx = (gap%cell_x(ix) - patch%x0) / patch%dx + 1
+        i = floor(fx)
+        p(ix, iy) = (1 - (fx - i)) * (1 - (fy - j)) * at(i, j) + (fx - i) * (1 - (fy - j)) * at(i + 1, j) + &
+                    (1 - (fx - i)) * (fy - j) * at(i, j + 1) + (fx - i) * (fy - j) * at(i + 1, j + 1)
+      end do
+    end do
+  contains
+    pure real(real64) function at(i, j)
+      integer, intent(in) :: i, j
+      at = 0
+      if (i >= 1 .and. i <= size(pressure, 1) .and. j >= 1 .and. j <= size(pressure, 2)) at = pressure(i, j)
+    end function at
+  end function pressure_on
 
   !> Cells across the contact area's hydraulic diameter of the normal
   !> problem's fine grid: gap_normal_cells_at_default at the default target

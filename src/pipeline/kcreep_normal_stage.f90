@@ -18,12 +18,14 @@ module kcreep_normal_stage
 contains
 
   !> Solve problem%normal and return the contact patch; nres holds the
-  !> pressure on the gap's whole grid.
-  subroutine normal_patch(problem, patch, nres, status)
+  !> pressure on the patch's bounding box. start: a pressure on the gap's
+  !> grid to start the solver from.
+  subroutine normal_patch(problem, patch, nres, status, start)
     type(problem_t), intent(in) :: problem
     type(patch_t), intent(out) :: patch
     type(normal_result_t), intent(out) :: nres
     type(status_t), intent(inout) :: status
+    real(real64), intent(in), optional :: start(:, :)
     real(real64) :: compliance
     type(normal_options_t) :: options
     integer :: ilo, ihi, jlo, jhi
@@ -44,9 +46,10 @@ contains
       options = np%options
       options%threads = problem%solve%threads   ! one thread knob for every stage
       if (np%force_given) then
-        call solve_normal(gap%h, gap%dx, gap%dy, compliance, options, nres, status, normal_force=np%normal_force)
+        call solve_normal(gap%h, gap%dx, gap%dy, compliance, options, nres, status, normal_force=np%normal_force, &
+                          start=start)
       else
-        call solve_normal(gap%h, gap%dx, gap%dy, compliance, options, nres, status, approach=np%approach)
+        call solve_normal(gap%h, gap%dx, gap%dy, compliance, options, nres, status, approach=np%approach, start=start)
       end if
       if (status%failed()) return
       contact = nres%pressure > 0

@@ -18,6 +18,11 @@
 !> did not change and recomputed otherwise, every 25 steps, and before
 !> convergence is accepted.
 !>
+!> Start: a given pressure (the solution on a coarser grid of the same
+!> area, interpolated: the contact area is then nearly right from the first
+!> step), else the uniform pressure (force given) or the best multiple of
+!> the interpenetration (approach given).
+!>
 !> Stopping: the complementarity residual
 !>   max( max_{p>0} |g|, max_{p=0} max(-g, 0) ) / max(u)
 !> (relative to the elastic displacement, i.e. to the size of the
@@ -38,6 +43,8 @@ module kcreep_normal_solve
 
   type :: normal_options_t
     real(real64) :: tolerance = 1e-10_real64   !< on the complementarity residual
+    !> tolerance set by the caller (else error control may choose its own)
+    logical :: tolerance_given = .false.
     integer :: max_iterations = 5000
     !> FFTW threads: 0 automatic (kcreep_threads), else this many
     integer :: threads = 0
@@ -166,18 +173,20 @@ contains
   !> Solve the normal problem on the grid of h (cell sizes dx, dy; compliance
   !> 1/E*). Exactly one of approach and normal_force must be present.
   !> Cells with h >= 1e29 are outside the potential contact (never loaded).
-  subroutine solve_normal(h, dx, dy, compliance, options, res, status, approach, normal_force)
+  !> start: a pressure (mx, my) to start from (scaled to normal_force).
+  subroutine solve_normal(h, dx, dy, compliance, options, res, status, approach, normal_force, start)
     real(real64), intent(in) :: h(:, :)
     real(real64), intent(in) :: dx, dy, compliance
     type(normal_options_t), intent(in) :: options
     type(normal_result_t), intent(out) :: res
     type(status_t), intent(inout) :: status
     real(real64), intent(in), optional :: approach, normal_force
+    real(real64), intent(in), optional :: start(:, :)
 
     type(normal_operator_t) :: op
     real(real64), allocatable :: p(:, :), g(:, :), t(:, :), u(:, :), r(:, :)
     logical, allocatable :: active(:, :)
-    logical :: force_given, restart, fresh, changed
+    logical :: force_given, restart, fresh, changed, started
     integer :: since_fresh
     real(real64) :: factor
     !> steps between recomputations of u = A p (round-off drift of the update)
@@ -201,6 +210,8 @@ contains
       return
     end if
     cell_area = dx * dy
+    started = .false.
+    if (present(start)) started = all(shape(start) == shape(h))   ! else the usual start
     allocate (p(mx, my), g(mx, my), t(mx, my), u(mx, my), r(mx, my), active(mx, my))
     delta = 0
     fn = 0
@@ -230,8 +241,18 @@ contains
       end if
     end if
 
+    if (started) started = any(start > 0 .and. h < 1e29_real64)
+    if (started) then
+      where (h < 1e29_real64)
+        p = max(start, 0.0_real64)
+      elsewhere
+        p = 0
+      end where
+      if (force_given) p = p * (fn / (cell_area * sum(p)))
+    end if
+
     call create_normal_operator(mx, my, dx, dy, compliance, options%threads, op)
-    if (.not. force_given) then
+    if (.not. force_given .and. .not. started) then
       ! first estimate: the best multiple of the interpenetration
       call apply_normal_operator(op, g, u)
       p = g * (sum(g * g) / sum(g * u))

@@ -142,6 +142,17 @@ kc.check(abs(r["g"] / g - 1) < 1e-14 and abs(r["nu"] / nu - 1) < 1e-14, f"dissim
 kc.check(abs(r["fn"] / f_hertz - 1) < 1e-3 and abs(r["pmax"] / p_hertz - 1) < 1.5e-3,
          f"dissimilar bodies: fn {r['fn'] / f_hertz - 1:+.1e}, pmax {r['pmax'] / p_hertz - 1:+.1e} against Hertz with the exact 1/E*")
 
+# the fine normal grid of error control stops at residual 1e-8 unless the caller set one
+# (kcreep_refine_constants gap_normal_tolerance); a given normal_tolerance holds there too
+sphere = "&patch shape='gap' /\n&normal rx=1, ry=2, approach=0.01{} /\n"
+r_default = kc.coefficients(sphere.format(""), folder, "tol_default")
+r_given = kc.coefficients(sphere.format(", normal_tolerance=1e-11"), folder, "tol_given")
+kc.check(1e-11 < r_default["normal_residual"] <= 1e-8 and r_given["normal_residual"] <= 1e-11,
+         f"fine normal grid: residual {r_default['normal_residual']:.1e} (default, <= 1e-8), "
+         f"{r_given['normal_residual']:.1e} (normal_tolerance = 1e-11)")
+kc.check(all(abs(r_default[c] / r_given[c] - 1) < 1e-6 for c in ("f11", "f22", "f23")),
+         "fine normal grid at 1e-8: the coefficients of 1e-11 to six digits")
+
 # a contact area that reaches the grid's edge: solved, with a warning
 code, out, err, table = kc.run("&patch shape='gap' /\n&normal gap_file='flat.gap', approach=0.1 /\n", folder, "edge",
                                expect_ok=False, files={"flat.gap": "12 10 1 1 0 0\n" + "0 " * 12 + "\n" + ("0 " * 12 + "\n") * 9})

@@ -7,7 +7,8 @@
 !>     curvatures hold with K and E from an independent quadrature.
 !>  4. Hertz on the grid, force prescribed: errors below bounds taken from the
 !>     measured convergence table (docs/normal.md) with ~30 % headroom.
-!>  5. Approach prescribed = force prescribed (same solution).
+!>  5. Approach prescribed = force prescribed (same solution); a start
+!>     pressure near the solution gives the same solution in fewer steps.
 !>  6. CONTACT's kidney and twin samples: contact area cell for cell, FN and
 !>     PMAX to the printed four digits.
 !>  7. Gap file and CONTACT .inp readers: good input and each refusal.
@@ -27,6 +28,7 @@ program test_normal
   use kcreep_contact_input, only: contact_input_t, read_contact_input
   use kcreep_contact_reader, only: contact_case_t, read_contact_case
   use unit_checks, only: checker_t
+  use kcreep_strings, only: itoa
   implicit none
   type(checker_t) :: t
   real(real64), parameter :: pi = acos(-1.0_real64)
@@ -248,6 +250,21 @@ contains
     ! both stop at residual 1e-10 of max(u): pressures agree to ~1e-9 of pmax
     call t%check(maxval(abs(r1%pressure - r2%pressure)) < 1e-8_real64 * r1%pmax .and. &
                  abs(r2%fn / 50 - 1) < 1e-8_real64, 'approach prescribed reproduces the force-prescribed solution')
+    ! a start 10 % off the solution and spread one cell wider (as a coarser
+    ! grid's pressure interpolated is): the same solution; the solution
+    ! itself as start: done at once
+    call solve_normal(gap%h, 0.01_real64, 0.01_real64, 1e-5_real64, opt, r2, st, normal_force=50.0_real64, &
+                      start=1.1_real64 * max(r1%pressure, eoshift(r1%pressure, 1, dim=1)))
+    call t%check(.not. st%failed() .and. maxval(abs(r1%pressure - r2%pressure)) < 1e-8_real64 * r1%pmax, &
+                 'a start pressure: the same solution')
+    call solve_normal(gap%h, 0.01_real64, 0.01_real64, 1e-5_real64, opt, r2, st, normal_force=50.0_real64, &
+                      start=r1%pressure)
+    call t%check(r2%iterations <= 1, 'the solution as start: at most one step ('//itoa(r2%iterations)//' against '// &
+                 itoa(r1%iterations)//' from the uniform start)')
+    call solve_normal(gap%h, 0.01_real64, 0.01_real64, 1e-5_real64, opt, r2, st, approach=r1%approach, &
+                      start=1.1_real64 * r1%pressure)
+    call t%check(.not. st%failed() .and. maxval(abs(r1%pressure - r2%pressure)) < 1e-8_real64 * r1%pmax, &
+                 'a start pressure, approach prescribed: the same solution')
   end subroutine test_approach_equals_force
 
   subroutine test_contact_sample(name)
