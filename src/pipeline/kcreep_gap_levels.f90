@@ -15,8 +15,8 @@
 !> contact area, each referred to it by its second moments, so every level
 !> describes the same shape and the staircase's wander from level to level
 !> is taken out as on an ellipse. The estimate adds to the ladder's the
-!> normal grid's own (normal_grid_estimate: the contact area's aspect ratio
-!> between the two normal grids). c = sqrt(area / pi) of the fine contact
+!> normal grid's own (normal_grid_estimate: the change of the contact area's
+!> aspect ratio and centre between the two normal grids). c = sqrt(area / pi) of the fine contact
 !> area; FASTSIM's pressure is the fine pressure at the finest level's cells.
 !>
 !> A single grid (target_error = 0, or refine_grid off): the gap's grid as
@@ -147,24 +147,33 @@ contains
     type(problem_t), intent(in) :: problem
     type(result_t), intent(out) :: result
     type(status_t), intent(inout) :: status
-    type(patch_t) :: first, fine, coarse
-    type(normal_result_t) :: nres, fine_normal, coarse_normal
+    type(patch_t) :: first, fine, coarse, located
+    type(normal_result_t) :: nres, fine_normal, coarse_normal, located_normal
     type(region_t) :: region, coarse_region
-    real(real64) :: box(4), across
+    real(real64) :: wide(4), box(4), across, target
 
     ! the contact area on the given grid: its size and where it is
     call normal_patch(problem, first, nres, status)
     if (status%failed()) return
-    box = level_box(problem%normal%gap, first%grid_box())
-    across = level_size(first) / gap_normal_cells(problem%target_error)
-    ! a long thin area (a flange contact) on so fine a grid would fill millions
-    ! of cells: the grid is coarsened to max_normal_grid_cells (the normal
-    ! grid's estimate grows with it)
-    if ((box(2) - box(1)) * (box(4) - box(3)) / across**2 > max_normal_grid_cells) &
-      across = sqrt((box(2) - box(1)) * (box(4) - box(3)) / max_normal_grid_cells)
-    ! the coarse grid first: its pressure starts the fine solve (fewer CG steps)
-    call contact_area_on(problem, box, 2 * across, coarse, coarse_normal, status)
+    wide = level_box(problem%normal%gap, first%grid_box())
+    target = level_size(first) / gap_normal_cells(problem%target_error)
+    ! on cells twice the fine ones over the wide box: where the contact is,
+    ! to a coarse cell; the fine grid covers only that (a thin strip's box
+    ! on the given grid is 2-4 times its area)
+    across = capped_cells(wide, target)
+    call contact_area_on(problem, wide, 2 * across, coarse, coarse_normal, status)
     if (status%failed()) return
+    box = area_box(coarse, 2 * across, wide)
+    if (capped_cells(box, target) < across) then
+      ! a long thin area (a flange contact) is held to max_normal_grid_cells:
+      ! the smaller box lets it have smaller cells; the coarse grid follows
+      across = capped_cells(box, target)
+      located = coarse
+      located_normal = coarse_normal
+      call contact_area_on(problem, box, 2 * across, coarse, coarse_normal, status, located, located_normal%pressure)
+      if (status%failed()) return
+    end if
+    ! the coarse pressure starts the fine solve (fewer CG steps)
     call contact_area_on(problem, box, across, fine, fine_normal, status, coarse, coarse_normal%pressure)
     if (status%failed()) return
     region = sampled_region(fine, fine_normal%pressure, status)
@@ -240,14 +249,12 @@ contains
   end function gap_normal_cells
 
   !> The error the normal problem's grid leaves in C11, C22, C23, from the
-  !> contact areas of the fine and the coarse normal grid: at second order
-  !> the fine one is a third as far from the continuum as from the coarse one
-  !> (normal_grid_order). Their
+  !> contact areas of the fine and the coarse normal grid (the change between
+  !> them, times normal_grid_factor). Their
   !> aspect ratios (second moments) differ by r(h) / r(2h), and the C's follow
   !> with the refined table's slope d ln C / d ln(a/b) (their size is
   !> normalised out); their centres differ by dx along the rolling
   !> direction, and C23 about a fixed spin centre follows as C22 dx / (C23 c).
-  !> Both times normal_grid_factor.
   function normal_grid_estimate(fine, coarse, nu) result(rel_error)
     type(region_t), intent(in) :: fine, coarse
     real(real64), intent(in) :: nu
@@ -264,7 +271,7 @@ contains
     radius = sqrt(fine%reference%area() / pi)
     rel_error = abs(slope(1:3) * log(r_fine / r_coarse))
     rel_error(3) = rel_error(3) + c(2) / c(3) * abs(m_fine%centre(1) - m_coarse%centre(1)) / radius
-    rel_error = normal_grid_factor * rel_error / (2**normal_grid_order - 1)
+    rel_error = normal_grid_factor * rel_error
   end function normal_grid_estimate
 
   !> The region the level grids cover: the contact area's bounding box (cell
@@ -279,6 +286,28 @@ contains
     box = [max(bbox(1) - wx, gap%x0 - gap%dx / 2), min(bbox(2) + wx, gap%x0 + (gap%mx - 0.5_real64) * gap%dx), &
            max(bbox(3) - wy, gap%y0 - gap%dy / 2), min(bbox(4) + wy, gap%y0 + (gap%my - 0.5_real64) * gap%dy)]
   end function level_box
+
+  !> The fine normal grid's cell size: target, or larger where box would
+  !> have more than max_normal_grid_cells of them (a long thin area's box is
+  !> large for its width; the normal grid's estimate grows with the cells).
+  pure real(real64) function capped_cells(box, target) result(h)
+    real(real64), intent(in) :: box(4), target
+    h = max(target, sqrt((box(2) - box(1)) * (box(4) - box(3)) / max_normal_grid_cells))
+  end function capped_cells
+
+  !> The box the fine normal grid covers: the contact area found on cells
+  !> of size h (its cells' bounding box) widened by gap_level_margin of its
+  !> size and two of those cells on every side, within `within`.
+  pure function area_box(area, h, within) result(box)
+    type(patch_t), intent(in) :: area
+    real(real64), intent(in) :: h, within(4)
+    real(real64) :: box(4), bbox(4), wx, wy
+    bbox = area%cells_box()
+    wx = gap_level_margin * (bbox(2) - bbox(1)) + 2 * h
+    wy = gap_level_margin * (bbox(4) - bbox(3)) + 2 * h
+    box = [max(bbox(1) - wx, within(1)), min(bbox(2) + wx, within(2)), &
+           max(bbox(3) - wy, within(3)), min(bbox(4) + wy, within(4))]
+  end function area_box
 
   !> The undeformed distance on square cells of size h covering box (centred
   !> on it): the polynomial evaluated, or the given grid resampled.

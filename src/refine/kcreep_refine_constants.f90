@@ -121,18 +121,11 @@ module kcreep_refine_constants
   !> problem's fine grid at the default target (twice this below it). The
   !> levels sample the zero level of the interpolated p^2 (kcreep_region), so
   !> the contact boundary lies inside the fine cells. Measured on the Hertzian
-  !> gaps a/b = 2 and 0.5 (scripts/studies/gap_hertz_check.py, default run):
-  !> at 64, 96, 128 and 192 cells the C11 / C22 errors are at most 0.065,
-  !> 0.083, 0.081 and 0.055 %; C23 0.41, 0.26, 0.12, 0.14 %. 128 is the
-  !> coarsest with C23 inside its 0.3 % and takes 0.6 s per gap where 192
-  !> takes 1.1-1.6 s (the normal solves dominate).
+  !> gaps a/b = 2, 0.5 and 5 (scripts/studies/gap_hertz_check.py --ratios
+  !> 2,0.5,5, one run each on one core): at 64 cells a/b = 2 and 5 end
+  !> `uncertain` (2.1-2.3 s); 96, 128 and 192 end `ok` in 0.4-1.4, 0.5-1.3
+  !> and 0.8-3.1 s. 128 is the fastest over the three.
   real(real64), parameter :: gap_normal_cells_at_default = 128
-  !> The normal grid's estimate (kcreep_gap_levels normal_grid_estimate): the
-  !> contact boundary is placed to second order (kcreep_region), so the fine
-  !> grid's error is |change from the coarse grid| / (2^normal_grid_order - 1),
-  !> times normal_grid_factor for what the two grids' moments do not see.
-  !> (calibration) Measured on 15 Hertzian gaps (scripts/studies/
-  !> gap_error_calibration.py, docs/accuracy.md section 5).
   !> The fine normal grid has at most this many cells (coarser cells on a
   !> long thin contact area, whose bounding box is large for its width): a
   !> run-time bound; 200,000 cells take about 0.5 s on one core.
@@ -144,13 +137,24 @@ module kcreep_refine_constants
   !> 20 and input/wheel_rail.nml; at 1e-6 a boundary cell flips and C23 moves
   !> by 2e-4), with 40 % fewer CG steps; a decade below that for margin.
   real(real64), parameter :: gap_normal_tolerance = 1e-8_real64
-  integer, parameter :: normal_grid_order = 2
-  real(real64), parameter :: normal_grid_factor = 2
-  !> The fine normal grids cover the contact area's bounding box on the given
-  !> grid widened by this fraction of its size on every side and by two cells
-  !> of the given grid: the contact area found on the given grid is within a
-  !> cell of the fine one's, and a larger grid only costs (the normal solves
-  !> are most of a gap's run time).
+  !> The normal grid's estimate (kcreep_gap_levels normal_grid_estimate) is
+  !> this multiple of the change from the coarse normal grid to the fine
+  !> one. The contact edge is placed within a scatter of 0.02-0.03 cells
+  !> that does not fall at second order (kcreep_region edge_blend), so the
+  !> fine grid is taken to be as far from the continuum as from the coarse
+  !> one. (calibration) 15 Hertzian gaps (scripts/studies/
+  !> gap_error_calibration.py --check, docs/accuracy.md section 5): a third
+  !> of the change (second order) left one of 45 cases unbounded (C11 at
+  !> Rx/Ry = 5, nu = 0.5: error 0.027 % against 0.018 %); the whole change
+  !> bounds 45 of 45 at a median estimate / error of 3.25.
+  real(real64), parameter :: normal_grid_factor = 1
+  !> The coarse normal grid covers the contact area's bounding box on the
+  !> given grid, the fine one that on the coarse grid, each widened by this
+  !> fraction of its size on every side and by two cells of the grid it was
+  !> found on: the contact area is within a cell of that grid's, and a
+  !> larger grid only costs (a flange strip's box on the given grid is 2-4
+  !> times its area; the fine grid over the coarse area's box took the S1002
+  !> table from 38.3 to 34.7 s).
   real(real64), parameter :: gap_level_margin = 0.05_real64
   !> A gap's grid given as is: the geometry on cells gap_single_sizes times
   !> the size, estimate gap_single_factor max(|C(h) - C(2h)|, 2 |C(h) -
