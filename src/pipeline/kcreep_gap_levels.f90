@@ -7,10 +7,11 @@
 !>
 !> Error control (target_error > 0 and refine_grid): the normal problem on
 !> the given grid finds where the contact area is and its hydraulic diameter
-!> 4 area / perimeter (contact_diameter); then again on square cells of
-!> gap_normal_cells across its level_size (kcreep_region) over the area's bounding box
-!> widened by a margin, and on cells twice that size (solved first: its
-!> pressure starts the fine solve; both to gap_normal_tolerance). The tangential
+!> 4 area / perimeter (contact_diameter); then again on square cells twice
+!> the fine size over the area's bounding box widened by a margin, and on
+!> square cells of gap_normal_cells across its level_size (kcreep_region)
+!> over the area found there, widened likewise (the coarse pressure starts
+!> the fine solve; both to gap_normal_tolerance). The tangential
 !> levels (kcreep_level_ladder, the ellipses' ladder) sample the fine
 !> contact area, each referred to it by its second moments, so every level
 !> describes the same shape and the staircase's wander from level to level
@@ -163,7 +164,7 @@ contains
     across = capped_cells(wide, target)
     call contact_area_on(problem, wide, 2 * across, coarse, coarse_normal, status)
     if (status%failed()) return
-    box = area_box(coarse, 2 * across, wide)
+    box = widened_box(coarse%cells_box(), 2 * across, 2 * across, wide)
     if (capped_cells(box, target) < across) then
       ! a long thin area (a flange contact) is held to max_normal_grid_cells:
       ! the smaller box lets it have smaller cells; the coarse grid follows
@@ -280,11 +281,9 @@ contains
   pure function level_box(gap, bbox) result(box)
     type(gap_t), intent(in) :: gap
     real(real64), intent(in) :: bbox(4)
-    real(real64) :: box(4), wx, wy
-    wx = gap_level_margin * (bbox(2) - bbox(1)) + 2 * gap%dx
-    wy = gap_level_margin * (bbox(4) - bbox(3)) + 2 * gap%dy
-    box = [max(bbox(1) - wx, gap%x0 - gap%dx / 2), min(bbox(2) + wx, gap%x0 + (gap%mx - 0.5_real64) * gap%dx), &
-           max(bbox(3) - wy, gap%y0 - gap%dy / 2), min(bbox(4) + wy, gap%y0 + (gap%my - 0.5_real64) * gap%dy)]
+    real(real64) :: box(4)
+    box = widened_box(bbox, gap%dx, gap%dy, [gap%x0 - gap%dx / 2, gap%x0 + (gap%mx - 0.5_real64) * gap%dx, &
+                                             gap%y0 - gap%dy / 2, gap%y0 + (gap%my - 0.5_real64) * gap%dy])
   end function level_box
 
   !> The fine normal grid's cell size: target, or larger where box would
@@ -295,19 +294,17 @@ contains
     h = max(target, sqrt((box(2) - box(1)) * (box(4) - box(3)) / max_normal_grid_cells))
   end function capped_cells
 
-  !> The box the fine normal grid covers: the contact area found on cells
-  !> of size h (its cells' bounding box) widened by gap_level_margin of its
-  !> size and two of those cells on every side, within `within`.
-  pure function area_box(area, h, within) result(box)
-    type(patch_t), intent(in) :: area
-    real(real64), intent(in) :: h, within(4)
-    real(real64) :: box(4), bbox(4), wx, wy
-    bbox = area%cells_box()
-    wx = gap_level_margin * (bbox(2) - bbox(1)) + 2 * h
-    wy = gap_level_margin * (bbox(4) - bbox(3)) + 2 * h
+  !> bbox (xmin xmax ymin ymax) widened by gap_level_margin of its size and
+  !> two cells (hx, hy) on every side, within `within`: the contact area
+  !> found on those cells is within a cell of a finer grid's.
+  pure function widened_box(bbox, hx, hy, within) result(box)
+    real(real64), intent(in) :: bbox(4), hx, hy, within(4)
+    real(real64) :: box(4), wx, wy
+    wx = gap_level_margin * (bbox(2) - bbox(1)) + 2 * hx
+    wy = gap_level_margin * (bbox(4) - bbox(3)) + 2 * hy
     box = [max(bbox(1) - wx, within(1)), min(bbox(2) + wx, within(2)), &
            max(bbox(3) - wy, within(3)), min(bbox(4) + wy, within(4))]
-  end function area_box
+  end function widened_box
 
   !> The undeformed distance on square cells of size h covering box (centred
   !> on it): the polynomial evaluated, or the given grid resampled.
