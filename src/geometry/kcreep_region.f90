@@ -12,7 +12,8 @@
 !> r^2/a^2)), so the boundary is placed inside the cells rather than on
 !> cell edges. The outermost contact cells (a neighbour outside) carry about
 !> the mean pressure over the cell, which the edge cuts, not the value at
-!> the centre (Hertz at 100 cells across: 0.90 of the centre value), and
+!> the centre (Hertz at 50 cells across: 0.90 of the centre value,
+!> scripts/studies/edge_pressure.py), and
 !> their p^2 alone puts the edge inside by 0.02-0.08 cells; the parabola
 !> through the three cells behind them uses centre values 0.4-1 % high near
 !> the edge and puts it outside by as much. Their level is the mean of the
