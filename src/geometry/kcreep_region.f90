@@ -45,7 +45,11 @@ module kcreep_region
   !> 128 cells across the hydraulic diameter (28 grids; docs/normal.md):
   !> own value alone (1) median |aspect error| 0.089 % (at most 0.33 %),
   !> area 0.17 %; extrapolation alone (0) 0.19 % (0.50 %), area 0.20 %, on
-  !> the other side; the mean (0.5) 0.024 % (0.12 %), area 0.014 %.
+  !> the other side; the mean (0.5) 0.024 % (0.12 %), area 0.014 % (the
+  !> grids set by a temporary override of the cell count; reproducible at
+  !> the default 128 cells: scripts/studies/gap_error_calibration.py prints
+  !> the default runs' area against pi a b, 0.016 % median, and
+  !> tests/unit/test_region.f90 checks one solved grid).
   real(real64), parameter :: edge_blend = 0.5_real64
 
   type :: region_t
