@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# Benchmark of the normal contact solve (Polonsky-Keer CG with FFT): Hertz's
+# Benchmark of the normal contact solve (Polonsky-Keer CG with FFT, preconditioned): Hertz's
 # sphere on n x n grids, force prescribed, tolerance 1e-10. Prints the table
 # and writes it into the "Normal contact solve" section of docs/performance.md
 # (between the normal-bench markers; the rest of the file is left alone).
@@ -31,13 +31,15 @@ section=$(cat <<MD
 
 \`scripts/bench_normal.sh\` ($(date -u +%Y-%m-%d), $(nproc) cores, FFTW threads: $threads, load average at the end $load (the machine is shared); best of 3 runs below 700 x 700, one run above).
 Hertz's sphere, the contact circle across 80 % of the grid, total force prescribed, constrained
-conjugate gradient (Polonsky and Keer) to a complementarity residual of 1e-10; one FFT product
-(zero-padded 2n x 2n real transforms) per iteration, a second one when the active set changed. Errors against Hertz's closed forms.
+conjugate gradient (Polonsky and Keer) with the circulant inverse of the kernel as preconditioner
+(Vollebregt 2014) to a complementarity residual of 1e-10. Per iteration one FFT product (zero-padded
+2n x 2n real transforms; a second one when the active set changed) and one preconditioner pass
+(n x n periodic transforms, not counted under FFT products). Errors against Hertz's closed forms.
 
 | grid | cells | iterations | FFT products | residual | solve [s] | peak memory [MiB] | approach error | pmax error |
 |---|---|---|---|---|---|---|---|---|
 ${rows}
-Targets: 200 x 200 under 1 s: **${t200:-not run} s**; 1000 x 1000 under 60 s: **${t1000:-not run} s** (peak memory ${m1000:-?} MiB, about 15 doubles per cell).
+Targets: 200 x 200 under 1 s: **${t200:-not run} s**; 1000 x 1000 under 60 s: **${t1000:-not run} s** (peak memory ${m1000:-?} MiB, about 21 doubles per cell).
 <!-- normal-bench:end -->
 MD
 )

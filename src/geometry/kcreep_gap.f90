@@ -16,7 +16,7 @@ module kcreep_gap
   !> Gap values at or above this mark cells outside the potential contact.
   real(real64), parameter :: outside_gap = 1e29_real64
 
-  !> Larger grids are refused (memory of the normal solve ~ 15 doubles per cell).
+  !> Larger grids are refused (memory of the normal solve ~ 21 doubles per cell).
   integer, parameter :: max_gap_cells = 4000 * 4000
 
   type :: gap_t

@@ -11,7 +11,12 @@
 !> Method: the constrained conjugate gradient of Polonsky and Keer (Wear 231,
 !> 1999, 206-219): CG on the cells carrying pressure, negative pressures cut
 !> to zero, cells that interpenetrate without pressure added to the active
-!> set (and the conjugation restarted). A p is a 2-D linear convolution with
+!> set (and the conjugation restarted). Preconditioned with the inverse of
+!> the influence kernel as a circulant, restricted to the active cells (the
+!> FFT-based preconditioner of Vollebregt, J. Comput. Phys. 257, 2014,
+!> 333-351): 13-26 steps instead of 56-75 on the grids of error control
+!> (Hertzian gap a/b = 2, the S1002 +8 mm flange's 200,000 cells), each
+!> step two FFT products instead of one. A p is a 2-D linear convolution with
 !> the offset table, done with zero-padded real FFTs (FFTW), so memory and
 !> work per iteration are O(grid) and O(grid log grid). Each step needs
 !> r = A t; u = A p is updated along the step (u - tau r) when the active set
@@ -74,6 +79,20 @@ module kcreep_normal_solve
     real(real64), allocatable :: kernel(:, :)   !< real spectrum / (nx ny)
     type(c_ptr) :: forward = c_null_ptr, backward = c_null_ptr
   end type normal_operator_t
+
+  !> The preconditioner z = M^-1 g: the operator's kernel wrapped onto a
+  !> periodic grid the size of the contact grid (each offset its nearest
+  !> periodic image), inverted frequency by frequency. A periodic grid 1.25,
+  !> 1.5 or 2 times the size took as many steps (the Hertzian gap a/b = 2,
+  !> 13 on its fine grid each; the S1002 +8 mm flange, 16 and 18), for more work.
+  type :: normal_preconditioner_t
+    integer :: mx = 0, my = 0, nx = 0, ny = 0
+    type(c_ptr) :: p_real = c_null_ptr, p_spec = c_null_ptr
+    real(c_double), pointer :: grid(:, :) => null()
+    complex(c_double_complex), pointer :: spec(:, :) => null()
+    real(real64), allocatable :: inverse(:, :)   !< 1 / (spectrum (nx ny)^2)
+    type(c_ptr) :: forward = c_null_ptr, backward = c_null_ptr
+  end type normal_preconditioner_t
 
 contains
 
@@ -170,6 +189,78 @@ contains
     end do
   end subroutine apply_normal_operator
 
+  !> The preconditioner of an mx x my grid (normal_preconditioner_t).
+  subroutine create_normal_preconditioner(mx, my, dx, dy, compliance, threads, pre)
+    integer, intent(in) :: mx, my, threads
+    real(real64), intent(in) :: dx, dy, compliance
+    type(normal_preconditioner_t), intent(out) :: pre
+    real(real64), allocatable :: table(:, :)
+    real(real64) :: smallest
+    integer :: i, j, nh
+
+    pre%mx = mx
+    pre%my = my
+    pre%nx = fast_even_size(mx)
+    pre%ny = fast_even_size(my)
+    nh = pre%nx / 2 + 1
+    pre%p_real = fftw_alloc_real(int(pre%nx, c_size_t) * pre%ny)
+    pre%p_spec = fftw_alloc_complex(int(nh, c_size_t) * pre%ny)
+    call c_f_pointer(pre%p_real, pre%grid, [pre%nx, pre%ny])
+    call c_f_pointer(pre%p_spec, pre%spec, [nh, pre%ny])
+    !$omp critical (kcreep_fftw_planner)
+    if (fftw_init_threads() /= 0) call fftw_plan_with_nthreads(int(max(threads, 1), c_int))
+    pre%forward = fftw_plan_dft_r2c_2d(pre%ny, pre%nx, pre%grid, pre%spec, FFTW_ESTIMATE)
+    pre%backward = fftw_plan_dft_c2r_2d(pre%ny, pre%nx, pre%spec, pre%grid, FFTW_ESTIMATE)
+    !$omp end critical (kcreep_fftw_planner)
+
+    ! the kernel at the offset of each periodic cell's nearest image
+    call normal_offset_table(max(mx, pre%nx / 2 + 1), max(my, pre%ny / 2 + 1), dx, dy, compliance, table)
+    do j = 0, pre%ny - 1
+      do i = 0, pre%nx - 1
+        pre%grid(i + 1, j + 1) = table(min(i, pre%nx - i), min(j, pre%ny - j))
+      end do
+    end do
+    call fftw_execute_dft_r2c(pre%forward, pre%grid, pre%spec)
+    ! the wrapped kernel's spectrum was positive on every grid tried (its
+    ! smallest value 1e-3 to 1e-2 of the largest); the floor only guards
+    pre%inverse = real(pre%spec, real64)
+    smallest = 1e-6_real64 * maxval(pre%inverse)
+    pre%inverse = 1 / (max(pre%inverse, smallest) * (real(pre%nx, real64) * pre%ny))
+  end subroutine create_normal_preconditioner
+
+  subroutine destroy_normal_preconditioner(pre)
+    type(normal_preconditioner_t), intent(inout) :: pre
+    if (.not. c_associated(pre%p_real)) return
+    call fftw_free(pre%p_real)
+    call fftw_free(pre%p_spec)
+    !$omp critical (kcreep_fftw_planner)
+    call fftw_destroy_plan(pre%forward)
+    call fftw_destroy_plan(pre%backward)
+    !$omp end critical (kcreep_fftw_planner)
+    pre%p_real = c_null_ptr
+    pre%p_spec = c_null_ptr
+    nullify (pre%grid, pre%spec)
+  end subroutine destroy_normal_preconditioner
+
+  !> z = M^-1 g on the active cells, zero elsewhere (g taken on them only).
+  subroutine apply_normal_preconditioner(pre, g, active, z)
+    type(normal_preconditioner_t), intent(inout) :: pre
+    real(real64), intent(in) :: g(:, :)
+    logical, intent(in) :: active(:, :)
+    real(real64), intent(out) :: z(:, :)
+    integer :: j
+    pre%grid = 0
+    do j = 1, pre%my
+      pre%grid(1:pre%mx, j) = merge(g(:, j), 0.0_real64, active(:, j))
+    end do
+    call fftw_execute_dft_r2c(pre%forward, pre%grid, pre%spec)
+    pre%spec = pre%spec * pre%inverse
+    call fftw_execute_dft_c2r(pre%backward, pre%spec, pre%grid)
+    do j = 1, pre%my
+      z(:, j) = merge(pre%grid(1:pre%mx, j), 0.0_real64, active(:, j))
+    end do
+  end subroutine apply_normal_preconditioner
+
   !> Solve the normal problem on the grid of h (cell sizes dx, dy; compliance
   !> 1/E*). Exactly one of approach and normal_force must be present.
   !> Cells with h >= 1e29 are outside the potential contact (never loaded).
@@ -184,7 +275,8 @@ contains
     real(real64), intent(in), optional :: start(:, :)
 
     type(normal_operator_t) :: op
-    real(real64), allocatable :: p(:, :), g(:, :), t(:, :), u(:, :), r(:, :)
+    type(normal_preconditioner_t) :: pre
+    real(real64), allocatable :: p(:, :), g(:, :), t(:, :), u(:, :), r(:, :), z(:, :)
     logical, allocatable :: active(:, :)
     logical :: force_given, restart, fresh, changed, started
     integer :: since_fresh
@@ -212,7 +304,7 @@ contains
     cell_area = dx * dy
     started = .false.
     if (present(start)) started = all(shape(start) == shape(h))   ! else the usual start
-    allocate (p(mx, my), g(mx, my), t(mx, my), u(mx, my), r(mx, my), active(mx, my))
+    allocate (p(mx, my), g(mx, my), t(mx, my), u(mx, my), r(mx, my), z(mx, my), active(mx, my))
     delta = 0
     fn = 0
     if (force_given) then
@@ -252,6 +344,7 @@ contains
     end if
 
     call create_normal_operator(mx, my, dx, dy, compliance, options%threads, op)
+    call create_normal_preconditioner(mx, my, dx, dy, compliance, op%threads, pre)
     if (.not. force_given .and. .not. started) then
       ! first estimate: the best multiple of the interpenetration
       call apply_normal_operator(op, g, u)
@@ -301,16 +394,22 @@ contains
         fresh = .false.
         cycle
       end if
-      gg = sum(g * g, mask=active)
+      ! the preconditioned residual, in the force constraint's subspace (zero sum)
+      call apply_normal_preconditioner(pre, g, active, z)
+      if (force_given) then
+        mean = sum(z, mask=active) / nc
+        where (active) z = z - mean
+      end if
+      gg = sum(g * z, mask=active)
       if (restart) then
         where (active)
-          t = g
+          t = z
         elsewhere
           t = 0
         end where
       else
         where (active)
-          t = g + (gg / gg_old) * t
+          t = z + (gg / gg_old) * t
         elsewhere
           t = 0
         end where
@@ -344,6 +443,7 @@ contains
     end do
     res%products = op%applications
     call destroy_normal_operator(op)
+    call destroy_normal_preconditioner(pre)
 
     if (.not. res%converged) then
       call fail(status, exit_numerical, 'normal problem: no convergence in '//itoa(options%max_iterations)// &

@@ -230,6 +230,9 @@ contains
       call t%check(abs(res%approach / hz%approach - 1) < 3.2e-5_real64 .and. abs(res%pmax / hz%p0 - 1) < 4.7e-5_real64, &
                    trim(label)//', n = 80: approach and pmax (second order: ~4x smaller than at n = 40)')
       call t%check(abs(res%fn - 1) < 1e-13_real64, trim(label)//': total force as prescribed')
+      ! the preconditioned CG: 19-24 steps measured (53-86 without the preconditioner)
+      call t%check(res%iterations <= 30, trim(label)//', n = 80: at most 30 CG steps to 1e-10 from the uniform '// &
+                   'start ('//itoa(res%iterations)//')')
     end do
   end subroutine test_hertz_grid
 
