@@ -20,8 +20,8 @@ module kcreep_problem
   use kcreep_equivalent_ellipse, only: equivalent_ellipse_t
   implicit none
   private
-  public :: problem_t, result_t, default_problem, normal_problem_t, add_warning, append_prefixed, add_uncertain, level_tolerance, &
-            cell_budget_or
+  public :: problem_t, result_t, default_problem, normal_problem_t, add_warning, append_prefixed, add_uncertain, &
+            mark_uncertain, level_tolerance, cell_budget_or
 
   !> The normal contact problem that finds the patch: when active, the patch
   !> is the set of cells with positive pressure on the gap's grid (cropped
@@ -178,18 +178,28 @@ contains
     real(real64) :: targets(3)
     if (len(uncertain_flag(result%err, target, solved)) == 0) return
     targets = coefficient_targets(target)
-    result%verdict_flags = ior(result%verdict_flags, verdict_uncertain)
-    if (result%verdict == 'ok') then
-      result%verdict = 'uncertain'
-    else
-      result%verdict = result%verdict//',uncertain'
-    end if
     line = 'uncertain: '//what//' of C11, C22, C23 '//rtoa(result%err(1))//', '//rtoa(result%err(2))//', '// &
            rtoa(result%err(3))//' against targets '//rtoa(targets(1))//', '//rtoa(targets(2))//', '// &
            rtoa(targets(3))//' (target_error, C23 gets 3 times it)'
     if (present(advice)) line = trim(line)//': '//advice
-    call add_warning(result, line)
+    call mark_uncertain(result, line)
   end subroutine add_uncertain
+
+  !> 'uncertain' in the verdict (once), with the warning `why`: the estimates
+  !> may be within their targets, but they are not known to bound the error.
+  pure subroutine mark_uncertain(result, why)
+    type(result_t), intent(inout) :: result
+    character(len=*), intent(in) :: why
+    if (iand(result%verdict_flags, verdict_uncertain) == 0) then
+      result%verdict_flags = ior(result%verdict_flags, verdict_uncertain)
+      if (result%verdict == 'ok') then
+        result%verdict = 'uncertain'
+      else
+        result%verdict = result%verdict//',uncertain'
+      end if
+    end if
+    call add_warning(result, why)
+  end subroutine mark_uncertain
 
   !> Append a level's warnings to a list, each behind prefix (e.g.
   !> 'level 48 (96 x 96): '); level_warnings may not exist.

@@ -128,7 +128,11 @@ module kcreep_refine_constants
   real(real64), parameter :: gap_normal_cells_at_default = 128
   !> The fine normal grid has at most this many cells (coarser cells on a
   !> long thin contact area, whose bounding box is large for its width): a
-  !> run-time bound; 200,000 cells take about 0.5 s on one core.
+  !> run-time bound; 200,000 cells take about 0.45 s on one core (the S1002
+  !> +8 mm flange). A run held to it ends `uncertain` (kcreep_gap_levels):
+  !> with fewer than gap_normal_cells_at_default across, the normal grid's
+  !> estimate fell below what the grid's placement alone moves (the flange
+  !> strips, docs/wheel_rail.md).
   real(real64), parameter :: max_normal_grid_cells = 200000
   !> The complementarity residual the fine and coarse normal solves stop at
   !> when the caller gave none (&normal normal_tolerance; the given grid's
