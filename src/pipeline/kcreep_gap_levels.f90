@@ -32,7 +32,7 @@ module kcreep_gap_levels
   use kcreep_patch, only: patch_t
   use kcreep_gap, only: gap_t, gap_resampled, gap_from_polynomial
   use kcreep_wheel_rail_geometry, only: plane_gap_grid
-  use kcreep_problem, only: problem_t, result_t, mark_uncertain
+  use kcreep_problem, only: problem_t, result_t
   use kcreep_normal_stage, only: normal_patch, store_normal
   use kcreep_normal_solve, only: normal_result_t
   use kcreep_check, only: check_problem
@@ -183,13 +183,6 @@ contains
     if (status%failed()) return
     call run_shape_levels(problem, result, status, region, normal_grid_estimate(region, coarse_region, problem%nu))
     if (status%failed()) return
-    ! the normal grid's estimate is calibrated on gap_normal_cells across; with
-    ! fewer, the contact edge's placement scatter is not bounded by it
-    if (across > target * (1 + 1e-9_real64)) &
-      call mark_uncertain(result, 'uncertain: the normal grid was held to '//itoa(nint(max_normal_grid_cells))// &
-                          ' cells, '//itoa(nint(level_size(first) / across))//' across the contact area instead of '// &
-                          itoa(nint(gap_normal_cells(problem%target_error)))//', where the normal grid''s estimate '// &
-                          'is not known to bound its error (a long thin area; docs/wheel_rail.md)')
     call store_normal(fine_normal, fine, result)
     ! the pressure at the finest level's cells, scaled to the normal force
     ! found (sampling the interpolated pressure moves its sum by about 1e-4)

@@ -24,7 +24,7 @@ module kcreep_level_ladder
   use kcreep_strings, only: itoa, rtoa
   use kcreep_patch, only: patch_t, ellipse_patch, place_like, connected_parts, part_patch
   use kcreep_region, only: region_t, region_level_patch
-  use kcreep_problem, only: problem_t, result_t, append_prefixed, level_tolerance, cell_budget_or
+  use kcreep_problem, only: problem_t, result_t, append_prefixed, level_tolerance, cell_budget_or, mark_uncertain
   use kcreep_run, only: run_case
   use kcreep_verdict, only: message_length
   use kcreep_fastsim, only: fastsim_flexibilities
@@ -135,6 +135,12 @@ contains
     if (present(region)) result%c = sqrt(region%reference%area() / pi)
     call finish_result(result, t)
     result%warnings = warnings
+    ! the budget scaled a long shape's levels below the range the estimate
+    ! was calibrated on: its estimate is not known to bound the error
+    if (.not. split .and. levels(1) < base_levels(1)) &
+      call mark_uncertain(result, 'uncertain: the cell budget scaled the levels down to '//itoa(levels(1))//'-'// &
+                          itoa(levels(size(levels)))//' cells across, below the '//itoa(base_levels(1))// &
+                          ' where the estimate was calibrated (&solver cell_budget raises it)')
 
   contains
 

@@ -108,7 +108,11 @@ module kcreep_refine_constants
   !> (112, 128, 148, 172, ...).
   real(real64), parameter :: next_level_growth = 1.15_real64
   integer, parameter :: base_levels(5) = [56, 64, 72, 84, 96]
-  !> The base levels of a long ellipse are scaled down to its cell budget, to no fewer than this.
+  !> The base levels of a long ellipse are scaled down to its cell budget, to
+  !> no fewer than this. Such a run ends `uncertain` (kcreep_level_ladder):
+  !> below base_levels(1) the levels bend with L h^2, and on the S1002 flange
+  !> strips (levels 49 to 92 across) the estimates moved by up to 10 times
+  !> with small changes of the contact area (docs/wheel_rail.md).
   integer, parameter :: min_base_cells = 32
   !> The share of an ellipse's bounding grid inside it (pi/4), for its patch cells.
   real(real64), parameter :: ellipse_fill = 0.79_real64
@@ -129,10 +133,7 @@ module kcreep_refine_constants
   !> The fine normal grid has at most this many cells (coarser cells on a
   !> long thin contact area, whose bounding box is large for its width): a
   !> run-time bound; 200,000 cells take about 0.45 s on one core (the S1002
-  !> +8 mm flange). A run held to it ends `uncertain` (kcreep_gap_levels):
-  !> with fewer than gap_normal_cells_at_default across, the normal grid's
-  !> estimate fell below what the grid's placement alone moves (the flange
-  !> strips, docs/wheel_rail.md).
+  !> +8 mm flange, preconditioned CG).
   real(real64), parameter :: max_normal_grid_cells = 200000
   !> The complementarity residual the fine and coarse normal solves stop at
   !> when the caller gave none (&normal normal_tolerance; the given grid's

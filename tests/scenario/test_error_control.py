@@ -167,4 +167,14 @@ code, out, err, t = kc.run(nml("shape='mask', mask_rows='#.#', '.#.', '#.#', dx=
 kc.check(code == 0 and t[0]["mx"] == 3 * 32 and "finest split kcreep tries" in err and t[0]["verdict"] != "ok",
          f"five cells 1e11 from the spin centre: stopped at 32 x 32 splits, uncertain and saying why "
          f"({t[0]['mx']} x {t[0]['my']}, {t[0]['verdict']})")
+
+# --- 7. a budget too small for the base levels scales them below 56 cells
+# across, where the estimate was not calibrated (levels bend with L h^2; on
+# the S1002 flange strips such estimates moved by up to 10 times): the run
+# ends uncertain with the warning that says why, whatever its estimates
+code, _, err, t = kc.run(nml("semi_a=2, semi_b=1", solver="method='iterative', cell_budget=5000"), folder, "scaled")
+kc.check(code == 0 and t[0]["verdict"] == "uncertain" and "scaled the levels down to" in err,
+         f"cell_budget = 5000 on a/b = 2: levels scaled below 56 across, uncertain ({t[0]['verdict'] if t else None})")
+code, _, err, t = kc.run(nml("semi_a=2, semi_b=1", solver="method='iterative'"), folder, "unscaled")
+kc.check(code == 0 and "scaled the levels" not in err, "the default budget on a/b = 2: base levels as calibrated, no such warning")
 kc.finish()
