@@ -198,7 +198,7 @@ contains
       tail(k:k) = achar(int(iand(bits, 255_int64)))
       bits = ishft(bits, -8)
     end do
-    call update(sha, achar(128))
+    call update(sha, char(128))
     do while (sha%fill /= 56)
       call update(sha, achar(0))
     end do

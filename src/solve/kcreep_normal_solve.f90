@@ -68,16 +68,23 @@ module kcreep_normal_solve
     logical :: touches_edge = .false.             !< pressure on the grid's outer cells
   end type normal_result_t
 
-  !> A p on an mx x my grid by FFT (the kernel is even: its spectrum is real).
-  type :: normal_operator_t
-    integer :: mx = 0, my = 0, nx = 0, ny = 0
-    integer :: applications = 0                 !< products A p done
-    integer :: threads = 1                      !< FFTW threads of its plans
+  !> A periodic real grid, its half spectrum and FFTW's r2c / c2r plans:
+  !> the convolutions of the operator and of the preconditioner.
+  type :: periodic_grid_t
+    integer :: nx = 0, ny = 0
     type(c_ptr) :: p_real = c_null_ptr, p_spec = c_null_ptr
     real(c_double), pointer :: grid(:, :) => null()
     complex(c_double_complex), pointer :: spec(:, :) => null()
-    real(real64), allocatable :: kernel(:, :)   !< real spectrum / (nx ny)
     type(c_ptr) :: forward = c_null_ptr, backward = c_null_ptr
+  end type periodic_grid_t
+
+  !> A p on an mx x my grid by FFT (the kernel is even: its spectrum is real).
+  type :: normal_operator_t
+    integer :: mx = 0, my = 0
+    integer :: applications = 0                 !< products A p done
+    integer :: threads = 1                      !< FFTW threads of its plans
+    type(periodic_grid_t) :: fft                !< at least 2 mx x 2 my: the linear convolution
+    real(real64), allocatable :: kernel(:, :)   !< real spectrum / (nx ny)
   end type normal_operator_t
 
   !> The preconditioner z = M^-1 g: the operator's kernel wrapped onto a
@@ -86,12 +93,9 @@ module kcreep_normal_solve
   !> 1.5 or 2 times the size took as many steps (the Hertzian gap a/b = 2,
   !> 13 on its fine grid each; the S1002 +8 mm flange, 16 and 18), for more work.
   type :: normal_preconditioner_t
-    integer :: mx = 0, my = 0, nx = 0, ny = 0
-    type(c_ptr) :: p_real = c_null_ptr, p_spec = c_null_ptr
-    real(c_double), pointer :: grid(:, :) => null()
-    complex(c_double_complex), pointer :: spec(:, :) => null()
-    real(real64), allocatable :: inverse(:, :)   !< 1 / (spectrum (nx ny)^2)
-    type(c_ptr) :: forward = c_null_ptr, backward = c_null_ptr
+    integer :: mx = 0, my = 0
+    type(periodic_grid_t) :: fft
+    real(real64), allocatable :: inverse(:, :)   !< 1 / (spectrum nx ny)
   end type normal_preconditioner_t
 
 contains
@@ -115,59 +119,94 @@ contains
     end do
   end function fast_even_size
 
+  !> An nx x ny periodic grid with its plans; threads: FFTW threads (1 if
+  !> FFTW has no thread support).
+  subroutine create_periodic_grid(nx, ny, threads, pg)
+    integer, intent(in) :: nx, ny
+    integer, intent(inout) :: threads
+    type(periodic_grid_t), intent(out) :: pg
+    integer :: nh
+    pg%nx = nx
+    pg%ny = ny
+    nh = nx / 2 + 1
+    pg%p_real = fftw_alloc_real(int(nx, c_size_t) * ny)
+    pg%p_spec = fftw_alloc_complex(int(nh, c_size_t) * ny)
+    call c_f_pointer(pg%p_real, pg%grid, [nx, ny])
+    call c_f_pointer(pg%p_spec, pg%spec, [nh, ny])
+    ! FFTW's dimensions are row-major: (ny, nx) is our (nx, ny). Its planner
+    ! is not thread-safe: one planner at a time in the process.
+    !$omp critical (kcreep_fftw_planner)
+    if (fftw_init_threads() /= 0) then
+      call fftw_plan_with_nthreads(int(threads, c_int))
+    else
+      threads = 1   ! FFTW without thread support
+    end if
+    pg%forward = fftw_plan_dft_r2c_2d(ny, nx, pg%grid, pg%spec, FFTW_ESTIMATE)
+    pg%backward = fftw_plan_dft_c2r_2d(ny, nx, pg%spec, pg%grid, FFTW_ESTIMATE)
+    !$omp end critical (kcreep_fftw_planner)
+  end subroutine create_periodic_grid
+
+  subroutine destroy_periodic_grid(pg)
+    type(periodic_grid_t), intent(inout) :: pg
+    if (.not. c_associated(pg%p_real)) return
+    call fftw_free(pg%p_real)
+    call fftw_free(pg%p_spec)
+    !$omp critical (kcreep_fftw_planner)
+    call fftw_destroy_plan(pg%forward)
+    call fftw_destroy_plan(pg%backward)
+    !$omp end critical (kcreep_fftw_planner)
+    pg%p_real = c_null_ptr
+    pg%p_spec = c_null_ptr
+    nullify (pg%grid, pg%spec)
+  end subroutine destroy_periodic_grid
+
+  !> y = the periodic convolution of x (zero beyond its mx x my cells) with
+  !> the kernel of (unnormalised) real spectrum `spectrum`, on those cells.
+  subroutine convolve(pg, spectrum, x, y)
+    type(periodic_grid_t), intent(inout) :: pg
+    real(real64), intent(in) :: spectrum(:, :), x(:, :)
+    real(real64), intent(out) :: y(:, :)
+    integer :: j
+    pg%grid = 0
+    do j = 1, size(x, 2)
+      pg%grid(1:size(x, 1), j) = x(:, j)
+    end do
+    call fftw_execute_dft_r2c(pg%forward, pg%grid, pg%spec)
+    pg%spec = pg%spec * spectrum
+    call fftw_execute_dft_c2r(pg%backward, pg%spec, pg%grid)
+    do j = 1, size(y, 2)
+      y(:, j) = pg%grid(1:size(y, 1), j)
+    end do
+  end subroutine convolve
+
   !> threads: FFTW threads for the transforms, 0 automatic (kcreep_threads)
   subroutine create_normal_operator(mx, my, dx, dy, compliance, threads, op)
     integer, intent(in) :: mx, my, threads
     real(real64), intent(in) :: dx, dy, compliance
     type(normal_operator_t), intent(out) :: op
     real(real64), allocatable :: table(:, :)
-    integer :: i, j, nh
+    integer :: i, j, nx, ny
 
     op%mx = mx
     op%my = my
-    op%nx = fast_even_size(2 * mx)
-    op%ny = fast_even_size(2 * my)
-    nh = op%nx / 2 + 1
-    op%threads = team_size(threads, int(op%nx, int64) * op%ny, cells_per_thread_normal)
-    op%p_real = fftw_alloc_real(int(op%nx, c_size_t) * op%ny)
-    op%p_spec = fftw_alloc_complex(int(nh, c_size_t) * op%ny)
-    call c_f_pointer(op%p_real, op%grid, [op%nx, op%ny])
-    call c_f_pointer(op%p_spec, op%spec, [nh, op%ny])
-    ! FFTW's dimensions are row-major: (ny, nx) is our (nx, ny). Its planner
-    ! is not thread-safe: one planner at a time in the process.
-    !$omp critical (kcreep_fftw_planner)
-    if (fftw_init_threads() /= 0) then
-      call fftw_plan_with_nthreads(int(op%threads, c_int))
-    else
-      op%threads = 1   ! FFTW without thread support
-    end if
-    op%forward = fftw_plan_dft_r2c_2d(op%ny, op%nx, op%grid, op%spec, FFTW_ESTIMATE)
-    op%backward = fftw_plan_dft_c2r_2d(op%ny, op%nx, op%spec, op%grid, FFTW_ESTIMATE)
-    !$omp end critical (kcreep_fftw_planner)
-
+    nx = fast_even_size(2 * mx)
+    ny = fast_even_size(2 * my)
+    op%threads = team_size(threads, int(nx, int64) * ny, cells_per_thread_normal)
+    call create_periodic_grid(nx, ny, op%threads, op%fft)
     call normal_offset_table(mx, my, dx, dy, compliance, table)
-    op%grid = 0
+    op%fft%grid = 0
     do j = -(my - 1), my - 1
       do i = -(mx - 1), mx - 1
-        op%grid(modulo(i, op%nx) + 1, modulo(j, op%ny) + 1) = table(abs(i), abs(j))
+        op%fft%grid(modulo(i, nx) + 1, modulo(j, ny) + 1) = table(abs(i), abs(j))
       end do
     end do
-    call fftw_execute_dft_r2c(op%forward, op%grid, op%spec)
-    op%kernel = real(op%spec, real64) / (real(op%nx, real64) * op%ny)
+    call fftw_execute_dft_r2c(op%fft%forward, op%fft%grid, op%fft%spec)
+    op%kernel = real(op%fft%spec, real64) / (real(nx, real64) * ny)
   end subroutine create_normal_operator
 
   subroutine destroy_normal_operator(op)
     type(normal_operator_t), intent(inout) :: op
-    if (.not. c_associated(op%p_real)) return
-    call fftw_free(op%p_real)
-    call fftw_free(op%p_spec)
-    !$omp critical (kcreep_fftw_planner)
-    call fftw_destroy_plan(op%forward)
-    call fftw_destroy_plan(op%backward)
-    !$omp end critical (kcreep_fftw_planner)
-    op%p_real = c_null_ptr
-    op%p_spec = c_null_ptr
-    nullify (op%grid, op%spec)
+    call destroy_periodic_grid(op%fft)
   end subroutine destroy_normal_operator
 
   !> u = A p on the grid.
@@ -175,18 +214,8 @@ contains
     type(normal_operator_t), intent(inout) :: op
     real(real64), intent(in) :: p(:, :)
     real(real64), intent(out) :: u(:, :)
-    integer :: j
     op%applications = op%applications + 1
-    op%grid = 0
-    do j = 1, op%my
-      op%grid(1:op%mx, j) = p(:, j)
-    end do
-    call fftw_execute_dft_r2c(op%forward, op%grid, op%spec)
-    op%spec = op%spec * op%kernel
-    call fftw_execute_dft_c2r(op%backward, op%spec, op%grid)
-    do j = 1, op%my
-      u(:, j) = op%grid(1:op%mx, j)
-    end do
+    call convolve(op%fft, op%kernel, p, u)
   end subroutine apply_normal_operator
 
   !> The preconditioner of an mx x my grid (normal_preconditioner_t).
@@ -196,50 +225,32 @@ contains
     type(normal_preconditioner_t), intent(out) :: pre
     real(real64), allocatable :: table(:, :)
     real(real64) :: smallest
-    integer :: i, j, nh
+    integer :: i, j, nx, ny, fft_threads
 
     pre%mx = mx
     pre%my = my
-    pre%nx = fast_even_size(mx)
-    pre%ny = fast_even_size(my)
-    nh = pre%nx / 2 + 1
-    pre%p_real = fftw_alloc_real(int(pre%nx, c_size_t) * pre%ny)
-    pre%p_spec = fftw_alloc_complex(int(nh, c_size_t) * pre%ny)
-    call c_f_pointer(pre%p_real, pre%grid, [pre%nx, pre%ny])
-    call c_f_pointer(pre%p_spec, pre%spec, [nh, pre%ny])
-    !$omp critical (kcreep_fftw_planner)
-    if (fftw_init_threads() /= 0) call fftw_plan_with_nthreads(int(max(threads, 1), c_int))
-    pre%forward = fftw_plan_dft_r2c_2d(pre%ny, pre%nx, pre%grid, pre%spec, FFTW_ESTIMATE)
-    pre%backward = fftw_plan_dft_c2r_2d(pre%ny, pre%nx, pre%spec, pre%grid, FFTW_ESTIMATE)
-    !$omp end critical (kcreep_fftw_planner)
-
+    nx = fast_even_size(mx)
+    ny = fast_even_size(my)
+    fft_threads = threads
+    call create_periodic_grid(nx, ny, fft_threads, pre%fft)
     ! the kernel at the offset of each periodic cell's nearest image
-    call normal_offset_table(max(mx, pre%nx / 2 + 1), max(my, pre%ny / 2 + 1), dx, dy, compliance, table)
-    do j = 0, pre%ny - 1
-      do i = 0, pre%nx - 1
-        pre%grid(i + 1, j + 1) = table(min(i, pre%nx - i), min(j, pre%ny - j))
+    call normal_offset_table(max(mx, nx / 2 + 1), max(my, ny / 2 + 1), dx, dy, compliance, table)
+    do j = 0, ny - 1
+      do i = 0, nx - 1
+        pre%fft%grid(i + 1, j + 1) = table(min(i, nx - i), min(j, ny - j))
       end do
     end do
-    call fftw_execute_dft_r2c(pre%forward, pre%grid, pre%spec)
+    call fftw_execute_dft_r2c(pre%fft%forward, pre%fft%grid, pre%fft%spec)
     ! the wrapped kernel's spectrum was positive on every grid tried (its
-    ! smallest value 1e-3 to 1e-2 of the largest); the floor only guards
-    pre%inverse = real(pre%spec, real64)
+    ! smallest value 2e-3 to 1.4e-2 of the largest); the floor only guards
+    pre%inverse = real(pre%fft%spec, real64)
     smallest = 1e-6_real64 * maxval(pre%inverse)
-    pre%inverse = 1 / (max(pre%inverse, smallest) * (real(pre%nx, real64) * pre%ny))
+    pre%inverse = 1 / (max(pre%inverse, smallest) * (real(nx, real64) * ny))
   end subroutine create_normal_preconditioner
 
   subroutine destroy_normal_preconditioner(pre)
     type(normal_preconditioner_t), intent(inout) :: pre
-    if (.not. c_associated(pre%p_real)) return
-    call fftw_free(pre%p_real)
-    call fftw_free(pre%p_spec)
-    !$omp critical (kcreep_fftw_planner)
-    call fftw_destroy_plan(pre%forward)
-    call fftw_destroy_plan(pre%backward)
-    !$omp end critical (kcreep_fftw_planner)
-    pre%p_real = c_null_ptr
-    pre%p_spec = c_null_ptr
-    nullify (pre%grid, pre%spec)
+    call destroy_periodic_grid(pre%fft)
   end subroutine destroy_normal_preconditioner
 
   !> z = M^-1 g on the active cells, zero elsewhere (g taken on them only).
@@ -248,17 +259,8 @@ contains
     real(real64), intent(in) :: g(:, :)
     logical, intent(in) :: active(:, :)
     real(real64), intent(out) :: z(:, :)
-    integer :: j
-    pre%grid = 0
-    do j = 1, pre%my
-      pre%grid(1:pre%mx, j) = merge(g(:, j), 0.0_real64, active(:, j))
-    end do
-    call fftw_execute_dft_r2c(pre%forward, pre%grid, pre%spec)
-    pre%spec = pre%spec * pre%inverse
-    call fftw_execute_dft_c2r(pre%backward, pre%spec, pre%grid)
-    do j = 1, pre%my
-      z(:, j) = merge(pre%grid(1:pre%mx, j), 0.0_real64, active(:, j))
-    end do
+    call convolve(pre%fft, pre%inverse, merge(g, 0.0_real64, active), z)
+    where (.not. active) z = 0
   end subroutine apply_normal_preconditioner
 
   !> Solve the normal problem on the grid of h (cell sizes dx, dy; compliance
