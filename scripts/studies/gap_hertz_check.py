@@ -11,6 +11,7 @@ coefficient the run's value, estimate, true error and estimate / error, the
 verdict and the wall time.
 
   OMP_NUM_THREADS=1 flock /tmp/kcreep-bench.lock /usr/bin/python3 scripts/studies/gap_hertz_check.py
+  ... --ratios 2,5,10 --perturb 9     the spread under bit-level changes of rx
 
 Needs scipy; a few seconds.
 """
@@ -29,6 +30,9 @@ def main():
     p = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     p.add_argument("--kcreep", default=os.path.join(ROOT, "build", "kcreep"))
     p.add_argument("--ratios", default="2,0.5", help="Hertz a/b of the gaps (comma-separated)")
+    p.add_argument("--perturb", type=int, default=0, metavar="N",
+                   help="also run each gap N times with rx times 1 + k 1e-9 (k = 1..N): the spread of the "
+                        "estimate and the verdict under bit-level changes of the input")
     args = p.parse_args()
     from scipy.optimize import brentq
     from gap_error_calibration import Runner, hertz
@@ -51,6 +55,22 @@ def main():
                 true = abs(run[key] / ref[key] - 1)
                 print(f"  {key} {run[key]:.6f}  estimate {100 * run[err]:.3f} %  true error {100 * true:.3f} %  "
                       f"(reference {ref[key]:.6f}, u {100 * ref[err]:.4f} %)  estimate / error {run[err] / true:.2f}")
+            if args.perturb:
+                runs = [run] + [runner.run(f"&patch shape = 'gap' /\n&normal rx = {rx * (1 + k * 1e-9)!r}, ry = 1.0, "
+                                           "approach = 0.01 /\n&material g = 1, nu = 0.25 /\n")
+                                for k in range(1, args.perturb + 1)]
+                ok = sum(r["verdict"] == "ok" for r in runs)
+                targets = {"c11": 1e-3, "c22": 1e-3, "c23": 3e-3}
+                false_ok = sum(r["verdict"] == "ok" and any(abs(r[c] / ref[c] - 1) > t for c, t in targets.items())
+                               for r in runs)
+                print(f"  {len(runs)} runs, rx times 1 + k 1e-9: `ok` in {ok}, of them {false_ok} with an error "
+                      f"above its target")
+                for key, err in (("c11", "err11"), ("c22", "err22"), ("c23", "err23")):
+                    ests = sorted(100 * r[err] for r in runs)
+                    errs = sorted(100 * abs(r[key] / ref[key] - 1) for r in runs)
+                    bounded = sum(r[err] >= abs(r[key] / ref[key] - 1) - ref[err] for r in runs)
+                    print(f"  {key}: estimate {ests[0]:.3f}-{ests[-1]:.3f} % (median {ests[len(ests) // 2]:.3f}), "
+                          f"true error {errs[0]:.3f}-{errs[-1]:.3f} %, bounded (allowing u) in {bounded} of {len(runs)}")
 
 
 if __name__ == "__main__":
