@@ -128,7 +128,13 @@ module kcreep_refine_constants
   !> gaps a/b = 2, 0.5 and 5 (scripts/studies/gap_hertz_check.py --ratios
   !> 2,0.5,5, one run each on one core): at 64 cells a/b = 2 and 5 end
   !> `uncertain` (2.1-2.3 s); 96, 128 and 192 end `ok` in 0.4-1.4, 0.5-1.3
-  !> and 0.8-3.1 s. 128 is the fastest over the three.
+  !> and 0.8-3.1 s. 128 is the fastest over the three. 192, measured again
+  !> after the preconditioned normal solve: on the 15 calibration gaps
+  !> (gap_error_calibration.py --check) the median errors of C22 and C23
+  !> rose from 0.018 and 0.018 % to 0.029 and 0.046 % at the same estimates
+  !> (cause not known), though a/b = 5 and 10 ended `ok` in 8 of 10 runs each
+  !> (gap_hertz_check.py --perturb 9; 6 and 4 at 128) and wheel_rail took
+  !> 1.7 s instead of 0.74 s. Kept at 128.
   real(real64), parameter :: gap_normal_cells_at_default = 128
   !> The fine normal grid has at most this many cells (coarser cells on a
   !> long thin contact area, whose bounding box is large for its width): a
