@@ -131,10 +131,13 @@ module kcreep_refine_constants
   !> and 0.8-3.1 s. 128 is the fastest over the three. 192, measured again
   !> after the preconditioned normal solve: on the 15 calibration gaps
   !> (gap_error_calibration.py --check) the median errors of C22 and C23
-  !> rose from 0.018 and 0.018 % to 0.029 and 0.046 % at the same estimates
-  !> (cause not known), though a/b = 5 and 10 ended `ok` in 8 of 10 runs each
-  !> (gap_hertz_check.py --perturb 9; 6 and 4 at 128) and wheel_rail took
-  !> 1.7 s instead of 0.74 s. Kept at 128.
+  !> rose from 0.018 and 0.018 % to 0.029 and 0.046 % at the same estimates,
+  !> all bounded. Not the normal grid: on the circle the contact areas agree
+  !> to 1e-5 in area and axes, while the levels, centred on the area, were
+  !> odd-sized grids at 192 and a mix at 128, which moved C23 by 0.09 % (the
+  !> staircases' scatter). a/b = 5 and 10 ended `ok` in 8 of 10 runs each
+  !> (gap_hertz_check.py --perturb 9; 6 and 4 at 128); wheel_rail took 1.7 s
+  !> instead of 0.74 s (a longer ladder). Kept at 128.
   real(real64), parameter :: gap_normal_cells_at_default = 128
   !> The fine normal grid has at most this many cells (coarser cells on a
   !> long thin contact area, whose bounding box is large for its width): a
