@@ -131,7 +131,7 @@ module kcreep_refine_constants
   !> and 0.8-3.1 s. 128 is the fastest over the three. 192, measured again
   !> after the preconditioned normal solve: on the 15 calibration gaps
   !> (gap_error_calibration.py --check) the median errors of C22 and C23
-  !> rose from 0.018 and 0.018 % to 0.029 and 0.046 % at the same estimates,
+  !> rose from 0.018 and 0.006 % to 0.029 and 0.046 % at the same estimates,
   !> all bounded. Not the normal grid: on the circle the contact areas agree
   !> to 1e-5 in area and axes, while the levels, centred on the area, were
   !> odd-sized grids at 192 and a mix at 128, which moved C23 by 0.09 % (the
