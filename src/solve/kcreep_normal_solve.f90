@@ -84,7 +84,6 @@ module kcreep_normal_solve
 
   !> A p on an mx x my grid by FFT (the kernel is even: its spectrum is real).
   type :: normal_operator_t
-    integer :: mx = 0, my = 0
     integer :: applications = 0                 !< products A p done
     integer :: threads = 1                      !< FFTW threads of its plans
     type(periodic_grid_t) :: fft                !< at least 2 mx x 2 my: the linear convolution
@@ -97,7 +96,6 @@ module kcreep_normal_solve
   !> 1.5 or 2 times the size took as many steps (the Hertzian gap a/b = 2,
   !> 13 on its fine grid each; the S1002 +8 mm flange, 16 and 18), for more work.
   type :: normal_preconditioner_t
-    integer :: mx = 0, my = 0
     type(periodic_grid_t) :: fft
     real(real64), allocatable :: inverse(:, :)   !< 1 / (spectrum nx ny)
   end type normal_preconditioner_t
@@ -191,8 +189,6 @@ contains
     real(real64), allocatable :: table(:, :)
     integer :: i, j, nx, ny
 
-    op%mx = mx
-    op%my = my
     nx = fast_even_size(2 * mx)
     ny = fast_even_size(2 * my)
     op%threads = team_size(threads, int(nx, int64) * ny, cells_per_thread_normal)
@@ -231,8 +227,6 @@ contains
     real(real64) :: smallest
     integer :: i, j, nx, ny, fft_threads
 
-    pre%mx = mx
-    pre%my = my
     nx = fast_even_size(mx)
     ny = fast_even_size(my)
     fft_threads = threads
@@ -422,19 +416,11 @@ contains
           where (active) z = z - mean
         end if
       else
-        where (active)
-          z = g
-        elsewhere
-          z = 0
-        end where
+        z = merge(g, 0.0_real64, active)
       end if
       gg = sum(g * z, mask=active)
       if (restart) then
-        where (active)
-          t = z
-        elsewhere
-          t = 0
-        end where
+        t = z   ! zero off the active cells, as z is
       else
         where (active)
           t = z + (gg / gg_old) * t

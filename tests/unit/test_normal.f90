@@ -245,11 +245,13 @@ contains
   subroutine test_rough_start()
     integer, parameter :: n = 160
     real(real64), parameter :: d = 0.0125_real64
-    real(real64) :: h(n, n), x, y
+    real(real64), allocatable :: h(:, :)   ! heap: 25,600 cells
+    real(real64) :: x, y
     type(normal_options_t) :: opt
     type(normal_result_t) :: by_force, by_approach
     type(status_t) :: st
     integer :: i, j
+    allocate (h(n, n))
     do j = 1, n
       do i = 1, n
         x = (i - (n + 1) / 2.0_real64) * d
