@@ -33,16 +33,17 @@ def arguments():
     return p.parse_args()
 
 
-def run(kcreep, work, shift, budget):
-    """One shift at one budget: (row of the .wr table as a dict, wall seconds)."""
+def run(kcreep, work, shift, budget, target=None):
+    """One shift at one budget (and target_error, if given): (row of the .wr table as a dict, wall seconds)."""
     sys.path.insert(0, os.path.join(ROOT, "python"))
     from kcreep import table
     profiles = os.path.abspath(os.path.join(ROOT, "..", "shared", "profiles"))
-    name = f"s{shift}_b{budget}"
+    name = f"s{shift}_b{budget}" + ("" if target is None else f"_t{target:g}")
+    solver = f"cell_budget = {budget}" + ("" if target is None else f", target_error = {target:g}")
     with open(os.path.join(work, name + ".nml"), "w") as f:
         f.write(f"&wheel_rail wheel_file = '{profiles}/MBench_S1002_v3.prw',\n"
                 f"  rail_file = '{profiles}/MBench_UIC60_v3.prr', shifts = {shift}, vertical_force = 80000 /\n"
-                f"&material g = 82000, nu = 0.28 /\n&solver cell_budget = {budget} /\n")
+                f"&material g = 82000, nu = 0.28 /\n&solver {solver} /\n")
     start = time.perf_counter()
     proc = subprocess.run([kcreep, name + ".nml"], cwd=work, capture_output=True, text=True)
     wall = time.perf_counter() - start
