@@ -16,9 +16,10 @@
 !> contact area, each referred to it by its second moments, so every level
 !> describes the same shape and the staircase's wander from level to level
 !> is taken out as on an ellipse. The estimate adds to the ladder's the
-!> normal grid's own (normal_grid_estimate: the change of the contact area's
-!> aspect ratio and centre between the two normal grids). c = sqrt(area / pi) of the fine contact
-!> area; FASTSIM's pressure is the fine pressure at the finest level's cells.
+!> normal grid's own (normal_grid_estimate, from the changes of the contact
+!> area's aspect ratio and centre: fine grid moved by half a cell, and
+!> coarse grid to fine). c = sqrt(area / pi) of the fine contact area;
+!> FASTSIM's pressure is the fine pressure at the finest level's cells.
 !>
 !> A single grid (target_error = 0, or refine_grid off): the gap's grid as
 !> given, and as estimate gap_single_estimate from the geometry on cells 1.5
@@ -148,9 +149,9 @@ contains
     type(problem_t), intent(in) :: problem
     type(result_t), intent(out) :: result
     type(status_t), intent(inout) :: status
-    type(patch_t) :: first, fine, coarse, located
-    type(normal_result_t) :: nres, fine_normal, coarse_normal, located_normal
-    type(region_t) :: region, coarse_region
+    type(patch_t) :: first, fine, coarse, located, moved
+    type(normal_result_t) :: nres, fine_normal, coarse_normal, located_normal, moved_normal
+    type(region_t) :: region, coarse_region, moved_region
     real(real64) :: wide(4), box(4), across, target
 
     ! the contact area on the given grid: its size and where it is
@@ -181,7 +182,15 @@ contains
     if (status%failed()) return
     coarse_region = sampled_region(coarse, coarse_normal%pressure, status)
     if (status%failed()) return
-    call run_shape_levels(problem, result, status, region, normal_grid_estimate(region, coarse_region, problem%nu))
+    ! the fine grid once more, moved by half a cell in x and y: how far its
+    ! placement alone moves the contact area (normal_grid_estimate); the
+    ! fine pressure starts it
+    call contact_area_on(problem, box + across / 2, across, moved, moved_normal, status, fine, fine_normal%pressure)
+    if (status%failed()) return
+    moved_region = sampled_region(moved, moved_normal%pressure, status)
+    if (status%failed()) return
+    call run_shape_levels(problem, result, status, region, &
+                          normal_grid_estimate(region, coarse_region, moved_region, problem%nu))
     if (status%failed()) return
     call store_normal(fine_normal, fine, result)
     ! the pressure at the finest level's cells, scaled to the normal force
@@ -249,31 +258,40 @@ contains
     if (target < default_target_error) cells = 2 * cells
   end function gap_normal_cells
 
-  !> The error the normal problem's grid leaves in C11, C22, C23, from the
-  !> contact areas of the fine and the coarse normal grid (the change between
-  !> them, times normal_grid_factor). Their
-  !> aspect ratios (second moments) differ by r(h) / r(2h), and the C's follow
+  !> The error the normal problem's grid leaves in C11, C22, C23: the larger
+  !> of the fine grid's placement noise (the change of the contact area when
+  !> the fine grid is moved by half a cell) and normal_systematic_share of
+  !> the change from the coarse grid to the fine one (what a finer grid
+  !> still removes).
+  function normal_grid_estimate(fine, coarse, moved, nu) result(rel_error)
+    type(region_t), intent(in) :: fine, coarse, moved
+    real(real64), intent(in) :: nu
+    real(real64) :: rel_error(3)
+    rel_error = max(area_change(fine, moved, nu), normal_systematic_share * area_change(fine, coarse, nu))
+  end function normal_grid_estimate
+
+  !> C11, C22, C23 relative change between the contact areas a and b: their
+  !> aspect ratios (second moments) differ by r(a) / r(b), and the C's follow
   !> with the refined table's slope d ln C / d ln(a/b) (their size is
   !> normalised out); their centres differ by dx along the rolling
   !> direction, and C23 about a fixed spin centre follows as C22 dx / (C23 c).
-  function normal_grid_estimate(fine, coarse, nu) result(rel_error)
-    type(region_t), intent(in) :: fine, coarse
+  function area_change(a, b, nu) result(rel_change)
+    type(region_t), intent(in) :: a, b
     real(real64), intent(in) :: nu
-    real(real64) :: rel_error(3), slope(4), r_fine, r_coarse, c(4), rel(4), radius
-    type(moment_reference_t) :: m_fine, m_coarse
+    real(real64) :: rel_change(3), slope(4), r_a, r_b, c(4), rel(4), radius
+    type(moment_reference_t) :: m_a, m_b
     type(status_t) :: lookup
-    m_fine = staircase_reference(fine%reference)
-    m_coarse = staircase_reference(coarse%reference)
-    r_fine = m_fine%semi_a / m_fine%semi_b
-    r_coarse = m_coarse%semi_a / m_coarse%semi_b
-    slope = aspect_slopes(r_fine, nu)
-    call table_coefficients(min(max(r_fine, table_ratio_range(1)), table_ratio_range(2)), &
+    m_a = staircase_reference(a%reference)
+    m_b = staircase_reference(b%reference)
+    r_a = m_a%semi_a / m_a%semi_b
+    r_b = m_b%semi_a / m_b%semi_b
+    slope = aspect_slopes(r_a, nu)
+    call table_coefficients(min(max(r_a, table_ratio_range(1)), table_ratio_range(2)), &
                             min(max(nu, table_nu_range(1)), table_nu_range(2)), c, rel, lookup)
-    radius = sqrt(fine%reference%area() / pi)
-    rel_error = abs(slope(1:3) * log(r_fine / r_coarse))
-    rel_error(3) = rel_error(3) + c(2) / c(3) * abs(m_fine%centre(1) - m_coarse%centre(1)) / radius
-    rel_error = normal_grid_factor * rel_error
-  end function normal_grid_estimate
+    radius = sqrt(a%reference%area() / pi)
+    rel_change = abs(slope(1:3) * log(r_a / r_b))
+    rel_change(3) = rel_change(3) + c(2) / c(3) * abs(m_a%centre(1) - m_b%centre(1)) / radius
+  end function area_change
 
   !> The region the level grids cover: the contact area's bounding box (cell
   !> edges, xmin xmax ymin ymax) widened by gap_level_margin of its size and two
