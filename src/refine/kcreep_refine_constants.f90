@@ -161,7 +161,7 @@ module kcreep_refine_constants
   !> on grids of 4, 2 and 1 times the cell size over Hertzian gaps).
   !> (calibration) 15 Hertzian gaps (scripts/studies/gap_error_calibration.py
   !> --check, docs/accuracy.md section 5): 45 of 45 bounded, median estimate
-  !> / error 4.4 (the whole coarse change alone: 44 of 45, one only within
+  !> / error 3.9 (the whole coarse change alone: 44 of 45, one only within
   !> the reference's u: C11 at Rx/Ry = 5, nu = 0.5, error 0.027 % against
   !> 0.021 %, whose placement noise is 0.019 %). On the S1002 +5 and +6 mm
   !> tread patches the coarse grid (64 cells across) is far from the
