@@ -266,32 +266,35 @@ contains
   function normal_grid_estimate(fine, coarse, moved, nu) result(rel_error)
     type(region_t), intent(in) :: fine, coarse, moved
     real(real64), intent(in) :: nu
-    real(real64) :: rel_error(3)
-    rel_error = max(area_change(fine, moved, nu), normal_systematic_share * area_change(fine, coarse, nu))
-  end function normal_grid_estimate
-
-  !> C11, C22, C23 relative change between the contact areas a and b: their
-  !> aspect ratios (second moments) differ by r(a) / r(b), and the C's follow
-  !> with the refined table's slope d ln C / d ln(a/b) (their size is
-  !> normalised out); their centres differ by dx along the rolling
-  !> direction, and C23 about a fixed spin centre follows as C22 dx / (C23 c).
-  function area_change(a, b, nu) result(rel_change)
-    type(region_t), intent(in) :: a, b
-    real(real64), intent(in) :: nu
-    real(real64) :: rel_change(3), slope(4), r_a, r_b, c(4), rel(4), radius
-    type(moment_reference_t) :: m_a, m_b
+    real(real64) :: rel_error(3), slope(4), r_fine, c(4), rel(4), radius
+    type(moment_reference_t) :: m_fine
     type(status_t) :: lookup
-    m_a = staircase_reference(a%reference)
-    m_b = staircase_reference(b%reference)
-    r_a = m_a%semi_a / m_a%semi_b
-    r_b = m_b%semi_a / m_b%semi_b
-    slope = aspect_slopes(r_a, nu)
-    call table_coefficients(min(max(r_a, table_ratio_range(1)), table_ratio_range(2)), &
+    m_fine = staircase_reference(fine%reference)
+    r_fine = m_fine%semi_a / m_fine%semi_b
+    slope = aspect_slopes(r_fine, nu)
+    call table_coefficients(min(max(r_fine, table_ratio_range(1)), table_ratio_range(2)), &
                             min(max(nu, table_nu_range(1)), table_nu_range(2)), c, rel, lookup)
-    radius = sqrt(a%reference%area() / pi)
-    rel_change = abs(slope(1:3) * log(r_a / r_b))
-    rel_change(3) = rel_change(3) + c(2) / c(3) * abs(m_a%centre(1) - m_b%centre(1)) / radius
-  end function area_change
+    radius = sqrt(fine%reference%area() / pi)
+    rel_error = max(change_to(moved), normal_systematic_share * change_to(coarse))
+
+  contains
+
+    !> C11, C22, C23 relative change from the fine contact area to `other`:
+    !> their aspect ratios (second moments) differ by r(fine) / r(other), and
+    !> the C's follow with the refined table's slope d ln C / d ln(a/b)
+    !> (their size is normalised out); their centres differ by dx along the
+    !> rolling direction, and C23 about a fixed spin centre follows as
+    !> C22 dx / (C23 c).
+    function change_to(other) result(rel_change)
+      type(region_t), intent(in) :: other
+      real(real64) :: rel_change(3)
+      type(moment_reference_t) :: m_other
+      m_other = staircase_reference(other%reference)
+      rel_change = abs(slope(1:3) * log(r_fine / (m_other%semi_a / m_other%semi_b)))
+      rel_change(3) = rel_change(3) + c(2) / c(3) * abs(m_fine%centre(1) - m_other%centre(1)) / radius
+    end function change_to
+
+  end function normal_grid_estimate
 
   !> The region the level grids cover: the contact area's bounding box (cell
   !> edges, xmin xmax ymin ymax) widened by gap_level_margin of its size and two
