@@ -42,7 +42,7 @@ module kcreep
   use kcreep_equivalent_ellipse, only: equivalent_ellipse_t, equivalent_ellipses
   use kcreep_extrapolation, only: run_extrapolated, memory_need
   use kcreep_error_run, only: run_controlled, controlled_finest_patch
-  use kcreep_refine_constants, only: max_normal_grid_cells
+  use kcreep_gap_levels, only: normal_grid_cells
   use kcreep_refine_estimate, only: default_target_error, nominal_ellipse_cells
   use kcreep_normal_influence, only: compliance_from_e_nu, combined_g_nu_from_e_nu
   use kcreep_table_run, only: run_table, table_meets_target
@@ -210,8 +210,8 @@ contains
       bounded%extrapolate = .false.
       if (problem%target_error > 0 .and. problem%refine_grid) then
         ! error control (kcreep_gap_levels): the normal problem again on a
-        ! fine grid of at most max_normal_grid_cells, then the levels
-        bytes = max(bytes, normal_cell_bytes * int(max_normal_grid_cells, int64))
+        ! fine grid of at most normal_grid_cells, then the levels
+        bytes = max(bytes, normal_cell_bytes * int(normal_grid_cells(problem), int64))
         call controlled_finest_patch(problem, bound, status)
         if (status%failed()) return
       end if

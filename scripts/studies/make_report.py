@@ -392,7 +392,8 @@ def texts(values):
                         + ", ".join(apct(e, 3) for e in a["est"])
                         + (": at this level the reference's u, not kcreep, limits what can be shown"
                            if all(e <= ref1[c][1] / ref1[c][0] for e, c in zip(a["err"], COEF)) else "") + "."))
-        lines.append("- Its default cell budget, 320,000 cells, reaches 600 cells across on the circle; solved, "
+        lines.append("- Its default cell budget then, 320,000 cells (1.6 million since, docs/accuracy.md section 2), "
+                     "reaches 600 cells across on the circle; solved, "
                      "ellipses long in x (a/b = 5, 10) stop `uncertain` at the budget, and the default "
                      "`method = 'auto'` answers them, and the circle, from the table's fine rows instead "
                      "(docs/accuracy.md sections 5.2 and 6).")

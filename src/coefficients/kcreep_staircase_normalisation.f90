@@ -1,8 +1,8 @@
 !> The creep matrix of a staircase (the grid cells whose centres lie inside a
-!> shape) referred to the shape itself: an ellipse, or a contact area known
-!> on a much finer grid (a gap's, kcreep_region). The shape enters through its
-!> moment reference (moment_reference_t: centre, the semi-axes of the ellipse
-!> with its second moments, its own four-fold harmonic).
+!> shape) referred to the shape itself: an ellipse, or a contact area (a
+!> gap's, kcreep_region: the moments of its zero level). The shape enters
+!> through its moment reference (moment_reference_t: centre, the semi-axes of
+!> the ellipse with its second moments, its own four-fold harmonic).
 !>
 !> The staircase is compared with the ellipse of the same second moments of
 !> area about the reference centre: semi-axes a_s = 2 sqrt(Ixx / A), b_s = 2 sqrt(Iyy / A)
@@ -20,12 +20,13 @@ module kcreep_staircase_normalisation
   use, intrinsic :: ieee_arithmetic, only: ieee_is_nan
   use kcreep_status, only: status_t
   use kcreep_patch, only: patch_t
+  use kcreep_region, only: region_t, contour_moments, contour_harmonic4
   use kcreep_creep_matrix, only: centre_transfer
   use kcreep_table_interpolation, only: table_coefficients, table_ratio_range, table_nu_range
   implicit none
   private
   public :: staircase_semi_axes, staircase_harmonic4, aspect_slopes, ellipse_normalised
-  public :: moment_reference_t, ellipse_reference, staircase_reference, referred_f, shape_defect
+  public :: moment_reference_t, ellipse_reference, contour_reference, referred_f, shape_defect
 
   !> What a level's staircase is referred to: the shape's centre, the
   !> semi-axes of the ellipse with its second moments, and its own four-fold
@@ -54,16 +55,21 @@ contains
     ref = moment_reference_t(patch%ellipse_centre(), patch%semi_a, patch%semi_b, 0.0_real64, .false.)
   end function ellipse_reference
 
-  !> The reference of a staircase taken as the shape itself (a contact area
-  !> on a fine grid): its centroid, its second-moment ellipse, its harmonic.
-  pure function staircase_reference(patch) result(ref)
-    type(patch_t), intent(in) :: patch
+  !> The reference of a contact area, or of one of its separate parts: the
+  !> moments of its zero level itself (kcreep_region contour_moments), not
+  !> of a staircase of it; a level's moments about its own centroid.
+  pure function contour_reference(region, part) result(ref)
+    type(region_t), intent(in) :: region
+    integer, intent(in), optional :: part
     type(moment_reference_t) :: ref
-    ref%centre = patch%centroid()
-    call moment_semi_axes(patch, ref%centre, ref%semi_a, ref%semi_b)
-    ref%harmonic4 = harmonic4_about(patch, ref)
+    real(real64) :: m(5)
+    m = contour_moments(region, part)
+    ref%centre = m(2:3)
+    ref%semi_a = 2 * sqrt(m(4) / m(1))
+    ref%semi_b = 2 * sqrt(m(5) / m(1))
+    ref%harmonic4 = contour_harmonic4(region, ref%centre, ref%semi_a, ref%semi_b, part)
     ref%own_centre = .true.
-  end function staircase_reference
+  end function contour_reference
 
   !> Semi-axes of the ellipse with the staircase's area moments about the
   !> ellipse's centre (patch: an ellipse patch).

@@ -22,6 +22,13 @@
 !> by the parabola through three (exact for Hertz's p^2 along any line),
 !> the line through two, or mirrored where only one is there. A level cell belongs to the patch
 !> when its centre lies inside.
+!>
+!> The region's own moments (area, centre, second moments, four-fold
+!> harmonic) are integrals over the zero level itself: its pieces in each
+!> square of four fine cell centres (marching squares, the crossings on the
+!> square's sides exact for the bilinear level), integrated by Green's
+!> theorem. A staircase of the region, however fine, moves them by a
+!> fraction of its cells from one placement to the next.
 module kcreep_region
   use, intrinsic :: iso_fortran_env, only: real64
   use kcreep_status, only: status_t
@@ -29,14 +36,15 @@ module kcreep_region
   implicit none
   private
   public :: region_t, sampled_region, region_level_patch, region_pressure, contact_diameter, level_size
+  public :: contour_area, contour_moments, contour_harmonic4
 
   real(real64), parameter :: pi = acos(-1.0_real64)
   !> Cells of the fine grid around its contact cells, for the continued p^2.
   integer, parameter :: pad = 2
-  !> The region's reference staircase (moments, area) is sampled on cells
-  !> up to this many times smaller than the fine grid's, on at most
-  !> max_reference_cells grid cells (memory and time: 1e6 cells are about
-  !> 50 ms).
+  !> The region's reference staircase (its size and box; the moments come
+  !> from the zero level itself) is sampled on cells up to this many times
+  !> smaller than the fine grid's, on at most max_reference_cells grid cells
+  !> (memory and time: 1e6 cells are about 50 ms).
   integer, parameter :: reference_split = 4
   real(real64), parameter :: max_reference_cells = 1e6_real64
   !> The outermost contact cells' level: this share of their own p^2, the
@@ -58,16 +66,26 @@ module kcreep_region
     real(real64), allocatable :: level(:, :)     !< (mx, my) p^2, continued below zero outside
     type(patch_t) :: reference                   !< the region on cells h / 4 (or larger, max_reference_cells)
     real(real64) :: diameter = 0                 !< the size levels are counted across (level_size)
+    real(real64), allocatable :: edge(:, :)      !< (4, pieces) x, y from and to: the zero level, inside on the left
+    integer, allocatable :: edge_part(:)         !< (pieces) the separate part of the region each piece bounds
+    integer :: parts = 0                         !< separate parts (1, 2, ...)
   end type region_t
+
+  !> Three-point Gauss-Legendre on [0, 1]: exact for the polynomials (degree
+  !> up to 5) integrated along the edge's straight pieces.
+  real(real64), parameter :: gauss_t(3) = [0.5_real64 - sqrt(0.15_real64), 0.5_real64, 0.5_real64 + sqrt(0.15_real64)]
+  real(real64), parameter :: gauss_w(3) = [5.0_real64 / 18, 8.0_real64 / 18, 5.0_real64 / 18]
 
 contains
 
   !> The region of the contact cells `fine` (square cells) with the pressure
-  !> on the same grid.
-  function sampled_region(fine, pressure, status) result(region)
+  !> on the same grid. moments_only: only its zero level and moments, no
+  !> reference staircase (a region that is compared, not sampled).
+  function sampled_region(fine, pressure, status, moments_only) result(region)
     type(patch_t), intent(in) :: fine
     real(real64), intent(in) :: pressure(:, :)
     type(status_t), intent(inout) :: status
+    logical, intent(in), optional :: moments_only
     type(region_t) :: region
     integer :: split
     region%mx = fine%mx + 2 * pad
@@ -78,11 +96,176 @@ contains
     allocate (region%level(region%mx, region%my), source=0.0_real64)
     where (pressure > 0) region%level(pad + 1:pad + fine%mx, pad + 1:pad + fine%my) = pressure**2
     call continue_outside(region%level)
+    call zero_level_pieces(region)
+    if (present(moments_only)) then
+      if (moments_only) return
+    end if
     split = max(1, min(reference_split, floor(sqrt(max_reference_cells / (real(fine%mx, real64) * fine%my)))))
     call region_patch(region, region%h / split, fine%grid_box(), region%reference, status)
     if (status%failed()) return
     region%diameter = level_size(region%reference)
   end function sampled_region
+
+  !> The zero level of the bilinear level as straight pieces, one or two per
+  !> square of four cell centres it crosses, each with the inside (level >
+  !> 0) on its left. Going round a square counter-clockwise, a piece runs
+  !> from a crossing out of the region to the crossing into it before it
+  !> (the corners cut off) or after it (a saddle whose centre is inside).
+  !> Each piece belongs to the part of the corner it starts beside.
+  pure subroutine zero_level_pieces(region)
+    type(region_t), intent(inout) :: region
+    integer, parameter :: di(5) = [0, 1, 1, 0, 0], dj(5) = [0, 0, 1, 1, 0]
+    real(real64) :: v(5), corner(2, 5), cross(2, 4)
+    integer, allocatable :: label(:, :)
+    logical :: leaves(4)
+    integer :: i, j, k, n, m, start(4), pieces
+    call label_parts(region%level, label, region%parts)
+    allocate (region%edge(4, 2 * (region%mx - 1) * (region%my - 1)), region%edge_part(2 * (region%mx - 1) * (region%my - 1)))
+    pieces = 0
+    do j = 1, region%my - 1
+      do i = 1, region%mx - 1
+        ! corners counter-clockwise, the first repeated
+        v = [(region%level(i + di(k), j + dj(k)), k=1, 5)]
+        if (all(v(1:4) > 0) .or. all(v(1:4) <= 0)) cycle
+        corner(1, :) = region%x0 + (i - 1 + di) * region%h
+        corner(2, :) = region%y0 + (j - 1 + dj) * region%h
+        n = 0
+        do k = 1, 4
+          if ((v(k) > 0) .eqv. (v(k + 1) > 0)) cycle
+          n = n + 1
+          start(n) = k
+          cross(:, n) = corner(:, k) + v(k) / (v(k) - v(k + 1)) * (corner(:, k + 1) - corner(:, k))
+          leaves(n) = v(k) > 0
+        end do
+        do k = 1, n
+          if (.not. leaves(k)) cycle
+          if (n == 4 .and. sum(v(1:4)) > 0) then
+            m = modulo(k, n) + 1           ! the crossing into the region after it
+          else
+            m = modulo(k - 2, n) + 1       ! the one before it
+          end if
+          pieces = pieces + 1
+          region%edge(:, pieces) = [cross(:, k), cross(:, m)]
+          region%edge_part(pieces) = label(i + di(start(k)), j + dj(start(k)))
+        end do
+      end do
+    end do
+    region%edge = region%edge(:, 1:pieces)
+    region%edge_part = region%edge_part(1:pieces)
+  end subroutine zero_level_pieces
+
+  !> The separate parts of {level > 0}: cell centres joined to their four
+  !> neighbours, and across a square's diagonal where its centre is inside.
+  pure subroutine label_parts(level, label, parts)
+    real(real64), intent(in) :: level(:, :)
+    integer, allocatable, intent(out) :: label(:, :)
+    integer, intent(out) :: parts
+    integer, allocatable :: stack(:, :)
+    integer :: i, j, top, ci, cj, ni, nj, d
+    integer, parameter :: step(2, 8) = reshape([1, 0, -1, 0, 0, 1, 0, -1, 1, 1, -1, -1, 1, -1, -1, 1], [2, 8])
+    allocate (label(size(level, 1), size(level, 2)), source=0)
+    allocate (stack(2, count(level > 0)))
+    parts = 0
+    do j = 1, size(level, 2)
+      do i = 1, size(level, 1)
+        if (level(i, j) <= 0 .or. label(i, j) > 0) cycle
+        parts = parts + 1
+        label(i, j) = parts
+        top = 1
+        stack(:, 1) = [i, j]
+        do while (top > 0)
+          ci = stack(1, top)
+          cj = stack(2, top)
+          top = top - 1
+          do d = 1, 8
+            ni = ci + step(1, d)
+            nj = cj + step(2, d)
+            if (ni < 1 .or. nj < 1 .or. ni > size(level, 1) .or. nj > size(level, 2)) cycle
+            if (level(ni, nj) <= 0 .or. label(ni, nj) > 0) cycle
+            ! a diagonal joins through the square's centre only
+            if (d > 4) then
+              if (level(ci, cj) + level(ni, nj) + level(ci, nj) + level(ni, cj) <= 0) cycle
+            end if
+            label(ni, nj) = parts
+            top = top + 1
+            stack(:, top) = [ni, nj]
+          end do
+        end do
+      end do
+    end do
+  end subroutine label_parts
+
+  !> The region's area, centroid and second moments about it, over the zero
+  !> level: [area, xc, yc, integral of (x - xc)^2, of (y - yc)^2].
+  pure function contour_moments(region, part) result(m)
+    type(region_t), intent(in) :: region
+    integer, intent(in), optional :: part   !< one separate part only (region%edge_part)
+    real(real64) :: m(5), area, xc, yc
+    ! Green: the integral of P over the region is that of Q dy round its
+    ! edge, dQ/dx = P: P = 1, x, y with Q = x, x^2 / 2, x y
+    area = along_edge(region, 0.0_real64, 0.0_real64, 1, part)
+    xc = along_edge(region, 0.0_real64, 0.0_real64, 2, part) / area
+    yc = along_edge(region, 0.0_real64, 0.0_real64, 3, part) / area
+    m = [area, xc, yc, along_edge(region, xc, yc, 4, part), along_edge(region, xc, yc, 5, part)]
+  end function contour_moments
+
+  !> The region's area, over its zero level.
+  pure real(real64) function contour_area(region)
+    type(region_t), intent(in) :: region
+    contour_area = along_edge(region, 0.0_real64, 0.0_real64, 1)
+  end function contour_area
+
+  !> The integral of X^4 - 6 X^2 Y^2 + Y^4 dX dY over the region, X = (x -
+  !> xc) / a, Y = (y - yc) / b: its four-fold harmonic about that ellipse.
+  pure real(real64) function contour_harmonic4(region, centre, a, b, part) result(h4)
+    type(region_t), intent(in) :: region
+    real(real64), intent(in) :: centre(2), a, b
+    integer, intent(in), optional :: part
+    real(real64) :: x(3), y(3), dy
+    integer :: k
+    h4 = 0
+    do k = 1, size(region%edge, 2)
+      if (present(part)) then
+        if (region%edge_part(k) /= part) cycle
+      end if
+      x = (region%edge(1, k) + gauss_t * (region%edge(3, k) - region%edge(1, k)) - centre(1)) / a
+      y = (region%edge(2, k) + gauss_t * (region%edge(4, k) - region%edge(2, k)) - centre(2)) / b
+      dy = (region%edge(4, k) - region%edge(2, k)) / b
+      h4 = h4 + dy * sum(gauss_w * (x**5 / 5 - 2 * x**3 * y**2 + x * y**4))
+    end do
+  end function contour_harmonic4
+
+  !> The integral of Q dy round the region's edge about (xc, yc), Q one of
+  !> u, u^2 / 2, u w, u^3 / 3, u w^2 (u = x - xc, w = y - yc).
+  pure real(real64) function along_edge(region, xc, yc, which, part) result(total)
+    type(region_t), intent(in) :: region
+    real(real64), intent(in) :: xc, yc
+    integer, intent(in) :: which
+    integer, intent(in), optional :: part
+    real(real64) :: u(3), w(3), q(3)
+    integer :: k
+    total = 0
+    do k = 1, size(region%edge, 2)
+      if (present(part)) then
+        if (region%edge_part(k) /= part) cycle
+      end if
+      u = region%edge(1, k) + gauss_t * (region%edge(3, k) - region%edge(1, k)) - xc
+      w = region%edge(2, k) + gauss_t * (region%edge(4, k) - region%edge(2, k)) - yc
+      select case (which)
+      case (1)
+        q = u
+      case (2)
+        q = u**2 / 2
+      case (3)
+        q = u * w
+      case (4)
+        q = u**3 / 3
+      case default
+        q = u * w**2
+      end select
+      total = total + (region%edge(4, k) - region%edge(2, k)) * sum(gauss_w * q)
+    end do
+  end function along_edge
 
   !> The outermost contact cells' level blended with the parabola through
   !> the cells behind them (edge_blend); outside the contact cells (level =

@@ -33,21 +33,21 @@ module kcreep_gap_levels
   use kcreep_patch, only: patch_t
   use kcreep_gap, only: gap_t, gap_resampled, gap_from_polynomial
   use kcreep_wheel_rail_geometry, only: plane_gap_grid
-  use kcreep_problem, only: problem_t, result_t
+  use kcreep_problem, only: problem_t, result_t, cell_budget_or
   use kcreep_normal_stage, only: normal_patch, store_normal
   use kcreep_normal_solve, only: normal_result_t
   use kcreep_check, only: check_problem
   use kcreep_run, only: run_case, solve_cache_t
   use kcreep_verdict, only: message_length
-  use kcreep_region, only: region_t, sampled_region, region_pressure, contact_diameter, level_size
+  use kcreep_region, only: region_t, sampled_region, region_pressure, contact_diameter, level_size, contour_area
   use kcreep_level_ladder, only: run_shape_levels
-  use kcreep_staircase_normalisation, only: moment_reference_t, staircase_reference, aspect_slopes
+  use kcreep_staircase_normalisation, only: moment_reference_t, contour_reference, aspect_slopes
   use kcreep_table_interpolation, only: table_coefficients, table_ratio_range, table_nu_range
   use kcreep_refine_constants
-  use kcreep_refine_estimate, only: min_estimate_cells, default_target_error
+  use kcreep_refine_estimate, only: min_estimate_cells, default_target_error, level_cell_budget
   implicit none
   private
-  public :: run_gap_patch, gap_single_estimate
+  public :: run_gap_patch, gap_single_estimate, normal_grid_cells
 
   real(real64), parameter :: pi = acos(-1.0_real64)
 
@@ -152,24 +152,25 @@ contains
     type(patch_t) :: first, fine, coarse, located, moved
     type(normal_result_t) :: nres, fine_normal, coarse_normal, located_normal, moved_normal
     type(region_t) :: region, coarse_region, moved_region
-    real(real64) :: wide(4), box(4), across, target
+    real(real64) :: wide(4), box(4), across, target, max_cells
 
     ! the contact area on the given grid: its size and where it is
     call normal_patch(problem, first, nres, status)
     if (status%failed()) return
     wide = level_box(problem%normal%gap, first%grid_box())
     target = level_size(first) / gap_normal_cells(problem%target_error)
+    max_cells = normal_grid_cells(problem)
     ! on cells twice the fine ones over the wide box: where the contact is,
     ! to a coarse cell; the fine grid covers only that (a thin strip's box
     ! on the given grid is 2-4 times its area)
-    across = capped_cells(wide, target)
+    across = capped_cells(wide, target, max_cells)
     call contact_area_on(problem, wide, 2 * across, coarse, coarse_normal, status)
     if (status%failed()) return
     box = widened_box(coarse%cells_box(), 2 * across, 2 * across, wide)
-    if (capped_cells(box, target) < across) then
-      ! a long thin area (a flange contact) is held to max_normal_grid_cells:
+    if (capped_cells(box, target, max_cells) < across) then
+      ! a long thin area (a flange contact) is held to max_cells:
       ! the smaller box lets it have smaller cells; the coarse grid follows
-      across = capped_cells(box, target)
+      across = capped_cells(box, target, max_cells)
       located = coarse
       located_normal = coarse_normal
       call contact_area_on(problem, box, 2 * across, coarse, coarse_normal, status, located, located_normal%pressure)
@@ -180,14 +181,14 @@ contains
     if (status%failed()) return
     region = sampled_region(fine, fine_normal%pressure, status)
     if (status%failed()) return
-    coarse_region = sampled_region(coarse, coarse_normal%pressure, status)
+    coarse_region = sampled_region(coarse, coarse_normal%pressure, status, moments_only=.true.)
     if (status%failed()) return
     ! the fine grid once more, moved by half a cell in x and y: how far its
     ! placement alone moves the contact area (normal_grid_estimate); the
     ! fine pressure starts it
     call contact_area_on(problem, box + across / 2, across, moved, moved_normal, status, fine, fine_normal%pressure)
     if (status%failed()) return
-    moved_region = sampled_region(moved, moved_normal%pressure, status)
+    moved_region = sampled_region(moved, moved_normal%pressure, status, moments_only=.true.)
     if (status%failed()) return
     call run_shape_levels(problem, result, status, region, &
                           normal_grid_estimate(region, coarse_region, moved_region, problem%nu))
@@ -251,12 +252,19 @@ contains
 
   !> Cells across the contact area's hydraulic diameter of the normal
   !> problem's fine grid: gap_normal_cells_at_default at the default target
-  !> and looser, twice that for tighter targets.
+  !> and looser, tight_target_normal_growth times that for tighter targets.
   pure real(real64) function gap_normal_cells(target) result(cells)
     real(real64), intent(in) :: target
     cells = gap_normal_cells_at_default
-    if (target < default_target_error) cells = 2 * cells
+    if (target < default_target_error) cells = tight_target_normal_growth * cells
   end function gap_normal_cells
+
+  !> The most cells the fine normal grid may have: normal_grid_budget_share
+  !> of the level cell budget (the caller's or the target's).
+  pure real(real64) function normal_grid_cells(problem) result(cells)
+    type(problem_t), intent(in) :: problem
+    cells = normal_grid_budget_share * cell_budget_or(problem, level_cell_budget(problem%target_error))
+  end function normal_grid_cells
 
   !> The error the normal problem's grid leaves in C11, C22, C23: the larger
   !> of the fine grid's placement noise (the change of the contact area when
@@ -269,12 +277,12 @@ contains
     real(real64) :: rel_error(3), slope(4), r_fine, c(4), rel(4), radius
     type(moment_reference_t) :: m_fine
     type(status_t) :: lookup
-    m_fine = staircase_reference(fine%reference)
+    m_fine = contour_reference(fine)
     r_fine = m_fine%semi_a / m_fine%semi_b
     slope = aspect_slopes(r_fine, nu)
     call table_coefficients(min(max(r_fine, table_ratio_range(1)), table_ratio_range(2)), &
                             min(max(nu, table_nu_range(1)), table_nu_range(2)), c, rel, lookup)
-    radius = sqrt(fine%reference%area() / pi)
+    radius = sqrt(contour_area(fine) / pi)
     rel_error = max(change_to(moved), normal_systematic_share * change_to(coarse))
 
   contains
@@ -289,7 +297,7 @@ contains
       type(region_t), intent(in) :: other
       real(real64) :: rel_change(3)
       type(moment_reference_t) :: m_other
-      m_other = staircase_reference(other%reference)
+      m_other = contour_reference(other)
       rel_change = abs(slope(1:3) * log(r_fine / (m_other%semi_a / m_other%semi_b)))
       rel_change(3) = rel_change(3) + c(2) / c(3) * abs(m_fine%centre(1) - m_other%centre(1)) / radius
     end function change_to
@@ -308,11 +316,11 @@ contains
   end function level_box
 
   !> The fine normal grid's cell size: target, or larger where box would
-  !> have more than max_normal_grid_cells of them (a long thin area's box is
-  !> large for its width; the normal grid's estimate grows with the cells).
-  pure real(real64) function capped_cells(box, target) result(h)
-    real(real64), intent(in) :: box(4), target
-    h = max(target, sqrt((box(2) - box(1)) * (box(4) - box(3)) / max_normal_grid_cells))
+  !> have more than max_cells of them (a long thin area's box is large for
+  !> its width; the normal grid's estimate grows with the cells).
+  pure real(real64) function capped_cells(box, target, max_cells) result(h)
+    real(real64), intent(in) :: box(4), target, max_cells
+    h = max(target, sqrt((box(2) - box(1)) * (box(4) - box(3)) / max_cells))
   end function capped_cells
 
   !> bbox (xmin xmax ymin ymax) widened by gap_level_margin of its size and

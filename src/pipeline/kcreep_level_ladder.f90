@@ -23,7 +23,7 @@ module kcreep_level_ladder
   use kcreep_status, only: status_t
   use kcreep_strings, only: itoa, rtoa
   use kcreep_patch, only: patch_t, ellipse_patch, place_like, connected_parts, part_patch
-  use kcreep_region, only: region_t, region_level_patch
+  use kcreep_region, only: region_t, region_level_patch, contour_area
   use kcreep_problem, only: problem_t, result_t, append_prefixed, level_tolerance, cell_budget_or, mark_uncertain
   use kcreep_run, only: run_case
   use kcreep_verdict, only: message_length
@@ -31,8 +31,8 @@ module kcreep_level_ladder
   use kcreep_creep_matrix, only: creep_matrix
   use kcreep_refine_estimate
   use kcreep_refine_constants
-  use kcreep_staircase_normalisation, only: moment_reference_t, ellipse_reference, staircase_reference, &
-                                            referred_f, shape_defect
+  use kcreep_staircase_normalisation, only: moment_reference_t, ellipse_reference, &
+                                            contour_reference, referred_f, shape_defect
   use kcreep_grid_transfer, only: transferred_traction
   use kcreep_extrapolation, only: refined_patch
   implicit none
@@ -85,8 +85,8 @@ contains
       if (.not. problem%solve%tolerance_given) level_problem%solve%tolerance = &
         min(level_problem%solve%tolerance, split_tolerance_share * problem%target_error)
     else if (present(region)) then
-      ref = staircase_reference(region%reference)
-      parts = part_references(region%reference)
+      ref = contour_reference(region)
+      parts = part_references(region)
       levels = max(min_base_cells, nint(base_levels * min(1.0_real64, sqrt(budget / region_cells(region, &
                                                                               base_levels(size(base_levels)))))))
     else
@@ -132,7 +132,7 @@ contains
       end if
       k = k + 1
     end do
-    if (present(region)) result%c = sqrt(region%reference%area() / pi)
+    if (present(region)) result%c = sqrt(contour_area(region) / pi)
     call finish_result(result, t)
     result%warnings = warnings
     ! the budget scaled a long shape's levels below the range the estimate
@@ -259,15 +259,11 @@ contains
   end subroutine run_level
 
   !> The moment references of the separate parts of a contact area.
-  function part_references(area) result(refs)
-    type(patch_t), intent(in) :: area
+  function part_references(region) result(refs)
+    type(region_t), intent(in) :: region
     type(moment_reference_t), allocatable :: refs(:)
-    integer :: part(area%n), n_parts, k
-    call connected_parts(area, part, n_parts)
-    allocate (refs(n_parts))
-    do k = 1, n_parts
-      refs(k) = staircase_reference(part_patch(area, part == k))
-    end do
+    integer :: k
+    refs = [(contour_reference(region, k), k=1, region%parts)]
   end function part_references
 
   !> A level's f referred to the shape part by part when the shape has

@@ -42,9 +42,9 @@ program test_error_control
   call t%check(next_level(8) == 12, 'next level grows by at least 4 cells')
   call t%check(abs(level_cell_budget(1e-2_real64) / level_cell_budget(1e-3_real64) - 10**(-0.25_real64)) < 1e-12, &
                'budget above the default target: as target**(-1/4)')
-  call t%check(abs(level_cell_budget(1e-4_real64) - 320000) < 1e-6 .and. &
-               abs(level_cell_budget(1e-5_real64) / level_cell_budget(1e-4_real64) - 2) < 1e-12, &
-               'budget below the default target: 320,000 cells at 1e-4, 2 times per factor 10')
+  call t%check(abs(level_cell_budget(1e-4_real64) - 1600000) < 1e-6 .and. &
+               abs(level_cell_budget(1e-5_real64) / level_cell_budget(1e-4_real64) - 10) < 1e-12, &
+               'budget below the default target: 1.6 million cells at 1e-4, 10 times per factor 10')
 
   ! the split (mask) model: f0 + K h + L h^1.5 is recovered exactly, and its
   ! estimate counts the change of f0 for the other orders (nonzero)
