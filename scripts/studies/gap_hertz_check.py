@@ -13,6 +13,8 @@ verdict and the wall time.
   OMP_NUM_THREADS=1 flock /tmp/kcreep-bench.lock /usr/bin/python3 scripts/studies/gap_hertz_check.py
   ... --ratios 2,5,10 --perturb 9     the spread under bit-level changes of rx
   ... --ratios 2,0.5,5 --target 1e-4  the accurate mode (20-60 s and up to 2 GB per gap)
+  ... --check                          exit 1 unless every run ends `ok` with every
+                                       error within its estimate (allowing u) and target
 
 Needs scipy; a few seconds at the default target.
 """
@@ -34,6 +36,9 @@ def main():
     p.add_argument("--target", type=float, default=None,
                    help="&solver target_error of the gap runs (default: kcreep's, 1e-3); the references stay "
                         "at 1e-4, their u printed")
+    p.add_argument("--check", action="store_true",
+                   help="exit 1 unless every run is `ok` and every error within its estimate (allowing the "
+                        "reference's u) and within its target")
     p.add_argument("--perturb", type=int, default=0, metavar="N",
                    help="also run each gap N times with rx times 1 + k 1e-9 (k = 1..N): the spread of the "
                         "estimate and the verdict under bit-level changes of the input")
@@ -42,6 +47,7 @@ def main():
     from gap_error_calibration import Runner, hertz
     solver = "" if args.target is None else f"&solver target_error = {args.target!r} /\n"
     target = 1e-3 if args.target is None else args.target
+    failures = []
     with tempfile.TemporaryDirectory() as work:
         runner = Runner(os.path.abspath(args.kcreep), work)
         for ratio in (float(r) for r in args.ratios.split(",")):
@@ -57,10 +63,16 @@ def main():
                              "&material g = 1, nu = 0.25 /\n" + solver)
             print(f"Hertz a/b = {ratio:g} (rx = {rx:.6f}, a = {a:.6f}, b = {b:.6f}): verdict {run['verdict']}, "
                   f"wall {run['wall']:.2f} s")
+            if run["verdict"] != "ok":
+                failures.append(f"a/b = {ratio:g}: verdict {run['verdict']}")
             for key, err in (("c11", "err11"), ("c22", "err22"), ("c23", "err23")):
                 true = abs(run[key] / ref[key] - 1)
                 print(f"  {key} {run[key]:.6f}  estimate {100 * run[err]:.3f} %  true error {100 * true:.3f} %  "
                       f"(reference {ref[key]:.6f}, u {100 * ref[err]:.4f} %)  estimate / error {run[err] / true:.2f}")
+                limit = (3 if key == "c23" else 1) * target
+                if true > run[err] + ref[err] or true > limit + ref[err]:
+                    failures.append(f"a/b = {ratio:g}: {key} error {100 * true:.4f} % above its estimate "
+                                    f"{100 * run[err]:.4f} % or target {100 * limit:.4f} % (u {100 * ref[err]:.4f} %)")
             if args.perturb:
                 runs = [run] + [runner.run(f"&patch shape = 'gap' /\n&normal rx = {rx * (1 + k * 1e-9)!r}, ry = 1.0, "
                                            "approach = 0.01 /\n&material g = 1, nu = 0.25 /\n" + solver)
@@ -77,6 +89,13 @@ def main():
                     bounded = sum(r[err] >= abs(r[key] / ref[key] - 1) - ref[err] for r in runs)
                     print(f"  {key}: estimate {ests[0]:.3f}-{ests[-1]:.3f} % (median {ests[len(ests) // 2]:.3f}), "
                           f"true error {errs[0]:.3f}-{errs[-1]:.3f} %, bounded (allowing u) in {bounded} of {len(runs)}")
+
+
+    if args.check:
+        for line in failures:
+            print("FAIL " + line)
+        print("check: " + ("passed" if not failures else f"{len(failures)} failed"))
+        sys.exit(1 if failures else 0)
 
 
 if __name__ == "__main__":
