@@ -225,15 +225,22 @@ contains
     integer :: k
     h4 = 0
     do k = 1, size(region%edge, 2)
-      if (present(part)) then
-        if (region%edge_part(k) /= part) cycle
-      end if
+      if (other_part(region, k, part)) cycle
       x = (region%edge(1, k) + gauss_t * (region%edge(3, k) - region%edge(1, k)) - centre(1)) / a
       y = (region%edge(2, k) + gauss_t * (region%edge(4, k) - region%edge(2, k)) - centre(2)) / b
       dy = (region%edge(4, k) - region%edge(2, k)) / b
       h4 = h4 + dy * sum(gauss_w * (x**5 / 5 - 2 * x**3 * y**2 + x * y**4))
     end do
   end function contour_harmonic4
+
+  !> Whether piece k bounds another part than `part` (none: every piece counts).
+  pure logical function other_part(region, k, part)
+    type(region_t), intent(in) :: region
+    integer, intent(in) :: k
+    integer, intent(in), optional :: part
+    other_part = .false.
+    if (present(part)) other_part = region%edge_part(k) /= part
+  end function other_part
 
   !> The integral of Q dy round the region's edge about (xc, yc), Q one of
   !> u, u^2 / 2, u w, u^3 / 3, u w^2 (u = x - xc, w = y - yc).
@@ -246,9 +253,7 @@ contains
     integer :: k
     total = 0
     do k = 1, size(region%edge, 2)
-      if (present(part)) then
-        if (region%edge_part(k) /= part) cycle
-      end if
+      if (other_part(region, k, part)) cycle
       u = region%edge(1, k) + gauss_t * (region%edge(3, k) - region%edge(1, k)) - xc
       w = region%edge(2, k) + gauss_t * (region%edge(4, k) - region%edge(2, k)) - yc
       select case (which)
