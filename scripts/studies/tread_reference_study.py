@@ -2,7 +2,7 @@
 """The S1002 / UIC60 tread rows against references of their own (docs/wheel_rail.md,
 "How far the tread rows' estimates hold"): each shift of input/s1002_uic60.nml run
 alone at the default target, and again as a reference at target_error = 1e-5
-with &solver cell_budget = 2,000,000 (normal grid 256 cells across the contact
+with &solver cell_budget = 2,000,000 (normal grid 512 cells across the contact
 area instead of 128, levels up to about 1,200 across instead of 96-196). The
 reference stops `uncertain` at its budget; its own estimate is its uncertainty u.
 
@@ -13,7 +13,7 @@ the figure docs/figures/tread_reference_study.png.
   OMP_NUM_THREADS=1 flock /tmp/kcreep-bench.lock /usr/bin/python3 scripts/studies/tread_reference_study.py
 
 Needs ../shared/profiles beside the repository and matplotlib (Debian's
-python3-matplotlib); about 2-3 minutes and 4 GB per reference on one core.
+python3-matplotlib); about 2 minutes and 4 GB per reference on one core.
 """
 import argparse
 import os
