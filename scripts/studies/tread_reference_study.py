@@ -57,7 +57,7 @@ def plot(dat):
     axes[0].set_ylabel("relative error (%)")
     axes[0].legend(fontsize=7)
     fig.suptitle("S1002 / UIC60 tread rows alone, default target, against references at 1e-5 "
-                 "(2 million cells, normal grid 256 across)", fontsize=9)
+                 "(2 million cells, normal grid 512 across)", fontsize=9)
     fig.tight_layout()
     png = os.path.join(ROOT, "docs", "figures", "tread_reference_study.png")
     fig.savefig(png, dpi=110)
