@@ -362,38 +362,44 @@ contains
             (1 - s) * t * region%level(i, j + 1) + s * t * region%level(i + 1, j + 1)
   end function level_at
 
-  !> The cells of size h over box (centred on it, one cell wider on every
-  !> side) whose centres lie in the region.
-  subroutine region_patch(region, h, box, patch, status)
+  !> The cells of size h x hy (hy = h unless given) over box (centred on
+  !> it, one cell wider on every side) whose centres lie in the region.
+  subroutine region_patch(region, h, box, patch, status, hy)
     type(region_t), intent(in) :: region
     real(real64), intent(in) :: h, box(4)
     type(patch_t), intent(out) :: patch
     type(status_t), intent(inout) :: status
-    real(real64) :: x0, y0
+    real(real64), intent(in), optional :: hy
+    real(real64) :: x0, y0, dy
     logical, allocatable :: inside(:, :)
     integer :: mx, my, ix, iy
+    dy = h
+    if (present(hy)) dy = hy
     mx = ceiling((box(2) - box(1)) / h) + 2
-    my = ceiling((box(4) - box(3)) / h) + 2
+    my = ceiling((box(4) - box(3)) / dy) + 2
     x0 = (box(1) + box(2)) / 2 - (mx - 1) * h / 2
-    y0 = (box(3) + box(4)) / 2 - (my - 1) * h / 2
+    y0 = (box(3) + box(4)) / 2 - (my - 1) * dy / 2
     allocate (inside(mx, my))
     do iy = 1, my
       do ix = 1, mx
-        inside(ix, iy) = level_at(region, x0 + (ix - 1) * h, y0 + (iy - 1) * h) > 0
+        inside(ix, iy) = level_at(region, x0 + (ix - 1) * h, y0 + (iy - 1) * dy) > 0
       end do
     end do
-    call mask_patch(inside, h, h, x0, y0, 'contact area level', patch, status)
+    call mask_patch(inside, h, dy, x0, y0, 'contact area level', patch, status)
     if (status%failed()) return
     patch%kind = 'gap'
   end subroutine region_patch
 
-  !> A level of `cells` across the region's diameter.
-  subroutine region_level_patch(region, cells, patch, status)
+  !> A level of `cells` across the region's diameter, each cell
+  !> cell_aspect times as long in y as in x.
+  subroutine region_level_patch(region, cells, cell_aspect, patch, status)
     type(region_t), intent(in) :: region
     integer, intent(in) :: cells
+    real(real64), intent(in) :: cell_aspect
     type(patch_t), intent(out) :: patch
     type(status_t), intent(inout) :: status
-    call region_patch(region, region%diameter / cells, region%reference%grid_box(), patch, status)
+    call region_patch(region, region%diameter / cells, region%reference%grid_box(), patch, status, &
+                      cell_aspect * region%diameter / cells)
   end subroutine region_level_patch
 
   !> The pressure at the centres of patch's cells: sqrt of the interpolated p^2.

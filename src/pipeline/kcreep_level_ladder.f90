@@ -65,9 +65,11 @@ contains
     integer :: k, finest, first, fit_min, fit_width, j
     real(real64) :: t(4), budget
     logical :: long_in_y
+    real(real64) :: cell_aspect   !< a contact area's level cells: this many times as long in y as in x
     logical :: split          !< a mask: every cell split k x k, the same staircase on every level
 
     allocate (fnorm(3, 3, 0), defect(0), warnings(0))
+    cell_aspect = 1
     t = 0
     level_problem = problem
     call level_tolerance(level_problem)
@@ -87,8 +89,12 @@ contains
     else if (present(region)) then
       ref = contour_reference(region)
       parts = part_references(region)
+      ! an area long in y on cells long in y, as an ellipse's (ellipse_cells_long_in_y)
+      if (ellipse_cells_long_in_y(problem%target_error, problem%scheme%name) .and. ref%semi_b > ref%semi_a) &
+        cell_aspect = min(ref%semi_b / ref%semi_a, max_cell_aspect)
       levels = max(min_base_cells, nint(base_levels * min(1.0_real64, sqrt(budget / region_cells(region, &
-                                                                              base_levels(size(base_levels)))))))
+                                                                              base_levels(size(base_levels)), &
+                                                                              cell_aspect)))))
     else
       levels = ellipse_base_levels(problem%patch%semi_a, problem%patch%semi_b, budget, long_in_y)
     end if
@@ -152,7 +158,7 @@ contains
       if (split) then
         call refined_patch(problem%patch, level, patch, status)
       else if (present(region)) then
-        call region_level_patch(region, level, patch, status)
+        call region_level_patch(region, level, cell_aspect, patch, status)
       else
         call ellipse_level_grid(problem%patch%semi_a, problem%patch%semi_b, level, mx, my, long_in_y)
         call ellipse_patch(problem%patch%semi_a, problem%patch%semi_b, mx, my, patch, status)
@@ -181,7 +187,7 @@ contains
         return
       end if
       if (present(region)) then
-        patch_cells = region_cells(region, level)
+        patch_cells = region_cells(region, level, cell_aspect)
       else
         call ellipse_level_grid(problem%patch%semi_a, problem%patch%semi_b, level, mx, my, long_in_y)
         patch_cells = ellipse_fill * mx * my
@@ -208,12 +214,13 @@ contains
   !> the cells of its grid (the area's bounding box), not only its patch
   !> cells; the iterative solver's transforms run over the whole grid, and a
   !> thin curved area (a flange contact) fills a small part of its box.
-  pure real(real64) function region_cells(region, cells)
+  pure real(real64) function region_cells(region, cells, cell_aspect)
     type(region_t), intent(in) :: region
     integer, intent(in) :: cells
+    real(real64), intent(in) :: cell_aspect
     real(real64) :: box(4)
     box = region%reference%grid_box()
-    region_cells = (box(2) - box(1)) * (box(4) - box(3)) * (cells / region%diameter)**2
+    region_cells = (box(2) - box(1)) * (box(4) - box(3)) * (cells / region%diameter)**2 / cell_aspect
   end function region_cells
 
   !> An ellipse's base levels; a long one's scaled down so that the finest keeps to the budget.

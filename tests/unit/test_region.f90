@@ -39,7 +39,7 @@ program test_region
   call t%check(abs(region%diameter - 2 * b) < 0.05_real64 * b, &
                'level size: the shorter axis 2b of a long area (hydraulic diameter 2.6 b)')
   ! a level of 40 cells across 2b: about pi a b / h^2 cells
-  call region_level_patch(region, 40, level, status)
+  call region_level_patch(region, 40, 1.0_real64, level, status)
   call t%check(abs(level%n * level%dx**2 / exact - 1) < 0.02_real64, 'region_level_patch: the area on 40 cells across')
   pressure = region_pressure(region, level)
   call t%check(maxval(pressure) > 0.99_real64 .and. maxval(pressure) <= 1 + 1e-12_real64 .and. &
