@@ -75,8 +75,8 @@ contains
     call level_tolerance(level_problem)
     budget = cell_budget_or(problem, level_cell_budget(problem%target_error))
     split = .not. present(region) .and. problem%patch%kind /= 'ellipse'
-    long_in_y = .not. (split .or. present(region)) .and. &
-                ellipse_cells_long_in_y(problem%target_error, problem%scheme%name)
+    ! levels of a shape long in y on cells long in y (an ellipse's, a contact area's)
+    long_in_y = .not. split .and. ellipse_cells_long_in_y(problem%target_error, problem%scheme%name)
     fit_min = ellipse_fit_min
     fit_width = ellipse_fit_width
     if (split) then
@@ -89,9 +89,7 @@ contains
     else if (present(region)) then
       ref = contour_reference(region)
       parts = part_references(region)
-      ! an area long in y on cells long in y, as an ellipse's (ellipse_cells_long_in_y)
-      if (ellipse_cells_long_in_y(problem%target_error, problem%scheme%name) .and. ref%semi_b > ref%semi_a) &
-        cell_aspect = min(ref%semi_b / ref%semi_a, max_cell_aspect)
+      if (long_in_y .and. ref%semi_b > ref%semi_a) cell_aspect = min(ref%semi_b / ref%semi_a, max_cell_aspect)
       levels = max(min_base_cells, nint(base_levels * min(1.0_real64, sqrt(budget / region_cells(region, &
                                                                               base_levels(size(base_levels)), &
                                                                               cell_aspect)))))
