@@ -48,7 +48,7 @@ module kcreep
   use kcreep_table_run, only: run_table, table_meets_target
   use kcreep_wheel_rail_run, only: wheel_rail_base_cells => base_cells
   use kcreep_wheel_rail_run, only: wheel_rail_setup_t, wheel_rail_row_t, run_wheel_rail, wheel_rail_columns, &
-                                   check_wheel_rail_setup, max_wheel_rail_shifts
+                                   check_wheel_rail_setup, max_wheel_rail_shifts, most_shifts_at_once
   implicit none
   private
   public :: kcreep_solve, kcreep_memory_need, kcreep_wheel_rail_memory_need
@@ -225,13 +225,15 @@ contains
     bytes = bytes + need + process_bytes
   end subroutine kcreep_memory_need
 
-  !> Bytes a wheel/rail table (&wheel_rail) needs at its peak, and its solve
-  !> path there: that of one patch, a gap first solved on at most
-  !> wheel_rail_base_cells x wheel_rail_base_cells cells of its potential
-  !> contact area (kcreep_wheel_rail_run), under error control then on its
-  !> fine normal grid and levels (kcreep_memory_need).
-  subroutine kcreep_wheel_rail_memory_need(problem, bytes, method, status)
+  !> Bytes a wheel/rail table (&wheel_rail) of `shifts` shifts needs at its
+  !> peak, and its solve path there: that of one patch, a gap first solved on
+  !> at most wheel_rail_base_cells x wheel_rail_base_cells cells of its
+  !> potential contact area (kcreep_wheel_rail_run), under error control then
+  !> on its fine normal grid and levels (kcreep_memory_need), for each shift
+  !> the table may run at once (most_shifts_at_once).
+  subroutine kcreep_wheel_rail_memory_need(problem, shifts, bytes, method, status)
     type(problem_t), intent(in) :: problem
+    integer, intent(in) :: shifts
     integer(int64), intent(out) :: bytes
     character(len=:), allocatable, intent(out) :: method
     type(status_t), intent(inout) :: status
@@ -244,6 +246,8 @@ contains
                         status)
     if (status%failed()) return
     call kcreep_memory_need(patch_problem, bytes, method, status)
+    if (status%failed()) return
+    bytes = process_bytes + most_shifts_at_once(problem%solve%threads, shifts) * (bytes - process_bytes)
   end subroutine kcreep_wheel_rail_memory_need
 
   !> f13, f23, f31, f32, f33 refer to the spin centre: when it lies outside

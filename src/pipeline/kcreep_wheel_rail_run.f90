@@ -16,6 +16,8 @@
 !>     C33, FASTSIM's L1 L2 L3 and the geometric spin sin(delta) / r.
 !> Patches are independent (no elastic interaction between separate patches,
 !> which lie in different planes), as CONTACT treats them.
+!> Shifts are independent too: a team of threads runs one shift per thread
+!> (run_wheel_rail), and the table is the same on any team.
 module kcreep_wheel_rail_run
   use, intrinsic :: iso_fortran_env, only: real64, int64
   use kcreep_status, only: status_t, fail, exit_bad_input, exit_numerical
@@ -28,12 +30,13 @@ module kcreep_wheel_rail_run
   use kcreep_normal_solve, only: normal_result_t, solve_normal
   use kcreep_normal_influence, only: compliance_from_g_nu
   use kcreep_error_run, only: run_controlled
-  use kcreep_threads, only: team_size, enter_team, leave_team, solve_started, solve_ended, cells_per_thread_iterative
+  use kcreep_threads, only: team_size, enter_team, leave_team, solve_started, solve_ended, cpus_allowed, &
+                            cells_per_thread_iterative
   implicit none
   private
   public :: base_cells
   public :: wheel_rail_setup_t, wheel_rail_row_t, prepare_track, run_wheel_rail, wheel_rail_columns, &
-            check_wheel_rail_setup, max_wheel_rail_shifts
+            check_wheel_rail_setup, max_wheel_rail_shifts, most_shifts_at_once
 
   !> The table's columns, in order (verdict a word).
   character(len=*), parameter :: wheel_rail_columns = 'shift yaw patch fn delta y_rail y_wheel r_wheel area '// &
@@ -79,6 +82,13 @@ module kcreep_wheel_rail_run
     character(len=:), allocatable :: verdict
     type(result_t) :: result                 !< everything kcreep_solve gives for the patch
   end type wheel_rail_row_t
+
+  !> What one shift gives the table (run_wheel_rail's team fills one per shift).
+  type :: shift_rows_t
+    type(wheel_rail_row_t), allocatable :: rows(:)
+    type(status_t) :: status
+    logical :: skipped = .false.   !< not run: an earlier shift failed
+  end type shift_rows_t
 
 contains
 
@@ -153,68 +163,130 @@ contains
     type(wheel_rail_row_t), allocatable, intent(out) :: rows(:)
     type(status_t), intent(inout) :: status
     type(track_t) :: track
-    real(real64), allocatable :: ys(:), d(:), xs(:)
-    type(contact_t), allocatable :: contacts(:)
-    type(gap_t), allocatable :: grids(:)
-    type(plane_gap_t), allocatable :: planes(:)
-    real(real64), allocatable :: forces(:)
-    real(real64) :: shift, yaw, dz, sgn, w0
-    integer :: i, k, previous_team
-    type(wheel_rail_row_t) :: row
-    type(problem_t) :: problem
-    character(len=:), allocatable :: where
+    type(shift_rows_t), allocatable :: at_shift(:)
+    type(problem_t) :: row_base
+    real(real64) :: sgn
+    integer :: i, n, team, previous_team
+    logical :: failed
 
     allocate (rows(0))
     call prepare_track(setup, track, status)
     if (status%failed()) return
     sgn = merge(-1.0_real64, 1.0_real64, setup%side == 'left')
+    n = size(setup%shifts)
+    allocate (at_shift(n))
+    ! The shifts are independent: a team runs one shift per thread, each on
+    ! one thread inside (a whole shift per thread wastes nothing at the
+    ! levels' barriers). Rows do not depend on the team: every stage gives
+    ! the same numbers on any count (kcreep_threads).
+    team = min(team_size(base%solve%threads, int(n, int64) * cells_per_thread_iterative, cells_per_thread_iterative), &
+               most_shifts_at_once(base%solve%threads, n))
+    row_base = base
+    if (team > 1) then
+      row_base%solve%threads = 1
+      row_base%normal%options%threads = 1
+    end if
+    failed = .false.
     call solve_started()
-    call enter_team(team_size(base%solve%threads, 10000_int64, cells_per_thread_iterative), previous_team)
-    do i = 1, size(setup%shifts)
-      ! the left side is the mirrored right side
-      shift = sgn * setup%shifts(i)
-      yaw = sgn * setup%yaw
-      where = '&wheel_rail shift = '//rtoa(setup%shifts(i))//' mm: '
-      call clearance(track, shift, yaw, ys, d, xs)
-      if (.not. any(d < no_surface)) then
-        call fail(status, exit_bad_input, where//'the wheel profile never meets the rail profile (no lateral '// &
-                  'overlap: check flange_back_distance, flange_back_position, gauge_width and the mirror flags)')
-        exit
+    ! the stages' own parallel regions: one thread each inside a team, else
+    ! as for a single patch
+    call enter_team(merge(1, team_size(base%solve%threads, 10000_int64, cells_per_thread_iterative), team > 1), &
+                    previous_team)
+    !$omp parallel do num_threads(team) schedule(dynamic, 1) default(shared) private(i)
+    do i = 1, n
+      ! shifts are handed out in order: after a failure only later ones are skipped
+      !$omp atomic read
+      at_shift(i)%skipped = failed
+      if (at_shift(i)%skipped) cycle
+      call rows_at_shift(setup, row_base, track, sgn, i, at_shift(i)%rows, at_shift(i)%status)
+      if (at_shift(i)%status%failed()) then
+        !$omp atomic write
+        failed = .true.
       end if
-      w0 = minval(d)
-      if (setup%force_given) then
-        call approach_for_force(first_approach, dz)
-        if (status%failed()) exit
-      else
-        dz = setup%approach
-        call patches_at(dz)
-        if (status%failed()) exit
-        if (allocated(forces)) deallocate (forces)
-        allocate (forces(size(contacts)), source=0.0_real64)
-      end if
-      do k = 1, size(contacts)
-        problem = base
-        problem%normal%active = .true.
-        problem%normal%gap = grids(k)
-        problem%normal%plane = planes(k)
-        problem%normal%poly_given = .false.
-        problem%normal%force_given = setup%force_given
-        problem%normal%normal_force = forces(k)
-        problem%normal%approach = dz * cos(contacts(k)%delta)
-        problem%refine_grid = .true.
-        if (setup%force_given .and. .not. forces(k) > 0) cycle    ! touches, carries nothing
-        call run_controlled(problem, row%result, status)
-        if (status%failed()) then
-          status%message = where//'patch '//itoa(k)//': '//status%message
-          exit
-        end if
-        call fill_row(contacts(k), k)
-        rows = [rows, row]
-      end do
-      if (status%failed()) exit
     end do
+    !$omp end parallel do
     call leave_team(previous_team)
     call solve_ended()
+    do i = 1, n
+      if (at_shift(i)%skipped) exit
+      rows = [rows, at_shift(i)%rows]
+      if (at_shift(i)%status%failed()) then
+        status = at_shift(i)%status
+        exit
+      end if
+    end do
+  end subroutine run_wheel_rail
+
+  !> The most shifts a table of `shifts` runs at once (each needs a patch's
+  !> memory): `threads` when given (&solver threads), else the CPUs this
+  !> process may use; run_wheel_rail takes fewer on a busy machine.
+  integer function most_shifts_at_once(threads, shifts) result(n)
+    integer, intent(in) :: threads, shifts
+    n = threads
+    if (n <= 0) n = cpus_allowed()
+    n = max(1, min(n, shifts))
+  end function most_shifts_at_once
+
+  !> The rows of shift i: its contacts, the approach (given, or found for the
+  !> vertical force), then each patch under error control.
+  subroutine rows_at_shift(setup, base, track, sgn, i, rows, status)
+    type(wheel_rail_setup_t), intent(in) :: setup
+    type(problem_t), intent(in) :: base
+    type(track_t), intent(in) :: track
+    real(real64), intent(in) :: sgn      !< -1 on the left side (the mirrored right side)
+    integer, intent(in) :: i
+    type(wheel_rail_row_t), allocatable, intent(out) :: rows(:)
+    type(status_t), intent(inout) :: status
+    real(real64), allocatable :: ys(:), d(:), xs(:)
+    type(contact_t), allocatable :: contacts(:)
+    type(gap_t), allocatable :: grids(:)
+    type(plane_gap_t), allocatable :: planes(:)
+    real(real64), allocatable :: forces(:)
+    real(real64) :: shift, yaw, dz, w0
+    integer :: k
+    type(wheel_rail_row_t) :: row
+    type(problem_t) :: problem
+    character(len=:), allocatable :: where
+
+    allocate (rows(0))
+    shift = sgn * setup%shifts(i)
+    yaw = sgn * setup%yaw
+    where = '&wheel_rail shift = '//rtoa(setup%shifts(i))//' mm: '
+    call clearance(track, shift, yaw, ys, d, xs)
+    if (.not. any(d < no_surface)) then
+      call fail(status, exit_bad_input, where//'the wheel profile never meets the rail profile (no lateral '// &
+                'overlap: check flange_back_distance, flange_back_position, gauge_width and the mirror flags)')
+      return
+    end if
+    w0 = minval(d)
+    if (setup%force_given) then
+      call approach_for_force(first_approach, dz)
+      if (status%failed()) return
+    else
+      dz = setup%approach
+      call patches_at(dz)
+      if (status%failed()) return
+      allocate (forces(size(contacts)), source=0.0_real64)
+    end if
+    do k = 1, size(contacts)
+      problem = base
+      problem%normal%active = .true.
+      problem%normal%gap = grids(k)
+      problem%normal%plane = planes(k)
+      problem%normal%poly_given = .false.
+      problem%normal%force_given = setup%force_given
+      problem%normal%normal_force = forces(k)
+      problem%normal%approach = dz * cos(contacts(k)%delta)
+      problem%refine_grid = .true.
+      if (setup%force_given .and. .not. forces(k) > 0) cycle    ! touches, carries nothing
+      call run_controlled(problem, row%result, status)
+      if (status%failed()) then
+        status%message = where//'patch '//itoa(k)//': '//status%message
+        return
+      end if
+      call fill_row(contacts(k), k)
+      rows = [rows, row]
+    end do
 
   contains
 
@@ -401,6 +473,6 @@ contains
       end associate
     end subroutine fill_row
 
-  end subroutine run_wheel_rail
+  end subroutine rows_at_shift
 
 end module kcreep_wheel_rail_run

@@ -25,6 +25,7 @@ usage: test_wheel_rail.py KCREEP SOURCE_DIR
 """
 import math
 import os
+import subprocess
 import sys
 
 import kctest as kc
@@ -275,6 +276,31 @@ if os.path.isdir(profiles):
         alone = kc.read_table(os.path.join(folder, "mbench_alone.wr")) if code == 0 else []
         kc.check(len(alone) == 1 and all(str(alone[0][k]) == str(v) for k, v in rows[1].items()),
                  "shift 5 alone gives the table's row for shift 5, every column")
+        # the shifts run on a team of threads, one shift per thread: the table
+        # is the same byte for byte on one thread and on three, and the memory
+        # estimate counts one patch per shift that may run at once
+        tables, estimates = {}, {}
+        for threads in (1, 2, 3):
+            name = f"mbench_threads{threads}"
+            text = (f"&wheel_rail wheel_file = '{profiles}/MBench_S1002_v3.prw', "
+                    f"rail_file = '{profiles}/MBench_UIC60_v3.prr',\n"
+                    "  shifts = 0 5 8, vertical_force = 80000 /\n&material g = 82000, nu = 0.28 /\n"
+                    f"&solver target_error = 0, threads = {threads} /\n")
+            with open(os.path.join(folder, name + ".nml"), "w") as f:
+                f.write(text)
+            proc = subprocess.run([kc.KCREEP, "--estimate-memory", name + ".nml"], cwd=folder,
+                                  capture_output=True, text=True)
+            estimates[threads] = int(proc.stdout.split()[-2]) if proc.returncode == 0 else 0
+            if threads == 2:
+                continue
+            code, out, err, _ = kc.run(text, folder, name, expect_ok=False)
+            kc.check(code == 0, f"threads = {threads}: the table runs" + ("" if code == 0 else ": " + err.strip()))
+            with open(os.path.join(folder, name + ".wr")) as f:
+                tables[threads] = [line for line in f if not line.startswith("#")]
+        kc.check(tables[1] == tables[3], "the table's rows on three threads are the ones on one thread, byte for byte")
+        per_shift = estimates[2] - estimates[1]
+        kc.check(0 < per_shift < estimates[1] and estimates[3] - estimates[2] == per_shift,
+                 f"--estimate-memory adds one patch's bytes per shift that may run at once ({estimates})")
     else:
         kc.check(False, f"S1002 on UIC60: 3 rows expected, {len(rows)}")
 else:
