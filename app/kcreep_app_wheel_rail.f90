@@ -1,7 +1,7 @@
 !> kcreep INPUT.nml with &wheel_rail: the contact table over the lateral
 !> shifts, written to &output wheel_rail_file, and a summary on standard output.
 module kcreep_app_wheel_rail
-  use, intrinsic :: iso_fortran_env, only: real64, output_unit, error_unit
+  use, intrinsic :: iso_fortran_env, only: real64, int64, output_unit, error_unit
   use kcreep_status, only: status_t
   use kcreep_strings, only: rtoa, itoa
   use kcreep, only: problem_t, patch_t, wheel_rail_row_t, kcreep_wheel_rail, creep_request_t, creep_point_t, &
@@ -29,6 +29,8 @@ contains
     character(len=200) :: buf
     integer :: k, j
     real(real64) :: t0, t1
+    integer(int64) :: clock0, clock1, clock_rate
+    integer :: team
 
     call check_output_path(cfg%wheel_rail_file, 'wheel_rail_file', status)
     if (cfg%fastsim_on .and. .not. status%failed()) call check_output_path(cfg%creep_file, 'creep_file', status)
@@ -37,9 +39,11 @@ contains
     if (status%failed()) return
     base = problem_of(cfg, none)
     base%solve%memory_limit = memory_limit_bytes()
+    call system_clock(clock0, clock_rate)
     call cpu_time(t0)
-    call kcreep_wheel_rail(cfg%wheel_rail, base, rows, status)
+    call kcreep_wheel_rail(cfg%wheel_rail, base, rows, status, team)
     call cpu_time(t1)
+    call system_clock(clock1)
     if (status%failed()) return
     ! the per-patch tables before any file is written: a failed rolling point leaves none
     if (cfg%fastsim_on) creep = creep_lines_of(rows)
@@ -78,7 +82,13 @@ contains
         maxval(rolled%info%residual)
       write (output_unit, '(2x, a)') trim(buf)//'; rolling table: '//cfg%rolling%rolling_file
     end if
-    write (output_unit, '(2x, a, f8.2)') 'time [s, CPU]:', t1 - t0
+    if (team > 1) then
+      write (output_unit, '(2x, a)') 'threads: '//itoa(team)//' (one shift per thread)'
+    else
+      write (output_unit, '(2x, a)') 'threads: 1 (one shift at a time)'
+    end if
+    write (output_unit, '(2x, a, f8.2, a, f8.2)') 'time [s]: wall', real(clock1 - clock0, real64) / clock_rate, &
+      ', CPU', t1 - t0
 
   contains
 

@@ -153,12 +153,15 @@ contains
   !> normal problem there and its error-controlled coefficients; one row per
   !> shift and patch. base carries the material, the solver settings, the
   !> target error and the normal solver's options; its patch is not used.
-  !> setup is checked first (profiles given, check_wheel_rail_setup).
-  subroutine kcreep_wheel_rail(setup, base, rows, status)
+  !> setup is checked first (profiles given, check_wheel_rail_setup). team:
+  !> the shifts that ran at once (one per thread).
+  subroutine kcreep_wheel_rail(setup, base, rows, status, team)
     type(wheel_rail_setup_t), intent(in) :: setup
     type(problem_t), intent(in) :: base
     type(wheel_rail_row_t), allocatable, intent(out) :: rows(:)
     type(status_t), intent(inout) :: status
+    integer, intent(out), optional :: team
+    if (present(team)) team = 1
     if (.not. (allocated(setup%wheel_y) .and. allocated(setup%rail_y))) then
       call fail(status, exit_bad_input, 'wheel/rail: no wheel or rail profile given')
     else
@@ -168,7 +171,7 @@ contains
       allocate (rows(0))
       return
     end if
-    call run_wheel_rail(setup, base, rows, status)
+    call run_wheel_rail(setup, base, rows, status, team)
   end subroutine kcreep_wheel_rail
 
   !> Bytes kcreep_solve(problem) needs at its peak and the solve path it takes

@@ -157,11 +157,12 @@ contains
   end subroutine prepare_track
 
   !> The table: base carries the material, the solver settings and the target.
-  subroutine run_wheel_rail(setup, base, rows, status)
+  subroutine run_wheel_rail(setup, base, rows, status, shifts_at_once)
     type(wheel_rail_setup_t), intent(in) :: setup
     type(problem_t), intent(in) :: base
     type(wheel_rail_row_t), allocatable, intent(out) :: rows(:)
     type(status_t), intent(inout) :: status
+    integer, intent(out), optional :: shifts_at_once   !< the team: shifts run at once, one per thread
     type(track_t) :: track
     type(shift_rows_t), allocatable :: at_shift(:)
     type(problem_t) :: row_base
@@ -181,6 +182,7 @@ contains
     ! the same numbers on any count (kcreep_threads).
     team = min(team_size(base%solve%threads, int(n, int64) * cells_per_thread_iterative, cells_per_thread_iterative), &
                most_shifts_at_once(base%solve%threads, n))
+    if (present(shifts_at_once)) shifts_at_once = team
     row_base = base
     if (team > 1) then
       row_base%solve%threads = 1
