@@ -167,7 +167,7 @@ contains
     type(shift_rows_t), allocatable :: at_shift(:)
     type(problem_t) :: row_base
     real(real64) :: sgn
-    integer :: i, n, team, previous_team
+    integer :: i, n, team, previous_team, last
     logical :: failed
 
     allocate (rows(0))
@@ -180,8 +180,7 @@ contains
     ! one thread inside (a whole shift per thread wastes nothing at the
     ! levels' barriers). Rows do not depend on the team: every stage gives
     ! the same numbers on any count (kcreep_threads).
-    team = min(team_size(base%solve%threads, int(n, int64) * cells_per_thread_iterative, cells_per_thread_iterative), &
-               most_shifts_at_once(base%solve%threads, n))
+    team = min(team_size(base%solve%threads, int(n, int64), 1), n)    ! work: one thread per shift
     if (present(shifts_at_once)) shifts_at_once = team
     row_base = base
     if (team > 1) then
@@ -209,14 +208,17 @@ contains
     !$omp end parallel do
     call leave_team(previous_team)
     call solve_ended()
+    ! the rows up to the first failed shift, which gives the status
+    last = 0
     do i = 1, n
       if (at_shift(i)%skipped) exit
-      rows = [rows, at_shift(i)%rows]
+      last = i
       if (at_shift(i)%status%failed()) then
         status = at_shift(i)%status
         exit
       end if
     end do
+    rows = [(at_shift(i)%rows, i=1, last)]
   end subroutine run_wheel_rail
 
   !> The most shifts a table of `shifts` runs at once (each needs a patch's
