@@ -46,18 +46,6 @@ def arguments():
     return p.parse_args()
 
 
-def operator(np, study, x, y, h):
-    """The backward scheme's matrix: slip (x then y rows) from traction (px then py)."""
-    n = len(x)
-    at = np.r_[np.c_[x + h, y], np.c_[x, y]]
-    a = np.zeros((2 * n, 2 * n))
-    for k in range(n):
-        uxx, uxy, uyy = study.influence(np, at[:, 0] - x[k], at[:, 1] - y[k], h / 2, h / 2)
-        a[:n, k], a[n:, k] = (uxx[:n] - uxx[n:]) / h, (uxy[:n] - uxy[n:]) / h
-        a[:n, n + k], a[n:, n + k] = (uxy[:n] - uxy[n:]) / h, (uyy[:n] - uyy[n:]) / h
-    return a
-
-
 def solve_f(np, a, phi, kappa):
     """f11, f22 with each cell's equation blended by its inside fraction phi."""
     n = len(phi)
@@ -83,7 +71,8 @@ def level(np, study, semi_a, cells, offset, kappas, slopes):
     centre = (x / semi_a)**2 + y**2 <= 1
     keep = (phi > 0) | centre
     x, y, phi, centre = x[keep], y[keep], phi[keep], centre[keep]
-    a = operator(np, study, x, y, h)
+    squares = [(np.array([cx]), np.array([cy]), h / 2) for cx, cy in zip(x, y)]
+    a = study.backward_operator(np, np.c_[x, y], squares, h)
     stair_rows = np.r_[centre, centre]
     stair = solve_f(np, a[np.ix_(stair_rows, stair_rows)], np.ones(centre.sum()), 0.0) * h * h
     # kcreep_staircase_normalisation referred_f: size and aspect ratio from the second moments

@@ -81,9 +81,9 @@ def influence(np, xr, yr, a, b):
     return uxx / math.pi, uxy / math.pi, uyy / math.pi
 
 
-def solve(np, points, parts, dx):
-    """f11, f22 of unknowns with traction on parts[k] = (x, y, half size) of
-    rectangles, the slip taken at points[k] (backward scheme, unit xi, eta)."""
+def backward_operator(np, points, parts, dx):
+    """The backward scheme's matrix: slip at points[k] (x then y rows) from
+    traction (px then py) on parts[k] = (x, y, half size) of rectangles."""
     n = len(points)
     at = np.vstack([points + [dx, 0.0], points])
     a = np.zeros((2 * n, 2 * n))
@@ -91,6 +91,14 @@ def solve(np, points, parts, dx):
         uxx, uxy, uyy = (u.sum(1) for u in influence(np, at[:, :1] - cx, at[:, 1:] - cy, half, half))
         a[:n, k], a[n:, k] = (uxx[:n] - uxx[n:]) / dx, (uxy[:n] - uxy[n:]) / dx
         a[:n, n + k], a[n:, n + k] = (uxy[:n] - uxy[n:]) / dx, (uyy[:n] - uyy[n:]) / dx
+    return a
+
+
+def solve(np, points, parts, dx):
+    """f11, f22 of unknowns with traction on parts[k], the slip taken at
+    points[k] (backward_operator, unit xi, eta)."""
+    n = len(points)
+    a = backward_operator(np, points, parts, dx)
     rhs = np.zeros((2 * n, 2))
     rhs[:n, 0] = 1
     rhs[n:, 1] = 1
