@@ -167,7 +167,7 @@ contains
     type(shift_rows_t), allocatable :: at_shift(:)
     type(problem_t) :: row_base
     real(real64) :: sgn
-    integer :: i, n, team, previous_team, last
+    integer :: i, n, team, stage_team, previous_team, last
     logical :: failed
 
     allocate (rows(0))
@@ -191,8 +191,9 @@ contains
     call solve_started()
     ! the stages' own parallel regions: one thread each inside a team, else
     ! as for a single patch
-    call enter_team(merge(1, team_size(base%solve%threads, 10000_int64, cells_per_thread_iterative), team > 1), &
-                    previous_team)
+    stage_team = 1
+    if (team == 1) stage_team = team_size(base%solve%threads, 10000_int64, cells_per_thread_iterative)
+    call enter_team(stage_team, previous_team)
     !$omp parallel do num_threads(team) schedule(dynamic, 1) default(shared) private(i)
     do i = 1, n
       ! shifts are handed out in order: after a failure only later ones are skipped
