@@ -1,8 +1,10 @@
 !> The creep matrix of a staircase (the grid cells whose centres lie inside a
-!> shape) referred to the shape itself: an ellipse, or a contact area (a
-!> gap's, kcreep_region: the moments of its zero level). The shape enters
-!> through its moment reference (moment_reference_t: centre, the semi-axes of
-!> the ellipse with its second moments, its own four-fold harmonic).
+!> shape) referred to the shape itself: an ellipse (the estimate of a grid
+!> given as is, kcreep_error_run), or a contact area (a gap's,
+!> kcreep_region: the moments of its zero level; the normal grid's estimate,
+!> kcreep_gap_levels). The shape enters through its moment reference
+!> (moment_reference_t: centre and the semi-axes of the ellipse with its
+!> second moments).
 !>
 !> The staircase is compared with the ellipse of the same second moments of
 !> area about the reference centre: semi-axes a_s = 2 sqrt(Ixx / A), b_s = 2 sqrt(Iyy / A)
@@ -20,23 +22,21 @@ module kcreep_staircase_normalisation
   use, intrinsic :: ieee_arithmetic, only: ieee_is_nan
   use kcreep_status, only: status_t
   use kcreep_patch, only: patch_t
-  use kcreep_region, only: region_t, contour_moments, contour_harmonic4
+  use kcreep_region, only: region_t, contour_moments
   use kcreep_creep_matrix, only: centre_transfer
   use kcreep_table_interpolation, only: table_coefficients, table_ratio_range, table_nu_range
   implicit none
   private
-  public :: staircase_semi_axes, staircase_harmonic4, aspect_slopes, ellipse_normalised
-  public :: moment_reference_t, ellipse_reference, contour_reference, referred_f, shape_defect
+  public :: staircase_semi_axes, aspect_slopes, ellipse_normalised
+  public :: moment_reference_t, contour_reference
 
-  !> What a level's staircase is referred to: the shape's centre, the
-  !> semi-axes of the ellipse with its second moments, and its own four-fold
-  !> harmonic about them (0 for an ellipse). own_centre: a level's moments
-  !> are taken about its own centroid, and its f moved from there to the
-  !> shape's centre (a contact area's level wanders by a fraction of a cell,
-  !> and C23 about the shape's centre follows C22 times that wander); an
-  !> ellipse's symmetric levels are centred on the ellipse already.
+  !> What a staircase is referred to: the shape's centre and the semi-axes
+  !> of the ellipse with its second moments. own_centre: the staircase's
+  !> moments are taken about its own centroid, and its f moved from there to
+  !> the shape's centre; an ellipse's symmetric staircase is centred on the
+  !> ellipse already.
   type :: moment_reference_t
-    real(real64) :: centre(2) = 0, semi_a = 0, semi_b = 0, harmonic4 = 0
+    real(real64) :: centre(2) = 0, semi_a = 0, semi_b = 0
     logical :: own_centre = .false.
   end type moment_reference_t
 
@@ -52,7 +52,7 @@ contains
   pure function ellipse_reference(patch) result(ref)
     type(patch_t), intent(in) :: patch
     type(moment_reference_t) :: ref
-    ref = moment_reference_t(patch%ellipse_centre(), patch%semi_a, patch%semi_b, 0.0_real64, .false.)
+    ref = moment_reference_t(patch%ellipse_centre(), patch%semi_a, patch%semi_b, .false.)
   end function ellipse_reference
 
   !> The reference of a contact area, or of one of its separate parts: the
@@ -67,7 +67,6 @@ contains
     ref%centre = m(2:3)
     ref%semi_a = 2 * sqrt(m(4) / m(1))
     ref%semi_b = 2 * sqrt(m(5) / m(1))
-    ref%harmonic4 = contour_harmonic4(region, ref%centre, ref%semi_a, ref%semi_b, part)
     ref%own_centre = .true.
   end function contour_reference
 
@@ -91,35 +90,6 @@ contains
     b_s = 2 * sqrt(m(2) / patch%n)
   end subroutine moment_semi_axes
 
-  !> The staircase's four-fold harmonic in the ellipse's own coordinates
-  !> (X, Y) = ((x - xc)/a, (y - yc)/b): the sum over the cells of
-  !> (X^4 - 6 X^2 Y^2 + Y^4) dX dY, zero on the ellipse itself. After the second
-  !> moments it is what distinguishes one level's staircase from the next
-  !> (the corners of a circle's staircase): fitted as an extra term, it halves
-  !> the scatter of the levels again (docs/accuracy.md).
-  pure real(real64) function staircase_harmonic4(patch) result(h4)
-    type(patch_t), intent(in) :: patch
-    h4 = harmonic4_about(patch, ellipse_reference(patch))
-  end function staircase_harmonic4
-
-  !> A level's four-fold harmonic about the reference minus the shape's own:
-  !> what distinguishes the level's staircase from the shape beyond its
-  !> second moments (0 in the limit).
-  pure real(real64) function shape_defect(patch, ref)
-    type(patch_t), intent(in) :: patch
-    type(moment_reference_t), intent(in) :: ref
-    shape_defect = harmonic4_about(patch, ref) - ref%harmonic4
-  end function shape_defect
-
-  pure real(real64) function harmonic4_about(patch, ref) result(h4)
-    type(patch_t), intent(in) :: patch
-    type(moment_reference_t), intent(in) :: ref
-    real(real64), allocatable :: x(:), y(:)
-    x = (patch%cell_x(patch%ix) - ref%centre(1)) / ref%semi_a
-    y = (patch%cell_y(patch%iy) - ref%centre(2)) / ref%semi_b
-    h4 = sum(x**4 - 6 * x**2 * y**2 + y**4) * (patch%dx / ref%semi_a) * (patch%dy / ref%semi_b)
-  end function harmonic4_about
-
   !> d ln C / d ln(a/b) of C11 C22 C23 C33 from the refined table, by a central
   !> difference (one-sided at the table's ends; nu beyond them clamped).
   !> Beyond the table's longest ellipse (a/b = 10) the slope is continued
@@ -129,10 +99,9 @@ contains
   !> 0.68, 0.69 between solved ellipses a/b = 8, 10, 12, 14, 17, 20 at nu =
   !> 0.28), the continued slope is within 2.4 % of those differences where the
   !> one held at a/b = 10 was 4-9 % low (docs/accuracy.md section 3). The
-  !> slope scales each level's correction for its aspect ratio: on a flange
-  !> patch (a/b about 20, its width's staircase off by up to a cell) the low
-  !> slope left 0.3 % of level-to-level scatter in C11 where the continued
-  !> one leaves 0.1 %.
+  !> slope turns a change of a contact area's aspect ratio into one of its
+  !> C's (the normal grid's estimate, kcreep_gap_levels) and scales a given
+  !> ellipse grid's correction for its staircase's aspect ratio.
   pure function aspect_slopes(a_over_b, nu) result(slope)
     real(real64), intent(in) :: a_over_b, nu
     real(real64) :: slope(4)

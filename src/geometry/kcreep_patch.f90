@@ -6,6 +6,12 @@
 !> Only the cells of the mask become unknowns; they are numbered in the
 !> order of the grid (ix fastest).
 !>
+!> A level of a shape kcreep samples (an ellipse, a contact area) has a
+!> blended edge (blended_patch): every cell the shape reaches is a patch
+!> cell, with the part of it inside the shape (fraction). The solver blends
+!> such a cell's equation between the slip condition and zero traction
+!> (kcreep_assembly slip_weight).
+!>
 !> Geometry only: files with masks are read in io (kcreep_mask_file).
 module kcreep_patch
   use, intrinsic :: iso_fortran_env, only: real64
@@ -14,7 +20,8 @@ module kcreep_patch
   use kcreep_limits, only: check_grid_size
   implicit none
   private
-  public :: patch_t, ellipse_patch, mask_patch, place_like, near_square_cells, connected_parts, part_patch
+  public :: patch_t, ellipse_patch, mask_patch, place_like, near_square_cells, part_patch
+  public :: shape_t, ellipse_shape_t, blended_patch
 
   type :: patch_t
     character(len=:), allocatable :: kind     !< 'ellipse', 'mask' or 'contact'
@@ -25,23 +32,64 @@ module kcreep_patch
     logical, allocatable :: inside(:, :)      !< (mx, my): cell is in the patch
     integer :: n = 0                          !< number of patch cells
     integer, allocatable :: ix(:), iy(:)      !< grid indices of patch cell k
+    !> (n) the part of patch cell k inside the sampled shape (blended_patch);
+    !> unallocated: every patch cell is wholly in the patch
+    real(real64), allocatable :: fraction(:)
   contains
     procedure :: cell_x, cell_y, area, equivalent_radius, centroid, grid_box, cells_box, ellipse_centre
     procedure :: second_moments
-    procedure :: mirror_symmetric_in_x, mirror_symmetric_in_y
+    procedure :: mirror_symmetric_in_x, mirror_symmetric_in_y, fraction_grid, staircase, in_staircase
   end type patch_t
+
+  !> A shape a level samples: whether a point lies in it.
+  type, abstract :: shape_t
+  contains
+    procedure(point_test), deferred :: contains_point
+  end type shape_t
+
+  abstract interface
+    pure logical function point_test(self, x, y)
+      import :: shape_t, real64
+      class(shape_t), intent(in) :: self
+      real(real64), intent(in) :: x, y
+    end function point_test
+  end interface
+
+  !> The ellipse (x/a)^2 + (y/b)^2 <= 1.
+  type, extends(shape_t) :: ellipse_shape_t
+    real(real64) :: semi_a = 1, semi_b = 1
+  contains
+    procedure :: contains_point => ellipse_contains_point
+  end type ellipse_shape_t
+
+  !> Sample points per cell side where a cell's fraction inside is counted
+  !> (the fraction to 1/256 of the cell); a cell whose corners, edge
+  !> midpoints and centre are all on one side is taken as wholly in or out.
+  integer, parameter :: fraction_samples = 16
 
 contains
 
-  !> Cells of an mx x my grid over [-a, a] x [-b, b] whose centres lie in the ellipse.
-  subroutine ellipse_patch(semi_a, semi_b, mx, my, patch, status)
+  !> Cells of an mx x my grid over [-a, a] x [-b, b] whose centres lie in
+  !> the ellipse; blended: every cell it reaches, with its fraction inside
+  !> (a level of kcreep's ladder).
+  subroutine ellipse_patch(semi_a, semi_b, mx, my, patch, status, blended)
     real(real64), intent(in) :: semi_a, semi_b
     integer, intent(in) :: mx, my
     type(patch_t), intent(out) :: patch
     type(status_t), intent(inout) :: status
+    logical, intent(in), optional :: blended
     integer :: ix, iy
     real(real64) :: x, y
 
+    if (present(blended)) then
+      if (blended) then
+        call blended_patch(ellipse_shape_t(semi_a, semi_b), mx, my, 2 * semi_a / mx, 2 * semi_b / my, &
+                           -semi_a + semi_a / mx, -semi_b + semi_b / my, 'ellipse', patch, status)
+        patch%semi_a = semi_a
+        patch%semi_b = semi_b
+        return
+      end if
+    end if
     patch%kind = 'ellipse'
     patch%semi_a = semi_a
     patch%semi_b = semi_b
@@ -81,6 +129,59 @@ contains
     patch%x0 = patch%x0 + shift(1)
     patch%y0 = patch%y0 + shift(2)
   end subroutine place_like
+
+  pure logical function ellipse_contains_point(self, x, y)
+    class(ellipse_shape_t), intent(in) :: self
+    real(real64), intent(in) :: x, y
+    ellipse_contains_point = (x / self%semi_a)**2 + (y / self%semi_b)**2 <= 1
+  end function ellipse_contains_point
+
+  !> The cells of an mx x my grid (cell (1, 1) centred at x0, y0) that any
+  !> part of `shape` reaches, each with the fraction of it inside.
+  subroutine blended_patch(shape, mx, my, dx, dy, x0, y0, kind, patch, status)
+    class(shape_t), intent(in) :: shape
+    integer, intent(in) :: mx, my
+    real(real64), intent(in) :: dx, dy, x0, y0
+    character(len=*), intent(in) :: kind
+    type(patch_t), intent(out) :: patch
+    type(status_t), intent(inout) :: status
+    real(real64) :: fraction(mx, my)
+    integer :: ix, iy, k
+    do iy = 1, my
+      do ix = 1, mx
+        fraction(ix, iy) = cell_fraction(shape, x0 + (ix - 1) * dx, y0 + (iy - 1) * dy, dx, dy)
+      end do
+    end do
+    call mask_patch(fraction > 0, dx, dy, x0, y0, kind, patch, status)
+    if (status%failed()) return
+    patch%kind = kind
+    patch%fraction = [(fraction(patch%ix(k), patch%iy(k)), k=1, patch%n)]
+  end subroutine blended_patch
+
+  !> The part of the dx x dy cell centred at (xc, yc) that lies in shape.
+  pure real(real64) function cell_fraction(shape, xc, yc, dx, dy) result(fraction)
+    class(shape_t), intent(in) :: shape
+    real(real64), intent(in) :: xc, yc, dx, dy
+    integer :: i, j, hits
+    hits = 0
+    do j = -1, 1
+      do i = -1, 1
+        if (shape%contains_point(xc + i * dx / 2, yc + j * dy / 2)) hits = hits + 1
+      end do
+    end do
+    if (hits == 0 .or. hits == 9) then
+      fraction = merge(1, 0, hits == 9)
+      return
+    end if
+    hits = 0
+    do j = 1, fraction_samples
+      do i = 1, fraction_samples
+        if (shape%contains_point(xc + ((i - 0.5_real64) / fraction_samples - 0.5_real64) * dx, &
+                                 yc + ((j - 0.5_real64) / fraction_samples - 0.5_real64) * dy)) hits = hits + 1
+      end do
+    end do
+    fraction = real(hits, real64) / fraction_samples**2
+  end function cell_fraction
 
   !> A patch from an explicit mask on a grid with given cell sizes and origin.
   subroutine mask_patch(inside, dx, dy, x0, y0, source, patch, status)
@@ -128,42 +229,6 @@ contains
     end do
   end subroutine index_cells
 
-  !> The patch's cells labelled by the connected part (edge-neighbours) they
-  !> belong to, 1 to n_parts.
-  pure subroutine connected_parts(patch, part, n_parts)
-    type(patch_t), intent(in) :: patch
-    integer, intent(out) :: part(patch%n), n_parts
-    integer, allocatable :: cell_of(:, :), stack(:)
-    integer :: k, top, c, i, d
-    integer, parameter :: di(4) = [1, -1, 0, 0], dj(4) = [0, 0, 1, -1]
-    allocate (cell_of(0:patch%mx + 1, 0:patch%my + 1), source=0)
-    do k = 1, patch%n
-      cell_of(patch%ix(k), patch%iy(k)) = k
-    end do
-    part = 0
-    n_parts = 0
-    allocate (stack(patch%n))
-    do k = 1, patch%n
-      if (part(k) /= 0) cycle
-      n_parts = n_parts + 1
-      part(k) = n_parts
-      top = 1
-      stack(1) = k
-      do while (top > 0)
-        c = stack(top)
-        top = top - 1
-        do d = 1, 4
-          i = cell_of(patch%ix(c) + di(d), patch%iy(c) + dj(d))
-          if (i == 0) cycle
-          if (part(i) /= 0) cycle
-          part(i) = n_parts
-          top = top + 1
-          stack(top) = i
-        end do
-      end do
-    end do
-  end subroutine connected_parts
-
   !> The cells of patch where keep is true, on the same grid and in the same
   !> order (keep has one entry per patch cell).
   pure function part_patch(patch, keep) result(part)
@@ -180,6 +245,7 @@ contains
     part%n = count(keep)
     part%ix = pack(patch%ix, keep)
     part%iy = pack(patch%iy, keep)
+    if (allocated(patch%fraction)) part%fraction = pack(patch%fraction, keep)
   end function part_patch
 
   elemental real(real64) function cell_x(self, ix)
@@ -194,9 +260,14 @@ contains
     cell_y = self%y0 + (iy - 1) * self%dy
   end function cell_y
 
+  !> The patch's area (a blended patch's cells counted by their fraction inside).
   pure real(real64) function area(self)
     class(patch_t), intent(in) :: self
-    area = self%n * self%dx * self%dy
+    if (allocated(self%fraction)) then
+      area = sum(self%fraction) * self%dx * self%dy
+    else
+      area = self%n * self%dx * self%dy
+    end if
   end function area
 
   !> The grid's outer cell edges: xmin, xmax, ymin, ymax.
@@ -245,25 +316,65 @@ contains
          sum((self%cell_y(self%iy) - centre(2))**2) + self%n * self%dy**2 / 12]
   end function second_moments
 
-  !> Centre of area of the patch cells.
+  !> Centre of area of the patch cells (a blended patch's weighted by their fraction inside).
   pure function centroid(self) result(xy)
     class(patch_t), intent(in) :: self
     real(real64) :: xy(2)
-    xy = [sum(self%cell_x(self%ix)), sum(self%cell_y(self%iy))] / max(1, self%n)
+    if (allocated(self%fraction)) then
+      xy = [sum(self%fraction * self%cell_x(self%ix)), sum(self%fraction * self%cell_y(self%iy))] / sum(self%fraction)
+    else
+      xy = [sum(self%cell_x(self%ix)), sum(self%cell_y(self%iy))] / max(1, self%n)
+    end if
   end function centroid
 
-  !> The mask is its own mirror image in x about x = 0 (cell positions included).
+  !> The patch is its own mirror image in x about x = 0 (cell positions and fractions included).
   pure logical function mirror_symmetric_in_x(self)
     class(patch_t), intent(in) :: self
+    real(real64) :: grid(self%mx, self%my)
     mirror_symmetric_in_x = abs(self%x0 + (self%mx - 1) * self%dx / 2) <= 1e-12_real64 * self%dx * self%mx
-    if (mirror_symmetric_in_x) mirror_symmetric_in_x = all(self%inside .eqv. self%inside(self%mx:1:-1, :))
+    if (.not. mirror_symmetric_in_x) return
+    grid = self%fraction_grid()
+    mirror_symmetric_in_x = all(grid == grid(self%mx:1:-1, :))
   end function mirror_symmetric_in_x
 
-  !> The mask is its own mirror image in y about y = 0 (cell positions included).
+  !> The patch is its own mirror image in y about y = 0 (cell positions and fractions included).
   pure logical function mirror_symmetric_in_y(self)
     class(patch_t), intent(in) :: self
+    real(real64) :: grid(self%mx, self%my)
     mirror_symmetric_in_y = abs(self%y0 + (self%my - 1) * self%dy / 2) <= 1e-12_real64 * self%dy * self%my
-    if (mirror_symmetric_in_y) mirror_symmetric_in_y = all(self%inside .eqv. self%inside(:, self%my:1:-1))
+    if (.not. mirror_symmetric_in_y) return
+    grid = self%fraction_grid()
+    mirror_symmetric_in_y = all(grid == grid(:, self%my:1:-1))
   end function mirror_symmetric_in_y
+
+  !> The staircase a patch stands for: of a blended patch its cells at
+  !> least half inside (about those whose centres are inside; FASTSIM's
+  !> strips and the equivalent ellipses are taken from it), else the patch.
+  pure function staircase(self) result(cells)
+    class(patch_t), intent(in) :: self
+    type(patch_t) :: cells
+    cells = part_patch(self, self%in_staircase())
+    if (allocated(cells%fraction)) deallocate (cells%fraction)
+  end function staircase
+
+  !> (n) whether each patch cell is in the staircase (staircase).
+  pure function in_staircase(self) result(keep)
+    class(patch_t), intent(in) :: self
+    logical :: keep(self%n)
+    keep = .true.
+    if (allocated(self%fraction)) keep = self%fraction >= 0.5_real64
+  end function in_staircase
+
+  !> Each grid cell's part in the patch: 0 outside, 1 or its fraction inside.
+  pure function fraction_grid(self) result(grid)
+    class(patch_t), intent(in) :: self
+    real(real64) :: grid(self%mx, self%my)
+    integer :: k
+    grid = 0
+    do k = 1, self%n
+      grid(self%ix(k), self%iy(k)) = 1
+      if (allocated(self%fraction)) grid(self%ix(k), self%iy(k)) = self%fraction(k)
+    end do
+  end function fraction_grid
 
 end module kcreep_patch

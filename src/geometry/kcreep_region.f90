@@ -32,11 +32,11 @@
 module kcreep_region
   use, intrinsic :: iso_fortran_env, only: real64
   use kcreep_status, only: status_t
-  use kcreep_patch, only: patch_t, mask_patch
+  use kcreep_patch, only: patch_t, mask_patch, shape_t, blended_patch
   implicit none
   private
   public :: region_t, sampled_region, region_level_patch, region_pressure, contact_diameter, level_size
-  public :: contour_area, contour_moments, contour_harmonic4
+  public :: contour_area, contour_moments
 
   real(real64), parameter :: pi = acos(-1.0_real64)
   !> Cells of the fine grid around its contact cells, for the continued p^2.
@@ -60,7 +60,7 @@ module kcreep_region
   !> tests/unit/test_region.f90 checks one solved grid).
   real(real64), parameter :: edge_blend = 0.5_real64
 
-  type :: region_t
+  type, extends(shape_t) :: region_t
     integer :: mx = 0, my = 0                    !< the fine grid, padded
     real(real64) :: x0 = 0, y0 = 0, h = 0        !< centre of its cell (1, 1); square cells
     real(real64), allocatable :: level(:, :)     !< (mx, my) p^2, continued below zero outside
@@ -69,6 +69,8 @@ module kcreep_region
     real(real64), allocatable :: edge(:, :)      !< (4, pieces) x, y from and to: the zero level, inside on the left
     integer, allocatable :: edge_part(:)         !< (pieces) the separate part of the region each piece bounds
     integer :: parts = 0                         !< separate parts (1, 2, ...)
+  contains
+    procedure :: contains_point => region_contains_point
   end type region_t
 
   !> Three-point Gauss-Legendre on [0, 1]: exact for the polynomials (degree
@@ -215,24 +217,6 @@ contains
     contour_area = along_edge(region, 0.0_real64, 0.0_real64, 1)
   end function contour_area
 
-  !> The integral of X^4 - 6 X^2 Y^2 + Y^4 dX dY over the region, X = (x -
-  !> xc) / a, Y = (y - yc) / b: its four-fold harmonic about that ellipse.
-  pure real(real64) function contour_harmonic4(region, centre, a, b, part) result(h4)
-    type(region_t), intent(in) :: region
-    real(real64), intent(in) :: centre(2), a, b
-    integer, intent(in), optional :: part
-    real(real64) :: x(3), y(3), dy
-    integer :: k
-    h4 = 0
-    do k = 1, size(region%edge, 2)
-      if (other_part(region, k, part)) cycle
-      x = (region%edge(1, k) + gauss_t * (region%edge(3, k) - region%edge(1, k)) - centre(1)) / a
-      y = (region%edge(2, k) + gauss_t * (region%edge(4, k) - region%edge(2, k)) - centre(2)) / b
-      dy = (region%edge(4, k) - region%edge(2, k)) / b
-      h4 = h4 + dy * sum(gauss_w * (x**5 / 5 - 2 * x**3 * y**2 + x * y**4))
-    end do
-  end function contour_harmonic4
-
   !> Whether piece k bounds another part than `part` (none: every piece counts).
   pure logical function other_part(region, k, part)
     type(region_t), intent(in) :: region
@@ -362,14 +346,23 @@ contains
             (1 - s) * t * region%level(i, j + 1) + s * t * region%level(i + 1, j + 1)
   end function level_at
 
+  !> Whether (x, y) lies in the region: its level above zero.
+  pure logical function region_contains_point(self, x, y)
+    class(region_t), intent(in) :: self
+    real(real64), intent(in) :: x, y
+    region_contains_point = level_at(self, x, y) > 0
+  end function region_contains_point
+
   !> The cells of size h x hy (hy = h unless given) over box (centred on
-  !> it, one cell wider on every side) whose centres lie in the region.
-  subroutine region_patch(region, h, box, patch, status, hy)
+  !> it, one cell wider on every side) whose centres lie in the region;
+  !> blended: every cell the region reaches, with its fraction inside.
+  subroutine region_patch(region, h, box, patch, status, hy, blended)
     type(region_t), intent(in) :: region
     real(real64), intent(in) :: h, box(4)
     type(patch_t), intent(out) :: patch
     type(status_t), intent(inout) :: status
     real(real64), intent(in), optional :: hy
+    logical, intent(in), optional :: blended
     real(real64) :: x0, y0, dy
     logical, allocatable :: inside(:, :)
     integer :: mx, my, ix, iy
@@ -379,6 +372,12 @@ contains
     my = ceiling((box(4) - box(3)) / dy) + 2
     x0 = (box(1) + box(2)) / 2 - (mx - 1) * h / 2
     y0 = (box(3) + box(4)) / 2 - (my - 1) * dy / 2
+    if (present(blended)) then
+      if (blended) then
+        call blended_patch(region, mx, my, h, dy, x0, y0, 'gap', patch, status)
+        return
+      end if
+    end if
     allocate (inside(mx, my))
     do iy = 1, my
       do ix = 1, mx
@@ -390,16 +389,16 @@ contains
     patch%kind = 'gap'
   end subroutine region_patch
 
-  !> A level of `cells` across the region's diameter, each cell
-  !> cell_aspect times as long in y as in x.
-  subroutine region_level_patch(region, cells, cell_aspect, patch, status)
+  !> A level of `cells` across the region's diameter with a blended edge,
+  !> each cell cell_shape(1) times that size in x and cell_shape(2) in y.
+  subroutine region_level_patch(region, cells, cell_shape, patch, status)
     type(region_t), intent(in) :: region
     integer, intent(in) :: cells
-    real(real64), intent(in) :: cell_aspect
+    real(real64), intent(in) :: cell_shape(2)
     type(patch_t), intent(out) :: patch
     type(status_t), intent(inout) :: status
-    call region_patch(region, region%diameter / cells, region%reference%grid_box(), patch, status, &
-                      cell_aspect * region%diameter / cells)
+    call region_patch(region, cell_shape(1) * region%diameter / cells, region%reference%grid_box(), patch, status, &
+                      cell_shape(2) * region%diameter / cells, blended=.true.)
   end subroutine region_level_patch
 
   !> The pressure at the centres of patch's cells: sqrt of the interpolated p^2.

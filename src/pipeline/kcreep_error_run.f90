@@ -158,7 +158,7 @@ contains
           cells = next_level(cells)
         end do
         call ellipse_level_grid(a, b, cells, mx, my, long_in_y)
-        call ellipse_patch(a, b, mx, my, finest, status)
+        call ellipse_patch(a, b, mx, my, finest, status, blended=.true.)
       end associate
     else
       used = finest_split(problem%patch%n, cell_budget_or(problem, level_cell_budget(problem%target_error)))

@@ -13,12 +13,12 @@
 !> over the area found there, widened likewise (the coarse pressure starts
 !> the fine solve; both to gap_normal_tolerance). The tangential
 !> levels (kcreep_level_ladder, the ellipses' ladder) sample the fine
-!> contact area, each referred to it by its second moments, so every level
-!> describes the same shape and the staircase's wander from level to level
-!> is taken out as on an ellipse. The estimate adds to the ladder's the
-!> normal grid's own (normal_grid_estimate, from the changes of the contact
-!> area's aspect ratio and centre: fine grid moved by half a cell, and
-!> coarse grid to fine). c = sqrt(area / pi) of the fine contact area;
+!> contact area with a blended edge (each cell weighted by its part inside
+!> the area), so every level describes the same shape, on cells as much
+!> longer along the area's longer axis. The ladder's estimate is combined
+!> in quadrature with the normal grid's own (normal_grid_estimate, from the
+!> changes of the contact area's aspect ratio and centre: fine grid moved
+!> by half a cell, and coarse grid to fine). c = sqrt(area / pi) of the fine contact area;
 !> FASTSIM's pressure is the fine pressure at the finest level's cells.
 !>
 !> A single grid (target_error = 0, or refine_grid off): the gap's grid as
@@ -143,7 +143,7 @@ contains
   end function gap_single_estimate
 
   !> The normal problem on a fine grid, then the ladder of kcreep_level_ladder
-  !> on the contact area found; its estimates plus the normal grid's own
+  !> on the contact area found; its estimates with the normal grid's own
   !> (normal_grid_estimate).
   subroutine run_gap_levels(problem, result, status)
     type(problem_t), intent(in) :: problem

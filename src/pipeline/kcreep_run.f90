@@ -55,6 +55,7 @@ contains
     type(operator_table_t), target :: own_table
     type(operator_table_t), pointer :: table
     type(dense_diagnostics_t) :: diag
+    type(patch_t) :: staircase
     integer(int64) :: t0, t1, rate
     real(real64) :: t_table
 
@@ -116,9 +117,11 @@ contains
       result%centroid = patch%centroid()
       result%f = creep_matrix(patch, result%traction, problem%requested)
       result%cn = normalised(result%f, problem%g, result%c)
-      result%fastsim = fastsim_flexibilities(patch, result%f(1, 1), result%f(2, 2), result%f(2, 3))
-      result%ellipse = equivalent_ellipses(patch%inside, patch%dx, patch%dy, patch%x0, patch%y0, &
-                                           problem%nu, problem%g)
+      ! FASTSIM's strips and the equivalent ellipses of a blended level: its staircase
+      staircase = patch%staircase()
+      result%fastsim = fastsim_flexibilities(staircase, result%f(1, 1), result%f(2, 2), result%f(2, 3))
+      result%ellipse = equivalent_ellipses(staircase%inside, staircase%dx, staircase%dy, staircase%x0, &
+                                           staircase%y0, problem%nu, problem%g)
       if (patch%kind == 'ellipse') then
         result%klt = kalker_coefficients(patch%semi_a / patch%semi_b, problem%nu)
       else

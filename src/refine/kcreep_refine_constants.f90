@@ -24,8 +24,8 @@ module kcreep_refine_constants
   !> the level is outside the first-order range (errors of 10-50 %, the sign of the
   !> error still changes); no estimate is made from it.
   integer, parameter :: min_estimate_cells = 12
-  !> An ellipse's levels: the fewest in a fit (ellipse_level_estimate, 3
-  !> coefficients), and the finest this many in one fit (Student's factor 2.57).
+  !> A sampled shape's levels: the fewest in a fit (shape_level_estimate, 2
+  !> coefficients), and the finest this many in one fit (Student's factor 2.45).
   integer, parameter :: ellipse_fit_min = 5, ellipse_fit_width = 8
   !> Cells long in y (ellipse_level_grid) are at most this many times as long
   !> as wide: the estimate was checked on a/b = 0.1 to 0.5 with cells up to
@@ -33,8 +33,8 @@ module kcreep_refine_constants
   !> a/b = 0.02 on cells 50 times as long it missed C23 (0.025 % against an
   !> estimate of 0.017 %).
   real(real64), parameter :: max_cell_aspect = 10
-  !> The share of an ellipse's extrapolation (f0 - f(finest level)) counted
-  !> as the uncertainty of its order (ellipse_level_estimate).
+  !> The share of a sampled shape's extrapolation (f0 - f(finest level))
+  !> counted as the uncertainty of its order (shape_level_estimate).
   real(real64), parameter :: order_margin = 0.1_real64
   !> Patch cells of the finest level kcreep may choose at target_error = 1e-3
   !> (level_cell_budget). A run-time budget: a solved ellipse long in x

@@ -3,18 +3,16 @@
 !>
 !> The model (measured, docs/accuracy.md sections 2 to 5): with the backward
 !> scheme, every coefficient of a ladder's levels behaves as
-!>     f(h) = f0 + K h + L g(h) + noise(h),
+!>     f(h) = f0 + K h [+ L g(h)] + noise(h),
 !> fitted as a regression through the finest levels; the estimate is t95 x
 !> the standard error of f0 plus what the model itself leaves uncertain.
-!> Sampled shapes (an ellipse, a gap's contact area; levels referred to the
-!> shape by the staircase's second moments, kcreep_staircase_normalisation):
-!> g the staircase's four-fold harmonic, the model's uncertainty a tenth of
-!> the extrapolation (ellipse_level_estimate; levels from 56 cells across,
-!> coarser ones bend with h^2). Split patches (a mask, CONTACT's grid: the
-!> same staircase on every level): g = h^1.5, the uncertainty the change of
-!> f0 for other orders (split_level_estimate). Measured honesty:
-!> docs/accuracy.md (45 of 45 ellipses, 45 of 45 Hertzian gaps, 90 of 90
-!> mask windows bounded, allowing the references' u).
+!> Sampled shapes (an ellipse, a gap's contact area; levels with a blended
+!> edge, kcreep_patch blended_patch): f0 + K h, the model's uncertainty a
+!> tenth of the extrapolation (shape_level_estimate; levels from 56 cells
+!> across, coarser ones bend with h^2). Split patches (a mask, CONTACT's
+!> grid: the same staircase on every level): g = h^1.5, the uncertainty the
+!> change of f0 for other orders (split_level_estimate). Measured honesty:
+!> docs/accuracy.md.
 !>
 !> Everything here is pure: the driver runs the levels and calls these.
 module kcreep_refine_estimate
@@ -28,7 +26,7 @@ module kcreep_refine_estimate
   public :: default_target_error, c23_target_factor, min_estimate_cells, nominal_ellipse_cells
   public :: coefficient_targets, ellipse_level_grid, ellipse_cells_long_in_y, next_level, level_cell_budget, student_t95
   public :: cell_budget_allowed, cell_budget_range, level_solver_tolerance
-  public :: ellipse_level_estimate, split_level_estimate
+  public :: shape_level_estimate, split_level_estimate
   public :: single_grid_estimate, ellipse_fit_min, ellipse_fit_width
   public :: split_grid_estimate, within_target, uncertain_flag
 
@@ -147,28 +145,22 @@ contains
     end if
   end function student_t95
 
-  !> Limit and relative 95 % error estimate from an ellipse's levels (at least
-  !> ellipse_fit_min of them, from 56 cells across): the fit f0 + K h + B shape,
-  !> shape being each level's four-fold staircase harmonic
-  !> (kcreep_staircase_normalisation), which takes out what is left of the
-  !> staircase's level-to-level scatter after the second moments (it halves
-  !> it). Coarser levels bend away from the straight line (C11 of the circle
-  !> by 0.1 % between 32 and 148 across) and are not used.
+  !> Limit and relative 95 % error estimate from the levels of a sampled
+  !> shape (at least ellipse_fit_min of them, from 56 cells across), each
+  !> with a blended edge: the straight line f0 + K h through them. Coarser
+  !> levels bend away from it (L h^2) and are not used.
   !> Estimate: t95 x the standard error of f0 (the scatter), plus
   !> order_margin x the extrapolation's own size |f0 - f(finest)| (the order
-  !> is 1 only to within about 0.06: fits with a free order give 0.94 to 1;
-  !> a straight line through levels 56-148 then misses f0 by up to 9 % of the
-  !> correction). Checked against references from grids of 136 to 384 cells
-  !> across (docs/accuracy.md section 3.1); on ellipses long in x (a/b = 3.33
-  !> to 10) against references from levels up to 632-1024 cells across
-  !> (section 6.7).
-  pure subroutine ellipse_level_estimate(h, f, shape, limit, rel_error)
-    real(real64), intent(in) :: h(:), f(:), shape(:)
+  !> is 1 only to within a few per cent; docs/accuracy.md section 2).
+  pure subroutine shape_level_estimate(h, f, limit, rel_error)
+    real(real64), intent(in) :: h(:), f(:)
     real(real64), intent(out) :: limit, rel_error
-    real(real64) :: se
-    call three_column_fit(h, f, shape, limit, se)
-    rel_error = (student_t95(size(h) - 3) * se + order_margin * abs(limit - f(minloc(h, 1)))) / abs(limit)
-  end subroutine ellipse_level_estimate
+    real(real64) :: a(size(h), 2), se
+    a(:, 1) = 1
+    a(:, 2) = h
+    call limit_fit(a, f, limit, se)
+    rel_error = (student_t95(size(h) - 2) * se + order_margin * abs(limit - f(minloc(h, 1)))) / abs(limit)
+  end subroutine shape_level_estimate
 
   !> Least-squares fit f = f0 + K h + L g; std_error of f0 (NaN without
   !> degrees of freedom left).

@@ -7,12 +7,13 @@
 !> convolution equals the linear one on the grid, so y = A x costs four real
 !> 2-D FFTs (two forward, two back) instead of (2n)^2 multiply-adds. Only the
 !> patch cells carry unknowns: x is scattered onto the grid with zeros
-!> outside and y is gathered back from the patch cells.
+!> outside and y is gathered back from the patch cells. A blended patch's
+!> rows are then blended (kcreep_assembly slip_weight).
 module kcreep_fft_operator
   use, intrinsic :: iso_c_binding
   use, intrinsic :: iso_fortran_env, only: real64
   use kcreep_patch, only: patch_t
-  use kcreep_assembly, only: operator_table_t
+  use kcreep_assembly, only: operator_table_t, slip_weight
   use kcreep_influence, only: influence_t, cell_displacement
   implicit none
   private
@@ -62,6 +63,10 @@ module kcreep_fft_operator
     type(c_ptr) :: rows_forward = c_null_ptr, rows_backward = c_null_ptr
     type(c_ptr) :: columns_forward = c_null_ptr, columns_backward = c_null_ptr
     logical :: pruned = .true.
+    !> A blended patch: each cell's slip_weight (unallocated otherwise), and
+    !> the own-cell coefficients (xx, yy) its rows blend with.
+    real(real64), allocatable :: slip_weight(:)
+    real(real64) :: own(2) = 0
   end type fft_operator_t
 
 contains
@@ -101,6 +106,7 @@ contains
     call kernel_spectrum(table%xx, op%kxx)
     call kernel_spectrum(table%xy, op%kxy)
     call kernel_spectrum(table%yy, op%kyy)
+    op%own = [table%xx(0, 0), table%yy(0, 0)]
     call set_fft_cells(op, patch)
 
   contains
@@ -131,6 +137,8 @@ contains
     if (patch%mx /= op%mx .or. patch%my /= op%my) error stop 'set_fft_cells: the patch is on another grid'
     op%n = patch%n
     op%at = patch%ix + (patch%iy - 1) * op%nx
+    if (allocated(op%slip_weight)) deallocate (op%slip_weight)
+    if (allocated(patch%fraction)) op%slip_weight = slip_weight(patch%fraction)
   end subroutine set_fft_cells
 
   !> The padded periodic grid of the patch's bounding grid, its FFT plans and
@@ -359,6 +367,12 @@ contains
     end do
     !$omp end do
     !$omp end parallel
+    if (allocated(op%slip_weight)) then
+      do v = 1, nv
+        y(1:n, v) = op%slip_weight * y(1:n, v) + (1 - op%slip_weight) * op%own(1) * x(1:n, v)
+        y(n + 1:2 * n, v) = op%slip_weight * y(n + 1:2 * n, v) + (1 - op%slip_weight) * op%own(2) * x(n + 1:2 * n, v)
+      end do
+    end if
   end subroutine apply_fft_operator
 
   !> One component scattered onto the grid (zero elsewhere) and transformed into cols.

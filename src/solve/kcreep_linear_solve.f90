@@ -16,7 +16,7 @@ module kcreep_linear_solve
   use kcreep_strings, only: itoa, rtoa
   use kcreep_lapack, only: dgetrf, dgetrs, dgecon
   use kcreep_patch, only: patch_t
-  use kcreep_assembly, only: operator_table_t, scheme_t, rigid_creepage, n_load_cases
+  use kcreep_assembly, only: operator_table_t, scheme_t, rigid_creepage, n_load_cases, slip_weight
   use kcreep_dense, only: dense_diagnostics_t, backward_error, relative_residual, &
                           refine_threshold, solve_lapack_expert
   use kcreep_split, only: subsystem_t, plan_subsystems, assemble_subsystem, restrict_to, restrict_projected, &
@@ -216,6 +216,8 @@ contains
       allocate (rhs(2 * n, n_load_cases), traction(2 * n, n_load_cases))
       do j = 1, n_load_cases
         call rigid_creepage(patch, scheme, j, rhs(:, j))
+        ! a blended patch's rows weigh the slip by slip_weight (kcreep_assembly)
+        if (allocated(patch%fraction)) rhs(:, j) = [slip_weight(patch%fraction), slip_weight(patch%fraction)] * rhs(:, j)
       end do
       traction = ieee_value(1.0_real64, ieee_quiet_nan)
       subs = plan_subsystems(patch, nu, opts%split_systems, requested)
@@ -624,7 +626,8 @@ contains
       strip%n = n
       m_inv => strip
     case default
-      call prepare_circulant(ws, nu, patch)
+      call ws%circulant%set_edge(patch, table)
+      call prepare_circulant(ws, nu, ws%circulant%core_patch(patch))
       ws%circulant%subs = subs
       ws%circulant%sub_of = sub_of
       ws%circulant%n = n

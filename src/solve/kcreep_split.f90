@@ -16,7 +16,7 @@
 module kcreep_split
   use, intrinsic :: iso_fortran_env, only: real64
   use kcreep_patch, only: patch_t
-  use kcreep_assembly, only: operator_table_t, n_load_cases
+  use kcreep_assembly, only: operator_table_t, n_load_cases, slip_weight
   implicit none
   private
   public :: subsystem_t, plan_subsystems, assemble_subsystem, restrict_to, restrict_projected, expand_from
@@ -154,6 +154,7 @@ contains
     integer, allocatable :: run_first(:), run_last(:)
     integer :: v, u, r, nr, m, ixv, iyv, iyp, di, dj, djp, l
     logical :: new_run
+    real(real64) :: w
 
     ! Runs: consecutive unknowns of one component on consecutive cells of one
     ! grid row. Their coefficients are a contiguous slice of the offset table,
@@ -198,7 +199,13 @@ contains
       end do
     end do
     !$omp end parallel do
-
+    ! a blended patch's rows (kcreep_assembly slip_weight)
+    if (.not. allocated(patch%fraction)) return
+    do u = 1, m
+      w = slip_weight(patch%fraction(s%cell(u)))
+      a(u, :) = w * a(u, :)
+      a(u, u) = a(u, u) + (1 - w) * merge(table%xx(0, 0), table%yy(0, 0), s%comp(u) == 0)
+    end do
   end subroutine assemble_subsystem
 
   !> col = t(di:di+l, dj) [+ sign t(di:di+l, djp) for a mirrored column];

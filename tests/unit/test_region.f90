@@ -1,8 +1,8 @@
 !> Unit checks of kcreep_region (a contact area from a pressure on a fine
-!> grid, its boundary inside the cells) and of connected_parts / part_patch.
+!> grid, its boundary inside the cells) and of part_patch.
 program test_region
   use, intrinsic :: iso_fortran_env, only: real64
-  use kcreep_patch, only: patch_t, mask_patch, connected_parts, part_patch
+  use kcreep_patch, only: patch_t, mask_patch, part_patch
   use kcreep_region, only: region_t, sampled_region, region_level_patch, region_pressure, contour_area
   use kcreep_staircase_normalisation, only: moment_reference_t, contour_reference
   use kcreep_status, only: status_t
@@ -19,8 +19,6 @@ program test_region
   real(real64), parameter :: pi = acos(-1.0_real64), a = 2, b = 1
   real(real64), allocatable :: pressure(:)
   real(real64) :: exact, region_error
-  integer :: n_parts
-  integer, allocatable :: part(:)
   logical :: lobes(12, 5)
 
   ! Hertz's pressure on an ellipse a = 2, b = 1, 24 and 48 cells across 2b:
@@ -38,9 +36,11 @@ program test_region
   call t%check(all(abs(ref%centre) < 1e-3_real64 * b), 'sampled_region: centred within 1e-3 b')
   call t%check(abs(region%diameter - 2 * b) < 0.05_real64 * b, &
                'level size: the shorter axis 2b of a long area (hydraulic diameter 2.6 b)')
-  ! a level of 40 cells across 2b: about pi a b / h^2 cells
-  call region_level_patch(region, 40, 1.0_real64, level, status)
-  call t%check(abs(level%n * level%dx**2 / exact - 1) < 0.02_real64, 'region_level_patch: the area on 40 cells across')
+  ! a level of 40 cells across 2b with a blended edge: its cells weighted by
+  ! their part inside add up to the area (measured -0.037 %, the region's
+  ! zero level against the exact ellipse; a staircase is off by up to 2 %)
+  call region_level_patch(region, 40, [1.0_real64, 1.0_real64], level, status)
+  call t%check(abs(level%area() / exact - 1) < 0.002_real64, 'region_level_patch: the area on 40 cells across')
   pressure = region_pressure(region, level)
   call t%check(maxval(pressure) > 0.99_real64 .and. maxval(pressure) <= 1 + 1e-12_real64 .and. &
                minval(pressure) >= 0, 'region_pressure: p^2 interpolated, at most p0')
@@ -48,17 +48,13 @@ program test_region
   call test_contour_moments()
   call test_solved_hertz()
 
-  ! two lobes: two parts, each cell in one
+  ! two lobes: part_patch keeps the cells of one
   lobes = .false.
   lobes(2:4, 2:4) = .true.
   lobes(8:11, 1:5) = .true.
   call mask_patch(lobes, 1.0_real64, 1.0_real64, 0.0_real64, 0.0_real64, 'test', two, status)
-  allocate (part(two%n))
-  call connected_parts(two, part, n_parts)
-  call t%check(n_parts == 2 .and. count(part == 1) + count(part == 2) == two%n .and. &
-               minval([count(part == 1), count(part == 2)]) == 9, 'connected_parts: two lobes of 9 and 20 cells')
-  level = part_patch(two, part == part(1))   ! the first cell (row 1) is the right lobe's
-  call t%check(level%n == 20 .and. all(level%ix >= 8), 'part_patch: the cells of one part')
+  level = part_patch(two, two%ix >= 8)
+  call t%check(level%n == 20 .and. all(level%ix >= 8) .and. count(level%inside) == 20, 'part_patch: the cells of one lobe')
   call t%finish()
 
 contains
@@ -79,13 +75,11 @@ contains
       stair(k) = staircase_moments(region%reference)
       area(k) = contour_area(region)
     end do
-    ! measured: area -0.12 to -0.15 %, semi-axes -0.04 to -0.08 %, harmonic
-    ! at most 1.6e-4; aspect ratio over the four placements spread 3.4e-4
+    ! measured: area -0.12 to -0.15 %, semi-axes -0.04 to -0.08 %; aspect ratio over the four placements spread 3.4e-4
     ! (the staircase's 1.8e-3), centre 3.1e-4 b (1.8e-3 b)
     call t%check(all(abs(area / exact - 1) < 3e-3_real64), 'contour_area: within 0.3 % of pi a b, every placement')
     call t%check(all(abs(contour%semi_a / a - 1) < 1e-3_real64) .and. all(abs(contour%semi_b / b - 1) < 1e-3_real64), &
                  'contour_reference: semi-axes within 0.1 %, every placement')
-    call t%check(all(abs(contour%harmonic4) < 1e-3_real64), 'contour_reference: the harmonic of an ellipse near 0')
     call t%check(value_range(contour%semi_a / contour%semi_b) < value_range(stair%semi_a / stair%semi_b) / 3 .and. &
                  value_range(contour%centre(1)) < value_range(stair%centre(1)) / 3, &
                  'contour_reference: the placement moves aspect ratio and centre a third or less of the staircase''s')
