@@ -252,11 +252,11 @@ contains
 
   !> Cells across the contact area's hydraulic diameter of the normal
   !> problem's fine grid: gap_normal_cells_at_default at the default target
-  !> and looser, tight_target_normal_growth times that for tighter targets.
+  !> and looser, gap_normal_cells_below_default for tighter targets.
   pure real(real64) function gap_normal_cells(target) result(cells)
     real(real64), intent(in) :: target
     cells = gap_normal_cells_at_default
-    if (target < default_target_error) cells = tight_target_normal_growth * cells
+    if (target < default_target_error) cells = gap_normal_cells_below_default
   end function gap_normal_cells
 
   !> The most cells the fine normal grid may have: normal_grid_budget_share

@@ -86,8 +86,8 @@ contains
         min(level_problem%solve%tolerance, split_tolerance_share * problem%target_error)
     else if (present(region)) then
       ref = contour_reference(region)
-      ! cells as much longer along the area's longer axis (as many cells
-      ! along its length as across its width); collocation is not put on long cells
+      ! cells as much longer along the area's longer axis as it is long, up
+      ! to max_cell_aspect; collocation is not put on long cells
       if (problem%scheme%name == 'backward') &
         cell_shape = min(max([ref%semi_a / ref%semi_b, ref%semi_b / ref%semi_a], 1.0_real64), max_cell_aspect)
       levels = max(min_base_cells, nint(base_levels * min(1.0_real64, sqrt(budget / region_cells(region, &

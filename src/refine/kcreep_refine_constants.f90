@@ -31,7 +31,13 @@ module kcreep_refine_constants
   !> as wide: the estimate was checked on a/b = 0.1 to 0.5 with cells up to
   !> 10 times as long (27 of 27 bounded, docs/accuracy.md section 6.4); at
   !> a/b = 0.02 on cells 50 times as long it missed C23 (0.025 % against an
-  !> estimate of 0.017 %).
+  !> estimate of 0.017 %). A contact area's levels (kcreep_level_ladder)
+  !> have cells as much longer along its longer axis as the area is long,
+  !> up to this: on Hertzian gaps a/b = 5, 10 and 20 every error of ten
+  !> perturbed runs each was bounded (docs/accuracy.md section 5). Held to
+  !> 5 instead, the S1002 table took 16.5 s instead of 18.2 s (medians of
+  !> three, one core), but at a/b = 10 the C11 estimate missed its error in
+  !> 2 to 3 of 10 runs (0.063 % against 0.047 %).
   real(real64), parameter :: max_cell_aspect = 10
   !> The share of a sampled shape's extrapolation (f0 - f(finest level))
   !> counted as the uncertainty of its order (shape_level_estimate).
@@ -124,30 +130,22 @@ module kcreep_refine_constants
 
   ! ---- patches from a gap function (the normal problem on a fine grid) ----
   !> Cells across the contact area's hydraulic diameter of the normal
-  !> problem's fine grid at the default target (tight_target_normal_growth
-  !> times this below it). The
-  !> levels sample the zero level of the interpolated p^2 (kcreep_region), so
-  !> the contact boundary lies inside the fine cells. Measured on the Hertzian
-  !> gaps a/b = 2, 0.5 and 5 (scripts/studies/gap_hertz_check.py --ratios
-  !> 2,0.5,5, one run each on one core): at 64 cells a/b = 2 and 5 end
-  !> `uncertain` (2.1-2.3 s); 96, 128 and 192 end `ok` in 0.4-1.4, 0.5-1.3
-  !> and 0.8-3.1 s. 128 is the fastest over the three. 192, measured again
-  !> after the preconditioned normal solve: on the 15 calibration gaps
-  !> (gap_error_calibration.py --check) the median errors of C22 and C23
-  !> rose from 0.018 and 0.006 % to 0.029 and 0.046 % at the same estimates,
-  !> all bounded. Not the normal grid: on the circle the contact areas agree
-  !> to 1e-5 in area and axes, while the levels, centred on the area, were
-  !> odd-sized grids at 192 and a mix at 128, which moved C23 by 0.09 % (the
-  !> staircases' scatter). a/b = 5 and 10 ended `ok` in 8 of 10 runs each
-  !> (gap_hertz_check.py --perturb 9; 6 and 4 at 128); wheel_rail took 1.7 s
-  !> instead of 0.74 s (a longer ladder). Kept at 128.
-  real(real64), parameter :: gap_normal_cells_at_default = 128
-  !> Below the default target the fine normal grid has this many times the
-  !> cells across. At 1e-4 on the Hertzian gap a/b = 2 the normal grid's
-  !> estimate was 0.0055 / 0.0071 / 0.019 % at 256 across and 0.0020 /
-  !> 0.0026 / 0.0076 % at 512 (C11, C22, C23; targets 0.01 / 0.01 / 0.03 %),
-  !> the run `ok` at 512 in 19 s (docs/accuracy.md section 5).
-  real(real64), parameter :: tight_target_normal_growth = 4
+  !> problem's fine grid at the default target and looser. The levels sample the zero level of the
+  !> interpolated p^2 (kcreep_region), so the contact boundary lies inside
+  !> the fine cells; the grid's error enters the estimate
+  !> (normal_grid_estimate), so a coarser grid makes longer ladders. On
+  !> blended levels (the S1002 table, one core, medians of three): 112
+  !> across 18.2 s, 128 across 20.0 s, every row `ok` (at 96 across, in a
+  !> run with cells at most 5 times as long, one row stayed `uncertain`);
+  !> the 15 Hertzian gaps at 112 bounded 45 of 45 at a median estimate /
+  !> error of 3.2 (3.1 at 128), every run `ok` (docs/accuracy.md section 5).
+  real(real64), parameter :: gap_normal_cells_at_default = 112
+  !> The same below the default target. At 1e-4 on the Hertzian gap a/b =
+  !> 2 the normal grid's estimate was 0.0055 / 0.0071 / 0.019 % at 256
+  !> across and 0.0020 / 0.0026 / 0.0076 % at 512 (C11, C22, C23; targets
+  !> 0.01 / 0.01 / 0.03 %), the run `ok` at 512 in 19 s (docs/accuracy.md
+  !> section 5).
+  real(real64), parameter :: gap_normal_cells_below_default = 512
   !> The fine normal grid has at most this share of the level cell budget
   !> (200,000 cells at the default target; coarser cells on a long thin
   !> contact area, whose bounding box is large for its width): a run-time
