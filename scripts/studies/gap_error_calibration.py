@@ -43,7 +43,7 @@ def arguments():
     p.add_argument("--check", action="store_true",
                    help="the Hertzian gaps only; exit 1 unless every default-run estimate bounds its error "
                         "(allowing the reference's u), C11, C22 errors <= 1e-3, C23 <= 3e-3, and the median "
-                        "estimate / error <= 4.5 (ctest -L calibration)")
+                        "estimate / error <= 3.5 (ctest -L calibration)")
     return p
 
 
@@ -313,12 +313,11 @@ def check(rows):
         if r["error"] > limit:
             failures.append(f"{r['case']} {r['coefficient']}: error {r['error']:.2e} above {limit:g}")
     ratio = float(np.median([r["estimate"] / max(r["error"], 1e-12) for r in dflt]))
-    # measured 4.03 (docs/accuracy.md section 5; 3.05 before the contact
-    # edge was placed between the outermost cells' own pressure and the
-    # parabola behind them: the errors fell, the ladder's estimates less);
-    # issue 29 asks for about 3
-    if ratio > 4.5:
-        failures.append(f"median estimate / error {ratio:.2f} above 4.5")
+    # measured 3.2 on blended levels with the two parts in quadrature
+    # (docs/accuracy.md section 5; 4.2 on staircase levels, parts added);
+    # an honest bound of noise cannot be much below 3.4
+    if ratio > 3.5:
+        failures.append(f"median estimate / error {ratio:.2f} above 3.5")
     print(f"\ncheck: {len(dflt)} coefficient cases, median estimate / error {ratio:.2f}, "
           f"{sum(r['verdict'] == 'ok' for r in dflt) // 3} of {len(dflt) // 3} runs ok")
     for f in failures:

@@ -20,11 +20,12 @@
 !> two (edge_blend). Outside the contact cells p^2 is continued
 !> from the contact cells behind it along each of the 8 grid directions:
 !> by the parabola through three (exact for Hertz's p^2 along any line),
-!> the line through two, or mirrored where only one is there. A level cell belongs to the patch
-!> when its centre lies inside.
+!> the line through two, or mirrored where only one is there. A level's
+!> cells are those the region reaches, each with its part inside
+!> (kcreep_patch blended_patch; region_level_patch).
 !>
-!> The region's own moments (area, centre, second moments, four-fold
-!> harmonic) are integrals over the zero level itself: its pieces in each
+!> The region's own moments (area, centre, second moments) are integrals
+!> over the zero level itself: its pieces in each
 !> square of four fine cell centres (marching squares, the crossings on the
 !> square's sides exact for the bilinear level), integrated by Green's
 !> theorem. A staircase of the region, however fine, moves them by a
