@@ -29,13 +29,13 @@ module kcreep_assembly
   implicit none
   private
   public :: scheme_t, operator_table_t, build_operator_table, assemble_dense, apply_operator, &
-            rigid_creepage, load_case_names, n_load_cases, slip_weight
+            rigid_creepage, load_case_names, n_load_cases, slip_weight, blended_row
 
   !> The blended edge's weight of a partly outside cell's own traction.
   !> Measured on the circle in a dense model (scripts/studies/boundary_blend_study.py,
   !> levels 24 to 64 cells across): kappa = 2 leaves the levels' C11 with
   !> no first-order term and a scatter of 0.0035 % about their line; kappa
-  !> = 1 and 4 scatter 10 times more (docs/wheel_rail.md, "A blended edge").
+  !> = 1 and 4 scatter 10 times more (docs/wheel_rail.md, "The blended edge").
   real(real64), parameter :: blend_kappa = 2
 
   integer, parameter :: n_load_cases = 3
@@ -65,6 +65,14 @@ contains
     real(real64), intent(in) :: fraction
     w = fraction / (fraction + (1 - fraction) * blend_kappa)
   end function slip_weight
+
+  !> A blended cell's row value from the plain operator's: w (A t)_k + (1 -
+  !> w) d t_k (module header); w its slip_weight, d the row's own-cell
+  !> coefficient, t_k its own traction.
+  pure elemental real(real64) function blended_row(plain, weight, own, traction)
+    real(real64), intent(in) :: plain, weight, own, traction
+    blended_row = weight * plain + (1 - weight) * own * traction
+  end function blended_row
 
   subroutine build_operator_table(patch, scheme, nu, g, table)
     type(patch_t), intent(in) :: patch
@@ -180,8 +188,8 @@ contains
       y(n + i) = sy
       if (allocated(patch%fraction)) then
         w = slip_weight(patch%fraction(i))
-        y(i) = w * sx + (1 - w) * table%xx(0, 0) * x(i)
-        y(n + i) = w * sy + (1 - w) * table%yy(0, 0) * x(n + i)
+        y(i) = blended_row(sx, w, table%xx(0, 0), x(i))
+        y(n + i) = blended_row(sy, w, table%yy(0, 0), x(n + i))
       end if
     end do
   end subroutine apply_operator

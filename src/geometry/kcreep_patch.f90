@@ -38,7 +38,7 @@ module kcreep_patch
   contains
     procedure :: cell_x, cell_y, area, equivalent_radius, centroid, grid_box, cells_box, ellipse_centre
     procedure :: second_moments
-    procedure :: mirror_symmetric_in_x, mirror_symmetric_in_y, fraction_grid, staircase, in_staircase
+    procedure :: mirror_symmetric_in_x, mirror_symmetric_in_y, fraction_grid, staircase, in_staircase, cell_ahead
   end type patch_t
 
   !> A shape a level samples: whether a point lies in it.
@@ -364,6 +364,19 @@ contains
     keep = .true.
     if (allocated(self%fraction)) keep = self%fraction >= 0.5_real64
   end function in_staircase
+
+  !> (n) the patch cell next in x (the leading edge's side) of each patch
+  !> cell, 0 where its row of patch cells ends. Cells are numbered row by
+  !> row, x increasing within a row, so it is k + 1 or none.
+  pure function cell_ahead(self) result(ahead)
+    class(patch_t), intent(in) :: self
+    integer :: ahead(self%n)
+    integer :: k
+    ahead = 0
+    do k = 1, self%n - 1
+      if (self%iy(k + 1) == self%iy(k) .and. self%ix(k + 1) == self%ix(k) + 1) ahead(k) = k + 1
+    end do
+  end function cell_ahead
 
   !> Each grid cell's part in the patch: 0 outside, 1 or its fraction inside.
   pure function fraction_grid(self) result(grid)

@@ -70,7 +70,7 @@ module kcreep_block_operators
   !> inside, on a patch with none). The circulant inverse of a core of cells
   !> at least half inside took 29-70 GMRES steps per level on the S1002
   !> flange strips, of cells at least 0.9 inside 11-18, as many as the
-  !> staircase's levels (docs/wheel_rail.md, "A blended edge").
+  !> staircase's levels (docs/wheel_rail.md, "The blended edge").
   real(real64), parameter :: core_fraction = 0.9_real64
 
   !> The strip preconditioner on the representative cells (their mirror
@@ -214,11 +214,8 @@ contains
     n = patch%n
     self%in_core = patch%fraction >= min(core_fraction, maxval(patch%fraction))
     self%core = pack([(k, k=1, n)], self%in_core)
-    allocate (self%ahead(n), self%ahead_coefficient(n, 2))
-    self%ahead = 0
-    do k = 1, n - 1
-      if (patch%iy(k + 1) == patch%iy(k) .and. patch%ix(k + 1) == patch%ix(k) + 1) self%ahead(k) = k + 1
-    end do
+    self%ahead = patch%cell_ahead()
+    allocate (self%ahead_coefficient(n, 2))
     self%ahead_coefficient = 0
     if (patch%mx > 1) then
       w = slip_weight(patch%fraction)

@@ -55,18 +55,11 @@ contains
   subroutine set_circulant_cells(prec, patch)
     type(circulant_preconditioner_t), intent(inout) :: prec
     type(patch_t), intent(in) :: patch
-    integer :: k
 
     call set_fft_cells(prec%inverse_displacement, patch)
     prec%n = patch%n
     prec%dx = patch%dx
-    ! cells are numbered row by row, x increasing within a row
-    if (allocated(prec%leading)) deallocate (prec%leading)
-    allocate (prec%leading(patch%n))
-    do k = 1, patch%n - 1
-      prec%leading(k) = .not. (patch%iy(k + 1) == patch%iy(k) .and. patch%ix(k + 1) == patch%ix(k) + 1)
-    end do
-    prec%leading(patch%n) = .true.
+    prec%leading = patch%cell_ahead() == 0
     call edge_weights(patch, prec%weight)
   end subroutine set_circulant_cells
 

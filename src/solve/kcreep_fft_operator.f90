@@ -13,7 +13,7 @@ module kcreep_fft_operator
   use, intrinsic :: iso_c_binding
   use, intrinsic :: iso_fortran_env, only: real64
   use kcreep_patch, only: patch_t
-  use kcreep_assembly, only: operator_table_t, slip_weight
+  use kcreep_assembly, only: operator_table_t, slip_weight, blended_row
   use kcreep_influence, only: influence_t, cell_displacement
   implicit none
   private
@@ -369,8 +369,8 @@ contains
     !$omp end parallel
     if (allocated(op%slip_weight)) then
       do v = 1, nv
-        y(1:n, v) = op%slip_weight * y(1:n, v) + (1 - op%slip_weight) * op%own(1) * x(1:n, v)
-        y(n + 1:2 * n, v) = op%slip_weight * y(n + 1:2 * n, v) + (1 - op%slip_weight) * op%own(2) * x(n + 1:2 * n, v)
+        y(1:n, v) = blended_row(y(1:n, v), op%slip_weight, op%own(1), x(1:n, v))
+        y(n + 1:2 * n, v) = blended_row(y(n + 1:2 * n, v), op%slip_weight, op%own(2), x(n + 1:2 * n, v))
       end do
     end if
   end subroutine apply_fft_operator
