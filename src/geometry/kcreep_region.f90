@@ -26,8 +26,8 @@
 !>
 !> The region's own moments (area, centre, second moments) are integrals
 !> over the zero level itself: its pieces in each
-!> square of four fine cell centres (marching squares, the crossings on the
-!> square's sides exact for the bilinear level), integrated by Green's
+!> rectangle of four fine cell centres (marching squares, the crossings on the
+!> rectangle's sides exact for the bilinear level), integrated by Green's
 !> theorem. A staircase of the region, however fine, moves them by a
 !> fraction of its cells from one placement to the next.
 module kcreep_region
@@ -63,9 +63,10 @@ module kcreep_region
 
   type, extends(shape_t) :: region_t
     integer :: mx = 0, my = 0                    !< the fine grid, padded
-    real(real64) :: x0 = 0, y0 = 0, h = 0        !< centre of its cell (1, 1); square cells
+    real(real64) :: x0 = 0, y0 = 0               !< centre of its cell (1, 1)
+    real(real64) :: hx = 0, hy = 0               !< its cells' sizes
     real(real64), allocatable :: level(:, :)     !< (mx, my) p^2, continued below zero outside
-    type(patch_t) :: reference                   !< the region on cells h / 4 (or larger, max_reference_cells)
+    type(patch_t) :: reference                   !< the region on cells a quarter the fine size (max_reference_cells)
     real(real64) :: diameter = 0                 !< the size levels are counted across (level_size)
     real(real64), allocatable :: edge(:, :)      !< (4, pieces) x, y from and to: the zero level, inside on the left
     integer, allocatable :: edge_part(:)         !< (pieces) the separate part of the region each piece bounds
@@ -81,7 +82,7 @@ module kcreep_region
 
 contains
 
-  !> The region of the contact cells `fine` (square cells) with the pressure
+  !> The region of the contact cells `fine` with the pressure
   !> on the same grid. moments_only: only its zero level and moments, no
   !> reference staircase (a region that is compared, not sampled).
   function sampled_region(fine, pressure, status, moments_only) result(region)
@@ -93,7 +94,8 @@ contains
     integer :: split
     region%mx = fine%mx + 2 * pad
     region%my = fine%my + 2 * pad
-    region%h = fine%dx
+    region%hx = fine%dx
+    region%hy = fine%dy
     region%x0 = fine%x0 - pad * fine%dx
     region%y0 = fine%y0 - pad * fine%dy
     allocate (region%level(region%mx, region%my), source=0.0_real64)
@@ -104,7 +106,7 @@ contains
       if (moments_only) return
     end if
     split = max(1, min(reference_split, floor(sqrt(max_reference_cells / (real(fine%mx, real64) * fine%my)))))
-    call region_patch(region, region%h / split, fine%grid_box(), region%reference, status)
+    call region_patch(region, region%hx / split, fine%grid_box(), region%reference, status, region%hy / split)
     if (status%failed()) return
     region%diameter = level_size(region%reference)
   end function sampled_region
@@ -130,8 +132,8 @@ contains
         ! corners counter-clockwise, the first repeated
         v = [(region%level(i + di(k), j + dj(k)), k=1, 5)]
         if (all(v(1:4) > 0) .or. all(v(1:4) <= 0)) cycle
-        corner(1, :) = region%x0 + (i - 1 + di) * region%h
-        corner(2, :) = region%y0 + (j - 1 + dj) * region%h
+        corner(1, :) = region%x0 + (i - 1 + di) * region%hx
+        corner(2, :) = region%y0 + (j - 1 + dj) * region%hy
         n = 0
         do k = 1, 4
           if ((v(k) > 0) .eqv. (v(k + 1) > 0)) cycle
@@ -337,8 +339,8 @@ contains
     real(real64), intent(in) :: x, y
     real(real64) :: u, v, s, t
     integer :: i, j
-    u = (x - region%x0) / region%h + 1
-    v = (y - region%y0) / region%h + 1
+    u = (x - region%x0) / region%hx + 1
+    v = (y - region%y0) / region%hy + 1
     i = min(max(floor(u), 1), region%mx - 1)
     j = min(max(floor(v), 1), region%my - 1)
     s = min(max(u - i, 0.0_real64), 1.0_real64)

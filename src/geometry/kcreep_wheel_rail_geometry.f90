@@ -55,7 +55,6 @@ module kcreep_wheel_rail_geometry
     real(real64) :: rail_shift(2) = 0        !< track (y, z) = rotated profile point + rail_shift
     real(real64) :: wheel_origin = 0         !< flange_back_distance / 2 - flange_back_position
     real(real64) :: r_nom = 460
-    real(real64), allocatable :: rail_curve(:, :), wheel_curve(:, :)   !< (2, n) dense samples (rail: track coords)
   end type track_t
 
   !> One contact found at a shift.
@@ -97,8 +96,6 @@ contains
     track%rail_shift(1) = gauge_width / 2 - minval(yr, mask=gauge_band)
     yr = yr + track%rail_shift(1)
     call make_envelope(yr, zr, .false., track%rail)
-    track%rail_curve = reshape([yr, zr], [size(yr), 2])
-    track%rail_curve = transpose(track%rail_curve)
     call sample_profile(wheel, sample_step, ys, zs)
     if (.not. all(r_nom + zs > 0)) then
       call fail(status, exit_bad_input, 'wheel profile: nominal_radius = '//rtoa(r_nom)//' makes a radius <= 0 '// &
@@ -106,7 +103,6 @@ contains
       return
     end if
     call make_envelope(ys, zs, .true., track%wheel)
-    track%wheel_curve = transpose(reshape([ys, zs], [size(ys), 2]))
     track%wheel_origin = fb_distance / 2 - fb_position
     track%r_nom = r_nom
   end subroutine place_track

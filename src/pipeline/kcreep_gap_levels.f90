@@ -7,11 +7,12 @@
 !>
 !> Error control (target_error > 0 and refine_grid): the normal problem on
 !> the given grid finds where the contact area is and its hydraulic diameter
-!> 4 area / perimeter (contact_diameter); then again on square cells twice
-!> the fine size over the area's bounding box widened by a margin, and on
-!> square cells of gap_normal_cells across its level_size (kcreep_region)
-!> over the area found there, widened likewise (the coarse pressure starts
-!> the fine solve; both to gap_normal_tolerance). The tangential
+!> 4 area / perimeter (contact_diameter); then again on cells twice the
+!> fine size over the area's bounding box widened by a margin, and on cells
+!> gap_normal_cells across its level_size (kcreep_region) over the area
+!> found there, widened likewise (the coarse pressure starts the fine solve;
+!> both to gap_normal_tolerance). The cells are square, or longer along a
+!> long thin area (normal_cell_shape). The tangential
 !> levels (kcreep_level_ladder, the ellipses' ladder) sample the fine
 !> contact area with a blended edge (each cell weighted by its part inside
 !> the area), so every level describes the same shape, on cells as much
@@ -117,7 +118,7 @@ contains
       box = level_box(gap, result%bbox)
     end associate
     do k = 1, 2
-      call level_gap(problem, box, gap_single_sizes(k) * h, coarse, status)
+      call level_gap(problem, box, [1, 1] * gap_single_sizes(k) * h, coarse, status)
       if (status%failed()) return
       call solve_gap(problem, coarse, aux(k), status)
       if (status%failed()) return
@@ -152,32 +153,36 @@ contains
     type(patch_t) :: first, fine, coarse, located, moved
     type(normal_result_t) :: nres, fine_normal, coarse_normal, located_normal, moved_normal
     type(region_t) :: region, coarse_region, moved_region
-    real(real64) :: wide(4), box(4), across, target, max_cells
+    real(real64) :: wide(4), box(4), target, max_cells, shape(2), m(2)
+    real(real64) :: cell(2)   !< the fine normal grid's cell sizes in x and y
 
-    ! the contact area on the given grid: its size and where it is
+    ! the contact area on the given grid: its size, where it is, and its
+    ! length / width (second moments), which sets the cells' shape
     call normal_patch(problem, first, nres, status)
     if (status%failed()) return
     wide = level_box(problem%normal%gap, first%grid_box())
     target = level_size(first) / gap_normal_cells(problem%target_error)
+    m = first%second_moments(first%centroid())
+    shape = normal_cell_shape(sqrt(m(1) / m(2)))
     max_cells = normal_grid_cells(problem)
     ! on cells twice the fine ones over the wide box: where the contact is,
     ! to a coarse cell; the fine grid covers only that (a thin strip's box
     ! on the given grid is 2-4 times its area)
-    across = capped_cells(wide, target, max_cells)
-    call contact_area_on(problem, wide, 2 * across, coarse, coarse_normal, status)
+    cell = capped_cells(wide, target, max_cells, shape)
+    call contact_area_on(problem, wide, 2 * cell, coarse, coarse_normal, status)
     if (status%failed()) return
-    box = widened_box(coarse%cells_box(), 2 * across, 2 * across, wide)
-    if (capped_cells(box, target, max_cells) < across) then
+    box = widened_box(coarse%cells_box(), 2 * cell(1), 2 * cell(2), wide)
+    if (any(capped_cells(box, target, max_cells, shape) < cell)) then
       ! a long thin area (a flange contact) is held to max_cells:
       ! the smaller box lets it have smaller cells; the coarse grid follows
-      across = capped_cells(box, target, max_cells)
+      cell = capped_cells(box, target, max_cells, shape)
       located = coarse
       located_normal = coarse_normal
-      call contact_area_on(problem, box, 2 * across, coarse, coarse_normal, status, located, located_normal%pressure)
+      call contact_area_on(problem, box, 2 * cell, coarse, coarse_normal, status, located, located_normal%pressure)
       if (status%failed()) return
     end if
     ! the coarse pressure starts the fine solve (fewer CG steps)
-    call contact_area_on(problem, box, across, fine, fine_normal, status, coarse, coarse_normal%pressure)
+    call contact_area_on(problem, box, cell, fine, fine_normal, status, coarse, coarse_normal%pressure)
     if (status%failed()) return
     region = sampled_region(fine, fine_normal%pressure, status)
     if (status%failed()) return
@@ -186,7 +191,8 @@ contains
     ! the fine grid once more, moved by half a cell in x and y: how far its
     ! placement alone moves the contact area (normal_grid_estimate); the
     ! fine pressure starts it
-    call contact_area_on(problem, box + across / 2, across, moved, moved_normal, status, fine, fine_normal%pressure)
+    call contact_area_on(problem, box + [cell(1), cell(1), cell(2), cell(2)] / 2, cell, moved, moved_normal, status, &
+                         fine, fine_normal%pressure)
     if (status%failed()) return
     moved_region = sampled_region(moved, moved_normal%pressure, status, moments_only=.true.)
     if (status%failed()) return
@@ -201,11 +207,11 @@ contains
     result%bbox = region%reference%cells_box()
   end subroutine run_gap_levels
 
-  !> The contact area of the normal problem on square cells of size h over
-  !> box; from_patch, from_pressure: a coarser solution to start from.
+  !> The contact area of the normal problem on cells of sizes h(1) x h(2)
+  !> over box; from_patch, from_pressure: a coarser solution to start from.
   subroutine contact_area_on(problem, box, h, patch, nres, status, from_patch, from_pressure)
     type(problem_t), intent(in) :: problem
-    real(real64), intent(in) :: box(4), h
+    real(real64), intent(in) :: box(4), h(2)
     type(patch_t), intent(out) :: patch
     type(normal_result_t), intent(out) :: nres
     type(status_t), intent(inout) :: status
@@ -315,12 +321,27 @@ contains
                                              gap%y0 - gap%dy / 2, gap%y0 + (gap%my - 0.5_real64) * gap%dy])
   end function level_box
 
-  !> The fine normal grid's cell size: target, or larger where box would
-  !> have more than max_cells of them (a long thin area's box is large for
-  !> its width; the normal grid's estimate grows with the cells).
-  pure real(real64) function capped_cells(box, target, max_cells) result(h)
-    real(real64), intent(in) :: box(4), target, max_cells
-    h = max(target, sqrt((box(2) - box(1)) * (box(4) - box(3)) / max_cells))
+  !> The normal grids' cells for a contact area `aspect` times as long in x
+  !> as in y (below 1: long in y): their length in x and y in units of the
+  !> cell across it. Square up to normal_cell_aspect_limit; a longer area's
+  !> cells are aspect / normal_cell_aspect_limit times as long along it, so
+  !> that its length keeps that many cells per cell across its width.
+  pure function normal_cell_shape(aspect) result(shape)
+    real(real64), intent(in) :: aspect
+    real(real64) :: shape(2)
+    shape = 1
+    if (aspect > normal_cell_aspect_limit) shape(1) = aspect / normal_cell_aspect_limit
+    if (aspect < 1 / normal_cell_aspect_limit) shape(2) = 1 / (aspect * normal_cell_aspect_limit)
+  end function normal_cell_shape
+
+  !> The fine normal grid's cell sizes in x and y: shape (normal_cell_shape)
+  !> times target, or larger where box would have more than max_cells of
+  !> them (a long thin area's box is large for its width; the normal grid's
+  !> estimate grows with the cells).
+  pure function capped_cells(box, target, max_cells, shape) result(h)
+    real(real64), intent(in) :: box(4), target, max_cells, shape(2)
+    real(real64) :: h(2)
+    h = shape * max(target, sqrt((box(2) - box(1)) * (box(4) - box(3)) / (max_cells * product(shape))))
   end function capped_cells
 
   !> bbox (xmin xmax ymin ymax) widened by gap_level_margin of its size and
@@ -335,25 +356,25 @@ contains
            max(bbox(3) - wy, within(3)), min(bbox(4) + wy, within(4))]
   end function widened_box
 
-  !> The undeformed distance on square cells of size h covering box (centred
-  !> on it): the polynomial evaluated, or the given grid resampled.
+  !> The undeformed distance on cells of sizes h(1) x h(2) covering box
+  !> (centred on it): the polynomial evaluated, or the given grid resampled.
   subroutine level_gap(problem, box, h, gap, status)
     type(problem_t), intent(in) :: problem
-    real(real64), intent(in) :: box(4), h
+    real(real64), intent(in) :: box(4), h(2)
     type(gap_t), intent(out) :: gap
     type(status_t), intent(inout) :: status
     integer :: mx, my
     real(real64) :: x0, y0
-    mx = max(1, floor((box(2) - box(1)) / h + 1e-9_real64))
-    my = max(1, floor((box(4) - box(3)) / h + 1e-9_real64))
-    x0 = (box(1) + box(2)) / 2 - (mx - 1) * h / 2
-    y0 = (box(3) + box(4)) / 2 - (my - 1) * h / 2
+    mx = max(1, floor((box(2) - box(1)) / h(1) + 1e-9_real64))
+    my = max(1, floor((box(4) - box(3)) / h(2) + 1e-9_real64))
+    x0 = (box(1) + box(2)) / 2 - (mx - 1) * h(1) / 2
+    y0 = (box(3) + box(4)) / 2 - (my - 1) * h(2) / 2
     if (problem%normal%poly_given) then
-      call gap_from_polynomial(problem%normal%poly, mx, my, h, h, x0, y0, gap, status)
+      call gap_from_polynomial(problem%normal%poly, mx, my, h(1), h(2), x0, y0, gap, status)
     else if (allocated(problem%normal%plane)) then
-      call plane_gap_grid(problem%normal%plane, mx, my, h, h, x0, y0, gap)
+      call plane_gap_grid(problem%normal%plane, mx, my, h(1), h(2), x0, y0, gap)
     else
-      gap = gap_resampled(problem%normal%gap, mx, my, h, h, x0, y0)
+      gap = gap_resampled(problem%normal%gap, mx, my, h(1), h(2), x0, y0)
     end if
   end subroutine level_gap
 

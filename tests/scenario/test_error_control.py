@@ -120,19 +120,19 @@ if ref_rows:
 r = kc.run(nml("semi_a=1, semi_b=1", solver="target_error=0.01, method='iterative'"), folder, "loose_e")[3][0]
 kc.check(r["verdict"] == "ok" and r["mx"] == 96, f"circle, target 1 %: ok on the base levels ({r['mx']} x {r['my']})")
 
-# the levels' GMRES stops at min(1e-2 x target, 1e-5) when no tolerance is given
-# (kcreep_refine_estimate level_solver_tolerance; 1e-5 at this target): fewer iterations
-# (circle at 1e-2: measured 11 against 26 on its finest level), the same coefficients
+# the levels' GMRES stops at min(0.1 x target, 1e-4) when no tolerance is given
+# (kcreep_refine_estimate level_solver_tolerance; 1e-4 at this target): fewer iterations
+# (circle at 1e-2: measured 8 against 26 on its finest level), the same coefficients
 # to a small part of the target (measured at target 1e-2 on levels with a blended
-# edge: C22 moved by 1.02e-5, C11 and C23 by 3e-6 and 1e-6; allowed 2e-3 x target
-# = 2e-5, twice the levels' residual), and no 'inaccurate' flag
+# edge: C11, C22, C23 moved by 1.6e-5, 1.5e-5, 3.7e-5; allowed 2e-2 x target = 2e-4,
+# twice the levels' residual), and no 'inaccurate' flag
 given = kc.run(nml("semi_a=1, semi_b=1", solver="target_error=0.01, method='iterative', tolerance=1e-11"),
                folder, "loose_given")[3][0]
 kc.check(r["iterations"] < given["iterations"] and r["verdict"] == "ok",
          f"levels without a tolerance: {r['iterations']} GMRES iterations on the finest level against "
          f"{given['iterations']} with tolerance 1e-11, verdict {r['verdict']}")
 for c in COEFFS:
-    kc.check(abs(r[c] / given[c] - 1) <= 2e-3 * 0.01, f"{c}: {r[c]:.8f} against {given[c]:.8f} at tolerance 1e-11")
+    kc.check(abs(r[c] / given[c] - 1) <= 2e-2 * 0.01, f"{c}: {r[c]:.8f} against {given[c]:.8f} at tolerance 1e-11")
 
 # --- 5. bad input
 code, out, err, t = kc.run(nml("semi_a=1, semi_b=1", solver="target_error=-1"), folder, "bad", expect_ok=False)

@@ -47,6 +47,7 @@ program test_region
 
   call test_contour_moments()
   call test_solved_hertz()
+  call test_solved_long_hertz()
 
   ! two lobes: part_patch keeps the cells of one
   lobes = .false.
@@ -138,6 +139,42 @@ contains
   !> own p^2 (1): -0.112 / +0.036 %; the parabola behind them (0): +0.26 /
   !> -0.23 %).
   subroutine test_solved_hertz()
+    type(hertz_t) :: hz
+    real(real64) :: h
+    integer :: n
+    hz = hertz_of(2.842753_real64)
+    h = 2 * hz%b / 64
+    n = 2 * ceiling(1.2_real64 * hz%a / h)
+    call check_solved_hertz(2.842753_real64, h, h, n, n / 2, 'a/b = 2, 64 cells across 2b')
+  end subroutine test_solved_hertz
+
+  !> A long contact area on the long cells its normal grids get
+  !> (kcreep_gap_levels normal_cell_shape): Hertz a/b = 20 solved on cells
+  !> 4 times as long in x as in y, 64 across 2b. Measured area / aspect
+  !> errors of the zero level: +0.012 / +0.014 % (twice as long: +0.003 /
+  !> +0.003 %); the bound is the square cells' one.
+  subroutine test_solved_long_hertz()
+    type(hertz_t) :: hz
+    real(real64) :: hy
+    hz = hertz_of(117.645657_real64)
+    hy = 2 * hz%b / 64
+    call check_solved_hertz(117.645657_real64, 4 * hy, hy, 2 * ceiling(1.1_real64 * hz%a / (4 * hy)), &
+                            2 * ceiling(1.2_real64 * hz%b / hy), 'a/b = 20 on cells 4 times as long, 64 across 2b')
+  end subroutine test_solved_long_hertz
+
+  !> Hertz's contact of the gap x^2 / (2 rx) + y^2 / 2 at approach 0.01 (unit compliance).
+  function hertz_of(rx) result(hz)
+    real(real64), intent(in) :: rx
+    type(hertz_t) :: hz
+    hz = hertz_from_approach(1 / (2 * rx), 0.5_real64, 1.0_real64, 0.01_real64)
+  end function hertz_of
+
+  !> The normal problem of that gap on nx x ny cells of hx x hy centred on
+  !> the contact: its region's area and aspect within 0.1 % of Hertz's.
+  subroutine check_solved_hertz(rx, hx, hy, nx, ny, label)
+    real(real64), intent(in) :: rx, hx, hy
+    integer, intent(in) :: nx, ny
+    character(len=*), intent(in) :: label
     type(polynomial_gap_t) :: poly
     type(gap_t) :: gap
     type(normal_options_t) :: opt
@@ -146,23 +183,20 @@ contains
     type(patch_t) :: cells
     type(region_t) :: solved
     type(moment_reference_t) :: m
-    real(real64) :: h, area_error, aspect_error
-    integer :: n
-    poly%rx = 2.842753_real64
+    real(real64) :: area_error, aspect_error
+    poly%rx = rx
     poly%ry = 1
-    hz = hertz_from_approach(1 / (2 * poly%rx), 1 / (2 * poly%ry), 1.0_real64, 0.01_real64)
-    h = 2 * hz%b / 64
-    n = 2 * ceiling(1.2_real64 * hz%a / h)
-    call gap_from_polynomial(poly, n, n / 2, h, h, -(n - 1) * h / 2, -(n / 2 - 1) * h / 2, gap, status)
-    call solve_normal(gap%h, h, h, 1.0_real64, opt, res, status, approach=0.01_real64)
-    call mask_patch(res%pressure > 0, h, h, gap%x0, gap%y0, 'test', cells, status)
+    hz = hertz_of(rx)
+    call gap_from_polynomial(poly, nx, ny, hx, hy, -(nx - 1) * hx / 2, -(ny - 1) * hy / 2, gap, status)
+    call solve_normal(gap%h, hx, hy, 1.0_real64, opt, res, status, approach=0.01_real64)
+    call mask_patch(res%pressure > 0, hx, hy, gap%x0, gap%y0, 'test', cells, status)
     solved = sampled_region(cells, res%pressure, status)
     m = contour_reference(solved)
     area_error = contour_area(solved) / (pi * hz%a * hz%b) - 1
     aspect_error = m%semi_a / m%semi_b / (hz%a / hz%b) - 1
-    print '(a, 2es10.2)', 'solved Hertz a/b = 2, 64 cells across 2b: area and aspect error', area_error, aspect_error
+    print '(a, a, a, 2es10.2)', 'solved Hertz ', label, ': area and aspect error', area_error, aspect_error
     call t%check(abs(area_error) < 1e-3_real64 .and. abs(aspect_error) < 1e-3_real64, &
-                 'sampled_region of a solved pressure: area and aspect within 0.1 % of Hertz''s')
-  end subroutine test_solved_hertz
+                 'sampled_region of a solved pressure ('//label//'): area and aspect within 0.1 % of Hertz''s')
+  end subroutine check_solved_hertz
 
 end program test_region
