@@ -16,9 +16,10 @@
 !> z'^2)^(3/2) the envelope's second derivative in y, which is large on a
 !> flange: at 70 degrees (z' = 2.7) on a 10 mm radius, 2.4 / mm. At a step of
 !> 0.01 mm that was 3e-5 mm, a ripple with the period of the normal grid's
-!> cells, and the S1002 flange patches' contact area moved by 0.1 % when the
-!> grid was moved by half a cell (C11 0.2 % apart between grids); at 0.001 mm
-!> (3e-7 mm) the move is 1-4e-4 (docs/wheel_rail.md, "Speed").
+!> cells: the S1002 +8 mm flange patch moved by 0.1 % when its normal grid
+!> was moved by half a cell, and the +7 mm row's C11 was 0.2 % apart between
+!> normal grids; at 0.001 mm (3e-7 mm) the +8 mm patch's normal-grid part of
+!> C11's estimate is 0.007 % instead of 0.083 % (docs/wheel_rail.md, "Speed").
 module kcreep_profile
   use, intrinsic :: iso_fortran_env, only: real64
   use kcreep_status, only: status_t, fail, exit_bad_input
