@@ -55,15 +55,14 @@ contains
     ref = moment_reference_t(patch%ellipse_centre(), patch%semi_a, patch%semi_b, .false.)
   end function ellipse_reference
 
-  !> The reference of a contact area, or of one of its separate parts: the
-  !> moments of its zero level itself (kcreep_region contour_moments), not
-  !> of a staircase of it; a level's moments about its own centroid.
-  pure function contour_reference(region, part) result(ref)
+  !> The reference of a contact area: the moments of its zero level itself
+  !> (kcreep_region contour_moments), not of a staircase of it; a level's
+  !> moments about its own centroid.
+  pure function contour_reference(region) result(ref)
     type(region_t), intent(in) :: region
-    integer, intent(in), optional :: part
     type(moment_reference_t) :: ref
     real(real64) :: m(5)
-    m = contour_moments(region, part)
+    m = contour_moments(region)
     ref%centre = m(2:3)
     ref%semi_a = 2 * sqrt(m(4) / m(1))
     ref%semi_b = 2 * sqrt(m(5) / m(1))

@@ -69,8 +69,6 @@ module kcreep_region
     type(patch_t) :: reference                   !< the region on cells a quarter the fine size (max_reference_cells)
     real(real64) :: diameter = 0                 !< the size levels are counted across (level_size)
     real(real64), allocatable :: edge(:, :)      !< (4, pieces) x, y from and to: the zero level, inside on the left
-    integer, allocatable :: edge_part(:)         !< (pieces) the separate part of the region each piece bounds
-    integer :: parts = 0                         !< separate parts (1, 2, ...)
   contains
     procedure :: contains_point => region_contains_point
   end type region_t
@@ -116,16 +114,13 @@ contains
   !> 0) on its left. Going round a square counter-clockwise, a piece runs
   !> from a crossing out of the region to the crossing into it before it
   !> (the corners cut off) or after it (a saddle whose centre is inside).
-  !> Each piece belongs to the part of the corner it starts beside.
   pure subroutine zero_level_pieces(region)
     type(region_t), intent(inout) :: region
     integer, parameter :: di(5) = [0, 1, 1, 0, 0], dj(5) = [0, 0, 1, 1, 0]
     real(real64) :: v(5), corner(2, 5), cross(2, 4)
-    integer, allocatable :: label(:, :)
     logical :: leaves(4)
-    integer :: i, j, k, n, m, start(4), pieces
-    call label_parts(region%level, label, region%parts)
-    allocate (region%edge(4, 2 * (region%mx - 1) * (region%my - 1)), region%edge_part(2 * (region%mx - 1) * (region%my - 1)))
+    integer :: i, j, k, n, m, pieces
+    allocate (region%edge(4, 2 * (region%mx - 1) * (region%my - 1)))
     pieces = 0
     do j = 1, region%my - 1
       do i = 1, region%mx - 1
@@ -138,7 +133,6 @@ contains
         do k = 1, 4
           if ((v(k) > 0) .eqv. (v(k + 1) > 0)) cycle
           n = n + 1
-          start(n) = k
           cross(:, n) = corner(:, k) + v(k) / (v(k) - v(k + 1)) * (corner(:, k + 1) - corner(:, k))
           leaves(n) = v(k) > 0
         end do
@@ -151,67 +145,23 @@ contains
           end if
           pieces = pieces + 1
           region%edge(:, pieces) = [cross(:, k), cross(:, m)]
-          region%edge_part(pieces) = label(i + di(start(k)), j + dj(start(k)))
         end do
       end do
     end do
     region%edge = region%edge(:, 1:pieces)
-    region%edge_part = region%edge_part(1:pieces)
   end subroutine zero_level_pieces
-
-  !> The separate parts of {level > 0}: cell centres joined to their four
-  !> neighbours, and across a square's diagonal where its centre is inside.
-  pure subroutine label_parts(level, label, parts)
-    real(real64), intent(in) :: level(:, :)
-    integer, allocatable, intent(out) :: label(:, :)
-    integer, intent(out) :: parts
-    integer, allocatable :: stack(:, :)
-    integer :: i, j, top, ci, cj, ni, nj, d
-    integer, parameter :: step(2, 8) = reshape([1, 0, -1, 0, 0, 1, 0, -1, 1, 1, -1, -1, 1, -1, -1, 1], [2, 8])
-    allocate (label(size(level, 1), size(level, 2)), source=0)
-    allocate (stack(2, count(level > 0)))
-    parts = 0
-    do j = 1, size(level, 2)
-      do i = 1, size(level, 1)
-        if (level(i, j) <= 0 .or. label(i, j) > 0) cycle
-        parts = parts + 1
-        label(i, j) = parts
-        top = 1
-        stack(:, 1) = [i, j]
-        do while (top > 0)
-          ci = stack(1, top)
-          cj = stack(2, top)
-          top = top - 1
-          do d = 1, 8
-            ni = ci + step(1, d)
-            nj = cj + step(2, d)
-            if (ni < 1 .or. nj < 1 .or. ni > size(level, 1) .or. nj > size(level, 2)) cycle
-            if (level(ni, nj) <= 0 .or. label(ni, nj) > 0) cycle
-            ! a diagonal joins through the square's centre only
-            if (d > 4) then
-              if (level(ci, cj) + level(ni, nj) + level(ci, nj) + level(ni, cj) <= 0) cycle
-            end if
-            label(ni, nj) = parts
-            top = top + 1
-            stack(:, top) = [ni, nj]
-          end do
-        end do
-      end do
-    end do
-  end subroutine label_parts
 
   !> The region's area, centroid and second moments about it, over the zero
   !> level: [area, xc, yc, integral of (x - xc)^2, of (y - yc)^2].
-  pure function contour_moments(region, part) result(m)
+  pure function contour_moments(region) result(m)
     type(region_t), intent(in) :: region
-    integer, intent(in), optional :: part   !< one separate part only (region%edge_part)
     real(real64) :: m(5), area, xc, yc
     ! Green: the integral of P over the region is that of Q dy round its
     ! edge, dQ/dx = P: P = 1, x, y with Q = x, x^2 / 2, x y
-    area = along_edge(region, 0.0_real64, 0.0_real64, 1, part)
-    xc = along_edge(region, 0.0_real64, 0.0_real64, 2, part) / area
-    yc = along_edge(region, 0.0_real64, 0.0_real64, 3, part) / area
-    m = [area, xc, yc, along_edge(region, xc, yc, 4, part), along_edge(region, xc, yc, 5, part)]
+    area = along_edge(region, 0.0_real64, 0.0_real64, 1)
+    xc = along_edge(region, 0.0_real64, 0.0_real64, 2) / area
+    yc = along_edge(region, 0.0_real64, 0.0_real64, 3) / area
+    m = [area, xc, yc, along_edge(region, xc, yc, 4), along_edge(region, xc, yc, 5)]
   end function contour_moments
 
   !> The region's area, over its zero level.
@@ -220,27 +170,16 @@ contains
     contour_area = along_edge(region, 0.0_real64, 0.0_real64, 1)
   end function contour_area
 
-  !> Whether piece k bounds another part than `part` (none: every piece counts).
-  pure logical function other_part(region, k, part)
-    type(region_t), intent(in) :: region
-    integer, intent(in) :: k
-    integer, intent(in), optional :: part
-    other_part = .false.
-    if (present(part)) other_part = region%edge_part(k) /= part
-  end function other_part
-
   !> The integral of Q dy round the region's edge about (xc, yc), Q one of
   !> u, u^2 / 2, u w, u^3 / 3, u w^2 (u = x - xc, w = y - yc).
-  pure real(real64) function along_edge(region, xc, yc, which, part) result(total)
+  pure real(real64) function along_edge(region, xc, yc, which) result(total)
     type(region_t), intent(in) :: region
     real(real64), intent(in) :: xc, yc
     integer, intent(in) :: which
-    integer, intent(in), optional :: part
     real(real64) :: u(3), w(3), q(3)
     integer :: k
     total = 0
     do k = 1, size(region%edge, 2)
-      if (other_part(region, k, part)) cycle
       u = region%edge(1, k) + gauss_t * (region%edge(3, k) - region%edge(1, k)) - xc
       w = region%edge(2, k) + gauss_t * (region%edge(4, k) - region%edge(2, k)) - yc
       select case (which)
