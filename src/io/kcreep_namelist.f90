@@ -10,7 +10,7 @@ module kcreep_namelist
   use, intrinsic :: iso_fortran_env, only: real64, iostat_end
   use kcreep_status, only: status_t, fail, exit_bad_input
   use kcreep_strings, only: rtoa, itoa, resolve_path, folder_of
-  use kcreep, only: patch_t, ellipse_patch, mask_patch, problem_t, collocation_aspect_limit
+  use kcreep, only: patch_t, ellipse_patch, mask_patch, problem_t, collocation_aspect_limit, max_wheel_rail_shifts
   use kcreep_refine_estimate, only: default_target_error
   use kcreep_mask_file, only: read_mask_file, parse_mask_rows
   use kcreep_contact_reader, only: read_contact_case, combined_material
@@ -26,7 +26,7 @@ module kcreep_namelist
   use kcreep_nml_fastsim, only: fastsim_variables, fastsim_group_t, read_fastsim_group, apply_fastsim_group
   use kcreep_nml_wheel_rail, only: wheel_rail_variables, wheel_rail_group_t, read_wheel_rail_group, &
                                    apply_wheel_rail_group
-  use kcreep_nml_rolling, only: rolling_variables, read_rolling_group
+  use kcreep_nml_rolling, only: read_rolling_group
   implicit none
   private
   public :: config_t, read_config, build_patch, problem_of, max_inline_rows, max_row_length, max_creepages
@@ -142,7 +142,7 @@ contains
     if (.not. status%failed()) call apply_normal_group(normal, present(5), cfg, status)
     ! &rolling reads and checks its group itself, for the patch's shape
     if (present(8) .and. .not. status%failed()) then
-      call read_rolling_group(unit, path, .true., closed(8) .and. last_line_open, cfg%shape, cfg%extrapolate, &
+      call read_rolling_group(unit, path, text, .true., closed(8) .and. last_line_open, cfg%shape, cfg%extrapolate, &
                               cfg%wheel_rail_on, cfg%rolling, status)
       if (.not. status%failed()) call apply_rolling_output(cfg, output%rolling_file, output%rolling_map_file, status)
     end if
@@ -181,7 +181,7 @@ contains
         ! the compiler's words ("Cannot match namelist object name '.5'") in the input's
         select case (k)
         case (1)
-          why = diagnose_group(text, 'patch', patch_variables)
+          why = diagnose_group(text, 'patch', patch_variables, max_inline_rows - 1)
         case (2)
           why = diagnose_group(text, 'material', material_variables)
         case (3)
@@ -191,11 +191,9 @@ contains
         case (5)
           why = diagnose_group(text, 'normal', normal_variables)
         case (6)
-          why = diagnose_group(text, 'fastsim', fastsim_variables)
-        case (8)
-          why = diagnose_group(text, 'rolling', rolling_variables)
+          why = diagnose_group(text, 'fastsim', fastsim_variables, 3 * max_creepages)
         case default
-          why = diagnose_group(text, 'wheel_rail', wheel_rail_variables)
+          why = diagnose_group(text, 'wheel_rail', wheel_rail_variables, max_wheel_rail_shifts)
         end select
         if (len(why) == 0) why = '&'//trim(group_names(k))//': '//trim(msg)
         call fail(status, exit_bad_input, 'input '''//path//''': namelist '//why)

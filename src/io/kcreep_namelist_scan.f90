@@ -3,7 +3,9 @@
 !> asked for: a misspelt group name, a group given twice (only the first is
 !> read), a stray 'mx = 10' without a group, a binary file. This pass turns
 !> each of those into an error with its line number, and tells which of the
-!> known groups are present.
+!> known groups are present. A group may follow another on the same line
+!> (the namelist read finds it there); anything else after a group's closing
+!> / other than a comment is text outside the groups.
 module kcreep_namelist_scan
   use kcreep_status, only: status_t, fail, exit_bad_input
   use kcreep_strings, only: itoa, lower, printable
@@ -63,16 +65,21 @@ contains
       if (inside) then
         if (c == '''' .or. c == '"') then
           quote = c
-        else if (c == '/') then                   ! end of the group; the rest of the line is a comment
+        else if (c == '/') then                   ! end of the group; what follows is read as outside any
           inside = .false.
           ended(current) = .true.
-          call skip_line(text, i)
         else if (c == '&') then
-          if (lower(name_at(i + 1)) == 'end') then
-            inside = .false.
-            ended(current) = .true.
-            call skip_line(text, i)
+          word = name_at(i + 1)
+          if (lower(word) /= 'end') then
+            call fail(status, exit_bad_input, label//', line '//itoa(line)//': namelist group &'// &
+                      trim(group_names(current))//' (line '//itoa(first_line(current))// &
+                      ') is not closed with / before &'//shorten(word))
+            return
           end if
+          inside = .false.
+          ended(current) = .true.
+          i = i + len(word)
+          col = col + len(word)
         end if
         cycle
       end if
@@ -137,17 +144,21 @@ contains
   end subroutine scan_namelist_text
 
   !> Why the namelist read of group failed, in the input's terms: a name that
-  !> is not one of the group's variables (listing them), or a value of the
-  !> wrong type (naming the variable and its type). variables: 'name kind',
-  !> kind integer, real, logical or character. Empty when nothing is found
-  !> (the caller keeps the compiler's message then).
-  pure function diagnose_group(text, group, variables) result(message)
+  !> is not one of the group's variables (listing them), a value of the
+  !> wrong type (naming the variable and its type), or more values than the
+  !> variable takes. variables: 'name kind [size]', kind integer, real,
+  !> logical or character; size the number of values an array takes, or
+  !> 'list' for the group's long list, which takes list_most (a scalar
+  !> takes one). Empty when nothing is found (the caller keeps the
+  !> compiler's message then).
+  pure function diagnose_group(text, group, variables, list_most) result(message)
     character(len=*), intent(in) :: text, group
     character(len=*), intent(in) :: variables(:)
+    integer, intent(in), optional :: list_most
     character(len=:), allocatable :: message
-    character(len=:), allocatable :: body, name, kind, allowed
+    character(len=:), allocatable :: body, name, kind, allowed, size_word
     integer, allocatable :: first(:), last(:)
-    integer :: n, k, j, v, end_values
+    integer :: n, k, j, v, end_values, most, given, star
 
     message = ''
     body = group_body(text, group)
@@ -184,22 +195,75 @@ contains
           return
         end if
       end do
+      ! how many values: r*value counts r
+      size_word = word(variables(v), 3)
+      most = 1
+      if (size_word == 'list') then
+        most = huge(1)
+        if (present(list_most)) most = list_most
+      else if (len(size_word) > 0) then
+        most = value_of(size_word)
+      end if
+      given = element_offset(body(first(k - 1):last(k - 1)))   ! name(i) = ...: values from element i on
+      do j = k + 1, end_values
+        given = given + 1
+        star = index(body(first(j):last(j)), '*')
+        if (star > 1) then
+          if (verify(body(first(j):first(j) + star - 2), '0123456789') == 0 .and. star <= 10) &
+            given = given - 1 + value_of(body(first(j):first(j) + star - 2))
+        end if
+      end do
+      if (given > most) then
+        message = '&'//group//' '//name//': '//itoa(given)//' values given (allowed: at most '//itoa(most)//')'
+        return
+      end if
     end do
+
+  contains
+
+    !> i - 1 for 'name(i)' or 'name(i:j)', else 0.
+    pure integer function element_offset(token)
+      character(len=*), intent(in) :: token
+      integer :: open, stop
+      element_offset = 0
+      open = index(token, '(')
+      if (open == 0) return
+      stop = open
+      do while (stop < len(token))
+        if (index('0123456789', token(stop + 1:stop + 1)) == 0) exit
+        stop = stop + 1
+      end do
+      if (stop > open .and. stop - open <= 9) element_offset = value_of(token(open + 1:stop)) - 1
+    end function element_offset
+
+    !> The value of up to 9 decimal digits.
+    pure integer function value_of(digits)
+      character(len=*), intent(in) :: digits
+      integer :: i
+      value_of = 0
+      do i = 1, len(digits)
+        value_of = 10 * value_of + (iachar(digits(i:i)) - iachar('0'))
+      end do
+    end function value_of
+
   end function diagnose_group
 
   !> The text of group (after '&group', up to its closing '/' or '&end'),
-  !> comments blanked; empty when the group is not there.
+  !> comments blanked; empty when the group is not there. One pass, then one
+  !> copy: a group of a million values takes milliseconds.
   pure function group_body(text, group) result(body)
     character(len=*), intent(in) :: text, group
+    character(len=*), parameter :: separators = ' ,'//achar(9)//achar(10)//achar(13)
     character(len=:), allocatable :: body
-    integer :: i, start
+    integer :: i, start, stop
     character :: quote
     logical :: inside, comment
 
-    body = ''
     inside = .false.
     comment = .false.
     quote = ' '
+    start = 1
+    stop = len(text)
     i = 0
     do while (i < len(text))
       i = i + 1
@@ -207,29 +271,47 @@ contains
       if (comment) cycle
       if (quote /= ' ') then
         if (text(i:i) == quote) quote = ' '
-        if (inside) body = body//text(i:i)
         cycle
       end if
       if (text(i:i) == '!') then
         comment = .true.
-        if (inside) body = body//' '
         cycle
       end if
-      if (.not. inside) then
-        if (text(i:i) == '&' .and. i + len(group) < len(text)) then
-          if (lower(text(i + 1:i + len(group))) == group) then
-            start = i + len(group) + 1
-            if (verify(text(start:start), ' ,'//achar(9)//achar(10)//achar(13)) == 0) then
-              inside = .true.
-              i = start - 1
-            end if
-          end if
+      if (inside) then
+        if (text(i:i) == '/' .or. text(i:i) == '&') then
+          stop = i - 1
+          exit
         end if
-        cycle
+        if (text(i:i) == '''' .or. text(i:i) == '"') quote = text(i:i)
+      else if (text(i:i) == '&' .and. i + len(group) < len(text)) then
+        if (lower(text(i + 1:i + len(group))) == group .and. &
+            index(separators, text(i + len(group) + 1:i + len(group) + 1)) > 0) then
+          inside = .true.
+          start = i + len(group) + 1
+          i = start - 1
+        end if
       end if
-      if (text(i:i) == '/' .or. text(i:i) == '&') return
-      if (text(i:i) == '''' .or. text(i:i) == '"') quote = text(i:i)
-      body = body//text(i:i)
+    end do
+    if (.not. inside) then
+      body = ''
+      return
+    end if
+    body = text(start:stop)
+    ! blank the comments (strings as above)
+    comment = .false.
+    quote = ' '
+    do i = 1, len(body)
+      if (body(i:i) == achar(10)) comment = .false.
+      if (comment) then
+        body(i:i) = ' '
+      else if (quote /= ' ') then
+        if (body(i:i) == quote) quote = ' '
+      else if (body(i:i) == '!') then
+        comment = .true.
+        body(i:i) = ' '
+      else if (body(i:i) == '''' .or. body(i:i) == '"') then
+        quote = body(i:i)
+      end if
     end do
   end function group_body
 
@@ -360,21 +442,23 @@ contains
     end select
   end function described
 
-  !> Word k (1 or 2) of 'name kind'.
+  !> Word k (1, 2 or 3) of 'name kind size'; empty when there is none.
   pure function word(entry, k) result(w)
     character(len=*), intent(in) :: entry
     integer, intent(in) :: k
     character(len=:), allocatable :: w
-    integer :: blank
+    integer :: blank, j
     w = trim(adjustl(entry))
-    blank = index(w, ' ')
-    if (k == 1) then
-      if (blank > 0) w = w(1:blank - 1)
-    else if (blank > 0) then
+    do j = 1, k - 1
+      blank = index(w, ' ')
+      if (blank == 0) then
+        w = ''
+        return
+      end if
       w = trim(adjustl(w(blank + 1:)))
-    else
-      w = ''
-    end if
+    end do
+    blank = index(w, ' ')
+    if (blank > 0) w = w(1:blank - 1)
   end function word
 
   !> Move pos to the last character before the next line end.

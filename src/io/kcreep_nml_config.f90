@@ -129,10 +129,6 @@ contains
       if (values(n_values) /= unset) exit
       n_values = n_values - 1
     end do
-    if (n_values > 3 * max_points) then
-      call fail(status, exit_bad_input, where//'creepages: more than '//itoa(max_points)//' points')
-      return
-    end if
     if (mod(n_values, 3) /= 0) then
       call fail(status, exit_bad_input, where//'creepages: '//itoa(n_values)//' numbers given (allowed: '// &
                 '(xi, eta, phi) triples, a multiple of 3)')

@@ -25,7 +25,7 @@ module kcreep_nml_fastsim
   !> The group's variables and their types, as in its namelist statement
   !> (kcreep_namelist_scan diagnose_group explains a failed read with them).
   character(len=*), parameter :: fastsim_variables(16) = [character(len=29) :: &
-    'mu real', 'creepages real', 'sweep_direction real', 'sweep_from real', 'sweep_to real', &
+    'mu real', 'creepages real list', 'sweep_direction real 3', 'sweep_from real', 'sweep_to real', &
     'sweep_points integer', 'sweep_spacing character', 'pressure character', &
     'pressure_input_file character', 'fn real', 'flexibility character', 'l1 real', 'l2 real', 'l3 real', &
     'rule character', 'maps logical']
@@ -47,7 +47,7 @@ contains
     namelist /fastsim/ mu, creepages, sweep_direction, sweep_from, sweep_to, sweep_points, sweep_spacing, &
                        pressure, pressure_input_file, fn, flexibility, l1, l2, l3, rule, maps
 
-    allocate (creepages(3 * max_creepages + 1))
+    allocate (creepages(3 * max_creepages))   ! more values: the read fails, diagnose_group counts them
     creepages = unset
     mu = grp%mu
     fn = grp%fn

@@ -23,9 +23,9 @@ module kcreep_nml_patch
 
   !> The group's variables and their types, as in its namelist statement
   !> (kcreep_namelist_scan diagnose_group explains a failed read with them).
-  character(len=*), parameter :: patch_variables(13) = [character(len=22) :: &
+  character(len=*), parameter :: patch_variables(13) = [character(len=24) :: &
     'shape character', 'semi_a real', 'semi_b real', 'mx integer', 'my integer', 'mask_file character', &
-    'mask_rows character', 'dx real', 'dy real', 'x0 real', 'y0 real', 'contact_file character', &
+    'mask_rows character list', 'dx real', 'dy real', 'x0 real', 'y0 real', 'contact_file character', &
     'contact_case integer']
 
 contains

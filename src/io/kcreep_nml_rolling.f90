@@ -16,6 +16,7 @@ module kcreep_nml_rolling
   use kcreep_status, only: status_t, fail, exit_bad_input
   use kcreep_strings, only: itoa, rtoa, lower, resolve_path, folder_of
   use kcreep, only: default_rolling_tolerance
+  use kcreep_namelist_scan, only: diagnose_group
   use kcreep_nml_config, only: rolling_config_t, max_rolling_points, creepage_points, pressure_source, &
                                check_pressure_use, unset
   implicit none
@@ -25,19 +26,19 @@ module kcreep_nml_rolling
   !> The group's variables and their types, as in its namelist statement
   !> (kcreep_namelist_scan diagnose_group explains a failed read with them).
   character(len=*), parameter :: rolling_variables(12) = [character(len=29) :: &
-    'mu real', 'creepages real', 'sweep_direction real', 'sweep_from real', 'sweep_to real', &
+    'mu real', 'creepages real list', 'sweep_direction real 3', 'sweep_from real', 'sweep_to real', &
     'sweep_points integer', 'sweep_spacing character', 'pressure character', &
     'pressure_input_file character', 'fn real', 'maps logical', 'tolerance real']
 
 contains
 
-  !> Read &rolling from unit (rewound here) and validate it for a patch of
-  !> the given shape. given: the group is in the file; closed_open: its /
+  !> Read &rolling from unit (rewound here; text: the whole file, to explain a
+  !> failed read) and validate it for a patch of the given shape. given: the group is in the file; closed_open: its /
   !> was read and only the last newline is missing (a complete group);
   !> wheel_rail: with &wheel_rail, each patch's normal pressure (no maps).
-  subroutine read_rolling_group(unit, path, given, closed_open, shape, extrapolate, wheel_rail, config, status)
+  subroutine read_rolling_group(unit, path, text, given, closed_open, shape, extrapolate, wheel_rail, config, status)
     integer, intent(in) :: unit
-    character(len=*), intent(in) :: path, shape
+    character(len=*), intent(in) :: path, text, shape
     logical, intent(in) :: given, closed_open, extrapolate, wheel_rail
     type(rolling_config_t), intent(out) :: config
     type(status_t), intent(inout) :: status
@@ -47,7 +48,7 @@ contains
     character(len=16) :: sweep_spacing, pressure
     character(len=4096) :: pressure_input_file
     character(len=512) :: msg
-    character(len=:), allocatable :: where
+    character(len=:), allocatable :: where, why
     logical :: maps
     namelist /rolling/ mu, creepages, sweep_direction, sweep_from, sweep_to, sweep_points, sweep_spacing, &
                        pressure, pressure_input_file, fn, maps, tolerance
@@ -55,7 +56,7 @@ contains
     config%on = given
     if (.not. given .or. status%failed()) return
     mu = unset
-    allocate (creepages(3 * max_rolling_points + 1))
+    allocate (creepages(3 * max_rolling_points))   ! more values: the read fails, diagnose_group counts them
     creepages = unset
     sweep_direction = 0
     sweep_from = 0
@@ -74,7 +75,10 @@ contains
     if (ios == iostat_end) then
       call fail(status, exit_bad_input, 'input '''//path//''': namelist &rolling: end of file before the closing /')
     else if (ios /= 0) then
-      call fail(status, exit_bad_input, 'input '''//path//''': namelist &rolling: '//trim(msg))
+      ! the compiler's words ("Bad data for namelist object") in the input's
+      why = diagnose_group(text, 'rolling', rolling_variables, 3 * max_rolling_points)
+      if (len(why) == 0) why = '&rolling: '//trim(msg)
+      call fail(status, exit_bad_input, 'input '''//path//''': namelist '//why)
     end if
     if (status%failed()) return
 

@@ -136,12 +136,18 @@ def section_given():
         "spin_default": "&patch mx=10, my=10 /\n&solver spin_shift=0.2 /\n",
         "x0_same": "&patch shape='mask', mask_file='g.mask', x0=0 /\n",
         "default_grid": "&patch semi_a=1 /\n&solver target_error=0 /\n",
+        # a group after another's / on the same line (issue 45: G = 1 was used, exit 0)
+        "one_line": "&patch semi_a = 2, semi_b = 1 / &material g = 5, nu = 0.3 /\n",
+        "one_line_end": "&patch semi_a = 2, semi_b = 1 &end &material g = 5, nu = 0.3 /",
     }
     for name, text in ok.items():
         rc, out, err, table = kc.run(text, folder, name, expect_ok=False)
         kc.check(rc == 0, f"{name}: accepted ({err.strip()})")
         if name == "default_grid" and table:
             kc.check(table[0]["mx"] == 60 and table[0]["my"] == 60, "default grid 60 x 60 when mx, my are left out")
+        if name.startswith("one_line") and table:
+            kc.check(table[0]["g"] == 5 and table[0]["nu"] == 0.3 and abs(table[0]["c"] - 2 ** 0.5) < 1e-12,
+                     f"{name}: both groups of the line read (g {table[0]['g']}, nu {table[0]['nu']}, c {table[0]['c']})")
 
 
 def section_spin():
