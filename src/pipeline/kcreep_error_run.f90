@@ -84,7 +84,8 @@ contains
         across = min(patch%mx, patch%my) / 2
         if (across < min_estimate_cells) then
           line = 'no error estimate: the grid with twice the cell size would have '//itoa(across)// &
-                 ' cells across, fewer than '//itoa(min_estimate_cells)//' (the grid is too coarse to judge itself)'
+                 ' cells across, fewer than '//itoa(min_estimate_cells)//' (the grid is too coarse to judge itself; '// &
+                 'give mx, my of at least '//itoa(2 * min_estimate_cells)//')'
           call add_warning(result, line)
           return
         end if

@@ -111,7 +111,7 @@ contains
       if (across < min_estimate_cells) then
         line = 'no error estimate: the geometry on cells twice the size would have '//rtoa(across)// &
                ' cells across the contact area (4 area / perimeter), fewer than '//itoa(min_estimate_cells)// &
-               ' (the grid is too coarse to judge itself; refine the gap''s grid, cells_across)'
+               ' (the grid is too coarse to judge itself; '//finer_grid()//')'
         result%warnings = [result%warnings, line]
         return
       end if
@@ -130,6 +130,20 @@ contains
     do i = 1, 3
       result%err(i) = gap_single_estimate(result%cn(i), aux(1)%cn(i), aux(2)%cn(i))
     end do
+  contains
+
+    !> What the user can set for a finer grid, by where the gap comes from.
+    function finer_grid() result(text)
+      character(len=:), allocatable :: text
+      if (allocated(problem%normal%plane)) then
+        text = 'with &wheel_rail set &solver target_error > 0, e.g. 1e-2, and kcreep chooses the grids'
+      else if (problem%normal%poly_given) then
+        text = 'raise &normal cells_across, or set &solver target_error > 0 and leave the grid to kcreep'
+      else
+        text = 'give the gap on a finer grid'
+      end if
+    end function finer_grid
+
   end subroutine run_gap_single
 
   !> The error of a gap patch's coefficient on one grid from the geometry on

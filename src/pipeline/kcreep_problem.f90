@@ -8,6 +8,7 @@
 !> tractions. Nothing here knows about namelists or files.
 module kcreep_problem
   use, intrinsic :: iso_fortran_env, only: real64, int64
+  use, intrinsic :: ieee_arithmetic, only: ieee_is_nan
   use kcreep_patch, only: patch_t
   use kcreep_assembly, only: scheme_t, n_load_cases
   use kcreep_solver_options, only: solver_options_t
@@ -166,8 +167,9 @@ contains
   end subroutine add_warning
 
   !> 'uncertain' in the verdict, with its warning, when an estimate misses its
-  !> target. what: the estimates' name in the warning; advice: what could reach
-  !> the target (optional, appended).
+  !> target or is missing (target 0 too: an 'ok' needs a finite estimate).
+  !> what: the estimates' name in the warning; advice: what could reach the
+  !> target (optional, appended).
   pure subroutine add_uncertain(result, target, what, advice, solved)
     type(result_t), intent(inout) :: result
     real(real64), intent(in) :: target
@@ -178,11 +180,42 @@ contains
     real(real64) :: targets(3)
     if (len(uncertain_flag(result%err, target, solved)) == 0) return
     targets = coefficient_targets(target)
-    line = 'uncertain: '//what//' of C11, C22, C23 '//rtoa(result%err(1))//', '//rtoa(result%err(2))//', '// &
-           rtoa(result%err(3))//' against targets '//rtoa(targets(1))//', '//rtoa(targets(2))//', '// &
-           rtoa(targets(3))//' (target_error, C23 gets 3 times it)'
+    if (target > 0) then
+      line = 'uncertain: '//what//' of C11, C22, C23 '//estimate(1)//', '//estimate(2)//', '//estimate(3)// &
+             ' against targets '//rtoa(targets(1))//', '//rtoa(targets(2))//', '//rtoa(targets(3))// &
+             ' (target_error, C23 gets 3 times it)'
+    else
+      line = 'uncertain: no error estimate of '//missing()//' (target_error = 0 sets no target, but ok needs '// &
+             'an estimate)'
+    end if
     if (present(advice)) line = trim(line)//': '//advice
     call mark_uncertain(result, line)
+  contains
+    !> An estimate in words when there is none.
+    pure function estimate(i) result(text)
+      integer, intent(in) :: i
+      character(len=:), allocatable :: text
+      if (ieee_is_nan(result%err(i))) then
+        text = 'not estimated'
+      else
+        text = rtoa(result%err(i))
+      end if
+    end function estimate
+    !> 'C11, C23': the coefficients without a finite estimate.
+    pure function missing() result(text)
+      character(len=:), allocatable :: text
+      character(len=3), parameter :: names(3) = ['C11', 'C22', 'C23']
+      integer :: i
+      text = ''
+      do i = 1, 3
+        if (present(solved)) then
+          if (.not. solved(i)) cycle
+        end if
+        if (result%err(i) <= huge(1.0_real64)) cycle
+        if (len(text) > 0) text = text//', '
+        text = text//names(i)
+      end do
+    end function missing
   end subroutine add_uncertain
 
   !> 'uncertain' in the verdict (once), with the warning `why`: the estimates

@@ -271,17 +271,19 @@ contains
   end function within_target
 
   !> The verdict flag for a run with estimates rel_error(1:3) of C11, C22, C23:
-  !> 'uncertain' when target > 0 and any estimate exceeds (or lacks) its
-  !> target. solved: the load cases run (within_target); a coefficient whose
-  !> load case was not asked for does not make the run uncertain.
+  !> 'uncertain' when any estimate exceeds its target or is missing (NaN).
+  !> target 0 sets no target, but an 'ok' still needs a finite estimate.
+  !> solved: the load cases run (within_target); a coefficient whose load
+  !> case was not asked for does not make the run uncertain.
   pure function uncertain_flag(rel_error, target, solved) result(flag)
     real(real64), intent(in) :: rel_error(3), target
     logical, intent(in), optional :: solved(3)
     character(len=:), allocatable :: flag
+    real(real64) :: targets(3)
     flag = ''
-    if (target > 0) then
-      if (.not. within_target(rel_error, coefficient_targets(target), solved)) flag = 'uncertain'
-    end if
+    targets = huge(1.0_real64)
+    if (target > 0) targets = coefficient_targets(target)
+    if (.not. within_target(rel_error, targets, solved)) flag = 'uncertain'
   end function uncertain_flag
 
 end module kcreep_refine_estimate

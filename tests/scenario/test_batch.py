@@ -72,7 +72,9 @@ if len(rows) == 6:
     kc.check(rows[1]["verdict"] == "error:bad-input" and rows[3]["verdict"] == "error:bad-input",
              f"error rows say error:bad-input ({rows[1]['verdict']}, {rows[3]['verdict']})")
     kc.check(all(math.isnan(rows[1][c]) for c in ["f11", "f22", "f23", "c11", "t_total"]), "error row has NaN")
-    kc.check(rows[0]["verdict"] == "ok" and rows[2]["verdict"] == "ok", "good cases ok")
+    # 10 x 10 and 16 x 16 are too coarse to estimate their error: no ok without an estimate (issue 45)
+    kc.check(rows[0]["verdict"] == "uncertain" and rows[2]["verdict"] == "uncertain",
+             f"good cases run, uncertain without an estimate ({rows[0]['verdict']}, {rows[2]['verdict']})")
     kc.check(rows[5]["verdict"] != "ok", f"elongated cells flagged in the batch too ({rows[5]['verdict']})")
     # each good row equals the single-case run of the same namelist, run in its folder
     for k, name in [(0, "e10"), (2, "e16b"), (4, "m"), (5, "elong")]:

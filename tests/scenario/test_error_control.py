@@ -81,8 +81,13 @@ kc.check(t[0]["verdict"] == "ok" and max(t[0]["err11"], t[0]["err22"]) <= 0.05 a
 code, out, err, t = kc.run(nml("semi_a=1, semi_b=1, mx=10, my=10"), folder, "tiny")
 kc.check(all(math.isnan(t[0][e]) for e in ("err11", "err22", "err23")) and "too coarse" in err
          and "uncertain" in t[0]["verdict"], f"10 x 10 grid: no estimate, said, uncertain ({t[0]['verdict']})")
+# the warnings say what to change and give a missing estimate in words (issue 45: 'NaN, NaN, NaN')
+kc.check("give mx, my of at least 24" in err and "C23 not estimated, not estimated, not estimated against" in err
+         and "NaN" not in err, f"10 x 10 grid: the warnings name the fix, no NaN ({err.strip()!r})")
+# target_error = 0 sets no target, but ok needs a finite estimate (issue 45: ok without one)
 code, out, err, t = kc.run(nml("semi_a=1, semi_b=1, mx=10, my=10", solver="target_error=0"), folder, "tiny0")
-kc.check("uncertain" not in t[0]["verdict"], f"10 x 10 grid, target_error = 0: not uncertain ({t[0]['verdict']})")
+kc.check(t[0]["verdict"] == "uncertain" and "uncertain: no error estimate of C11, C22, C23" in err,
+         f"10 x 10 grid, target_error = 0: no estimate, uncertain ({t[0]['verdict']})")
 
 # --- 4. the solved run on an ellipse (kcreep chooses the levels) against the refined table
 # (method = 'iterative': the default 'auto' answers such an ellipse from the table itself).

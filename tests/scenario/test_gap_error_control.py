@@ -94,4 +94,7 @@ code, out, err, tab = kc.run(GAP.format(grid="", more=", cells_across = 24") + "
 row = tab[0]
 kc.check(all(kc.isnan(row["err" + k[1:]]) for k in KEYS) and "too coarse to judge itself" in err,
          "cells_across 24: no estimate (NaN) and a warning says why")
+# no ok without an estimate, target 0 too (issue 45), and the warning names what to set
+kc.check(row["verdict"] == "uncertain" and "raise &normal cells_across" in err,
+         f"cells_across 24: uncertain, the warning names cells_across ({row['verdict']})")
 kc.finish()
