@@ -69,7 +69,8 @@ int kcreep_set_threads(kcreep_handle handle, int threads);
  * or resample the gap; an ellipse set with its grid is solved as given and
  * judged. estimate 0 (with target 0) skips the estimate of a given grid,
  * which costs one more solve (default 1): for loops whose grid was judged
- * once, with kcreep_set_error_control(h, 0, 0, 0). */
+ * once, with kcreep_set_error_control(h, 0, 0, 0); the verdict is then
+ * 'uncertain' (no estimate), as for any grid without one. */
 int kcreep_set_error_control(kcreep_handle handle, double target_error, int refine_grid, int estimate);
 /* The most patch cells of a level kcreep chooses under error control (0: the
  * defaults, a run-time budget; 1e3 to 1e7, checked when solving): raised for

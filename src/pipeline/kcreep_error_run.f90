@@ -59,8 +59,31 @@ contains
       call run_single(problem, result, status, cache)
     end if
     if (status%failed()) return
-    call add_uncertain(result, problem%target_error, 'estimated relative errors', solved=problem%requested)
+    if (problem%target_error > 0 .and. .not. problem%refine_grid) then
+      call add_uncertain(result, problem%target_error, 'estimated relative errors', given_grid_advice(problem), &
+                         solved=problem%requested)
+    else
+      call add_uncertain(result, problem%target_error, 'estimated relative errors', solved=problem%requested)
+    end if
   end subroutine run_controlled
+
+  !> What to change when a grid solved as given misses the target.
+  pure function given_grid_advice(problem) result(text)
+    type(problem_t), intent(in) :: problem
+    character(len=:), allocatable :: text
+    character(len=*), parameter :: zero = '; or target_error = 0 takes this grid with its estimate'
+    if (problem%normal%active) then
+      text = 'the gap''s grid is solved as given (a &patch grid, or contact_inp''s): without a &patch grid '// &
+             'kcreep chooses the grids'//zero
+    else if (problem%patch%kind == 'ellipse') then
+      text = 'the grid is solved as given (mx, my): leave mx, my out and kcreep chooses grids that meet the '// &
+             'target'//zero
+    else if (problem%patch%kind == 'contact') then
+      text = 'CONTACT''s grid is solved as given: a finer grid in CONTACT'//zero
+    else
+      text = 'the mask''s grid is solved as given: a finer mask'//zero
+    end if
+  end function given_grid_advice
 
   !> The given grid and its error estimate from one auxiliary grid.
   subroutine run_single(problem, result, status, cache)

@@ -75,6 +75,10 @@ if ref_rows:
 code, out, err, t = kc.run(nml("semi_a=1, semi_b=1, mx=24, my=24", solver="target_error=1e-4"), folder, "strict")
 kc.check("uncertain" in t[0]["verdict"] and "uncertain:" in err,
          f"24 x 24 grid, target 1e-4: verdict {t[0]['verdict']} and a warning")
+# ... that says what to change (issue 45: the README's 60 x 40 ended uncertain with no hint)
+kc.check("leave mx, my out and kcreep chooses grids that meet the target" in err
+         and "target_error = 0 takes this grid with its estimate" in err,
+         f"24 x 24 grid, target 1e-4: the warning names the fix ({err.strip()!r})")
 code, out, err, t = kc.run(nml("semi_a=1, semi_b=1, mx=24, my=24", solver="target_error=0.05"), folder, "loose")
 kc.check(t[0]["verdict"] == "ok" and max(t[0]["err11"], t[0]["err22"]) <= 0.05 and t[0]["err23"] <= 0.15,
          f"24 x 24 grid, target 5 %: ok ({t[0]['verdict']}, estimates {t[0]['err11']:.1e} {t[0]['err22']:.1e})")
