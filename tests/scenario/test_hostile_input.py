@@ -45,6 +45,8 @@ cases = [
     ("word_for_real", "&patch semi_a = 'two' /\n", {}, 2, "&patch semi_a = 'two': semi_a is a real number"),
     ("unquoted_text", "&patch shape = ellipse /\n", {}, 2, "&patch shape = ellipse: shape is a text (in quotes"),
     ("number_for_logical", "&solver extrapolate = 3 /\n", {}, 2, "&solver extrapolate = 3: extrapolate is a logical"),
+    ("word_in_fastsim_list", "&fastsim mu = 0.3, creepages = 1e-3, 0, zero /\n", {}, 2,
+     "namelist &fastsim creepages = zero: creepages is a real number"),
     ("word_in_rolling_list", "&rolling mu = 0.3, creepages = 1e-3, 0, zero /\n", {}, 2,
      "namelist &rolling creepages = zero: creepages is a real number"),
     # more values than a variable takes, in the input's terms (issue 45: the compiler's "Cannot match")
