@@ -4,8 +4,13 @@
 !>
 !> LIST holds one namelist path per line (relative to LIST's folder; blank
 !> lines and lines starting with # are skipped). The cases run in LIST
-!> order through the same path as a single run (case_driver); each finished
-!> row is appended and flushed to OUT_TABLE.partial, so a batch that is
+!> order through the same path as a single run (solve_input, or
+!> run_wheel_rail_case for contact tables); one table holds one kind: either
+!> every case is a single patch (a row each) or every case has &wheel_rail
+!> (its .wr file written as a single run writes it, and its rows, each led by
+!> the case's name, in the batch table); a list mixing them is refused
+!> before any work. Each finished case's rows are appended and flushed to
+!> OUT_TABLE.partial, so a batch that is
 !> killed keeps every row it had finished, and running the same command
 !> again resumes: a row is kept when the input fingerprint of its case
 !> (kcreep_app_fingerprint: the program, the namelist and every file it
@@ -17,7 +22,12 @@
 !> and the verdict error:bad-input, error:numerical or error:io; its
 !> message goes to standard error and into the table's comments, and the
 !> batch goes on. The partial table is locked (flock) while the batch runs:
-!> a second batch on the same table is refused at once.
+!> a second batch on the same table is refused at once. The lock goes with
+!> the process however it ends (a kill, a crash), so a partial table without
+!> a running batch is resumed by its own list; another list run on the same
+!> table keeps it (when it holds rows) as OUT_TABLE.partial.SIGNATURE (its
+!> list's signature) and starts afresh, and the first list, run again on the
+!> table, resumes from that file.
 module kcreep_app_batch
   use, intrinsic :: iso_fortran_env, only: real64, int64, output_unit, error_unit
   use, intrinsic :: ieee_arithmetic, only: ieee_value, ieee_quiet_nan
@@ -36,7 +46,12 @@ module kcreep_app_batch
   use kcreep_namelist, only: read_config
   use kcreep_app_fingerprint, only: program_digest, case_fingerprint
   use kcreep_app_partial, only: text_t, fingerprint_mark, keep_unchanged, block_numbers, case_order, is_row, &
-                                count_rows, count_error_rows
+                                count_rows, count_error_rows, read_text_file, joined
+  use kcreep, only: wheel_rail_row_t
+  use kcreep_wheel_rail_table, only: wheel_rail_batch_head, wheel_rail_batch_columns, wheel_rail_row, &
+                                     wheel_rail_header_lines
+  use kcreep_table, only: table_columns
+  use kcreep_app_wheel_rail, only: wheel_rail_case_t, run_wheel_rail_case, write_wheel_rail_case
   use, intrinsic :: iso_c_binding, only: c_int
   implicit none
   private
@@ -55,17 +70,17 @@ contains
     integer, intent(out) :: n_failed
     type(status_t), intent(inout) :: status
     type(text_t), allocatable :: cases(:), partial(:), names(:), prints(:)
-    character(len=:), allocatable :: partial_path, signature, program
+    character(len=:), allocatable :: partial_path, signature, program, columns
     logical, allocatable :: done(:)
     integer :: n_done, k, unit, ios
     integer(c_int) :: lock_fd
-    logical :: held
+    logical :: held, tables
     character(len=512) :: msg
 
     n_failed = 0
     call read_case_list(list_path, cases, names, status)
     if (status%failed()) return
-    call check_traction_files(list_path, cases, status)
+    call check_cases(list_path, cases, tables, status)
     if (status%failed()) return
     call check_output_path(out_path, 'batch table', status)
     if (status%failed()) return
@@ -83,7 +98,7 @@ contains
       call fail(status, exit_io, 'batch table '''//partial_path//''': cannot create it')
       return
     end if
-    call resume_partial(partial_path, lock_fd, signature, size(cases), partial, status)
+    call resume_partial(partial_path, lock_fd, signature, list_signature(cases), partial, status)
     if (status%failed()) return
     ! the rows whose cases are unchanged since they were written, the others dropped
     program = program_digest()
@@ -95,7 +110,9 @@ contains
     if (k > 0) call rewrite_locked(partial_path, lock_fd, partial, status)
     if (status%failed()) return
     n_done = count(done)
-    n_failed = count_error_rows(partial)
+    columns = table_columns
+    if (tables) columns = wheel_rail_batch_columns
+    n_failed = count_error_rows(partial, columns)
     if (n_done > 0) write (output_unit, '(a)') 'kcreep: resuming '''//partial_path//''': '// &
       itoa(n_done)//' of '//itoa(size(cases))//' cases already done'
 
@@ -107,7 +124,11 @@ contains
     end if
     do k = 1, size(cases)
       if (done(k)) cycle
-      call run_one(k, size(cases), cases(k)%s, names(k)%s, prints(k)%s, unit, n_failed, status)
+      if (tables) then
+        call run_table_case(k, size(cases), cases(k)%s, names(k)%s, prints(k)%s, unit, n_failed, status)
+      else
+        call run_one(k, size(cases), cases(k)%s, names(k)%s, prints(k)%s, unit, n_failed, status)
+      end if
       if (status%failed()) then
         close (unit)
         return
@@ -115,8 +136,99 @@ contains
     end do
     close (unit)
 
-    call finish_table(partial_path, out_path, list_path, size(cases), n_failed, status)
+    call finish_table(partial_path, out_path, list_path, size(cases), n_failed, tables, status)
   end subroutine run_batch
+
+  !> The case k with &wheel_rail: its files as a single run writes them
+  !> (run_wheel_rail_case), then its description, warnings, fingerprint and
+  !> rows (one per shift and patch, each led by the case's name) appended to
+  !> the partial table; a case that fails gets one row of NaN and its error.
+  subroutine run_table_case(k, n, input_path, name, fingerprint, unit, n_failed, status)
+    integer, intent(in) :: k, n, unit
+    character(len=*), intent(in) :: input_path, name, fingerprint
+    integer, intent(inout) :: n_failed
+    type(status_t), intent(inout) :: status
+    type(config_t) :: cfg
+    type(wheel_rail_case_t) :: wr
+    type(wheel_rail_row_t) :: nan_row
+    type(status_t) :: case_status
+    type(text_t), allocatable :: block(:)
+    character(len=:), allocatable :: label, verdict
+    integer :: i, j, n_rows, ios
+    character(len=512) :: msg
+
+    label = 'case '//itoa(k)//' '''//input_path//''''
+    call read_config(input_path, cfg, case_status)
+    if (.not. case_status%failed() .and. .not. cfg%wheel_rail_on) call fail(case_status, exit_bad_input, &
+        'input '''//input_path//''': no &wheel_rail, while this list''s batch table holds contact tables '// &
+        '(one kind per table)')
+    if (.not. case_status%failed()) call run_wheel_rail_case(cfg, wr, case_status)
+    if (.not. case_status%failed()) call write_wheel_rail_case(cfg, wr, case_status)
+    allocate (block(0))
+    if (case_status%failed()) then
+      n_failed = n_failed + 1
+      write (error_unit, '(a)') 'kcreep: '//label//': error: '//case_status%message
+      block = [text_t('# '//label//': error: '//case_status%message)]
+      verdict = error_word(case_status%code)
+      nan_row = nan_wheel_rail_row(verdict)
+      n_rows = 1
+      block = [block, text_t(fingerprint_mark//itoa(k)//' '//fingerprint//' 1'), &
+               text_t(name//' '//trim(wheel_rail_row(nan_row)))]
+    else
+      do i = 1, wheel_rail_header_lines - 3     ! the case's side, profiles, placement, load, material
+        block = [block, text_t('# '//label//': '//trim(wr%table(i)(3:)))]
+      end do
+      do i = 1, size(wr%warnings)
+        write (error_unit, '(a)') 'kcreep: '//label//': warning: '//trim(wr%warnings(i))
+        block = [block, text_t('# '//label//': warning: '//trim(wr%warnings(i)))]
+      end do
+      n_rows = size(wr%table) - wheel_rail_header_lines
+      block = [block, text_t(fingerprint_mark//itoa(k)//' '//fingerprint//' '//itoa(n_rows))]
+      do i = wheel_rail_header_lines + 1, size(wr%table)
+        block = [block, text_t(name//' '//trim(wr%table(i)))]
+      end do
+      i = 0
+      do j = 1, size(wr%rows)
+        if (wr%rows(j)%verdict /= 'ok') i = i + 1
+      end do
+      verdict = itoa(n_rows)//' rows, '//merge('all ok', itoa(i)//' not ok', i == 0)//' ('//seconds(wr%wall)//' s)'
+    end if
+    ios = 0
+    do i = 1, size(block)
+      if (ios == 0) write (unit, '(a)', iostat=ios, iomsg=msg) block(i)%s
+    end do
+    if (ios == 0) flush (unit, iostat=ios, iomsg=msg)
+    if (ios /= 0) then
+      call fail(status, exit_io, 'batch table: cannot append the rows of '//label//' ('//trim(msg)//')')
+      return
+    end if
+    write (output_unit, '(a)') 'kcreep: '//itoa(k)//'/'//itoa(n)//' '//name//': '//verdict
+    flush (output_unit)
+  end subroutine run_table_case
+
+  !> The row of a contact table that could not be made: NaN numbers, patch 0, the error word.
+  function nan_wheel_rail_row(verdict) result(row)
+    character(len=*), intent(in) :: verdict
+    type(wheel_rail_row_t) :: row
+    real(real64) :: nan
+    nan = ieee_value(1.0_real64, ieee_quiet_nan)
+    row%shift = nan
+    row%yaw = nan
+    row%patch = 0
+    row%fn = nan
+    row%delta = nan
+    row%y_rail = nan
+    row%y_wheel = nan
+    row%r_wheel = nan
+    row%area = nan
+    row%length = nan
+    row%width = nan
+    row%c = nan
+    row%err = nan
+    row%l = nan
+    row%spin = nan
+    row%verdict = verdict
+  end function nan_wheel_rail_row
 
   !> Solve case k and append its row (after its comments and its input
   !> fingerprint) to the partial table.
@@ -179,7 +291,7 @@ contains
       end do
     end if
     record%case_name = name
-    if (ios == 0) write (unit, '(a)', iostat=ios, iomsg=msg) fingerprint_mark//itoa(k)//' '//fingerprint
+    if (ios == 0) write (unit, '(a)', iostat=ios, iomsg=msg) fingerprint_mark//itoa(k)//' '//fingerprint//' 1'
     if (ios == 0) write (unit, '(a)', iostat=ios, iomsg=msg) table_row(record)
     if (ios == 0) flush (unit, iostat=ios, iomsg=msg)
     if (ios /= 0) then
@@ -219,56 +331,79 @@ contains
     record%t_total = nan
     record%rcond = nan
     record%backward_error = nan
-    select case (code)
-    case (exit_bad_input)
-      record%verdict = 'error:bad-input'
-    case (exit_numerical)
-      record%verdict = 'error:numerical'
-    case (exit_io)
-      record%verdict = 'error:io'
-    case default
-      record%verdict = 'error:failed'
-    end select
+    record%verdict = error_word(code)
   end function failed_record
 
-  !> Open (or start) the partial table. An existing one must come from the
-  !> same list (same first line); a torn last line, left by a kill in the
-  !> middle of a write, is dropped so the case is simply run again.
-  subroutine resume_partial(partial_path, lock_fd, signature, n_cases, lines, status)
-    character(len=*), intent(in) :: partial_path, signature
+  !> The verdict of a case that failed with exit code code.
+  pure function error_word(code) result(word)
+    integer, intent(in) :: code
+    character(len=:), allocatable :: word
+    select case (code)
+    case (exit_bad_input)
+      word = 'error:bad-input'
+    case (exit_numerical)
+      word = 'error:numerical'
+    case (exit_io)
+      word = 'error:io'
+    case default
+      word = 'error:failed'
+    end select
+  end function error_word
+
+  !> Open (or start) the partial table. One of this list (the same first
+  !> line) is resumed; a torn last line, left by a kill in the middle of a
+  !> write, is dropped so the case is simply run again. One left by a batch of
+  !> another list (not running: this process holds the lock) is kept, when it
+  !> has rows, as '<partial>.<its list signature>' and this batch starts
+  !> afresh, or resumes from '<partial>.<this list's signature>' kept so before.
+  subroutine resume_partial(partial_path, lock_fd, signature, hex, lines, status)
+    character(len=*), intent(in) :: partial_path, signature, hex
     integer(c_int), intent(in) :: lock_fd
-    integer, intent(in) :: n_cases
     type(text_t), allocatable, intent(out) :: lines(:)
     type(status_t), intent(inout) :: status
-    character(len=:), allocatable :: tail
-    logical :: exists
+    character(len=:), allocatable :: tail, kept, other
+    logical :: exists, from_kept
+    integer :: unit, ios
 
-    inquire (file=partial_path, exist=exists)
-    if (exists) then
-      call read_text_file(partial_path, 'batch table', lines, tail, status)
+    call read_text_file(partial_path, 'batch table', lines, tail, status)
+    if (status%failed()) return
+    kept = partial_path//'.'//hex
+    from_kept = .false.
+    inquire (file=kept, exist=exists)
+    if (size(lines) == 0 .and. len(tail) == 0 .and. exists) then   ! new here: this list's, kept before?
+      call read_text_file(kept, 'batch table', lines, tail, status)
       if (status%failed()) return
-      if (size(lines) > 0) then
-        if (lines(1)%s /= signature) then
+      from_kept = .true.
+      write (output_unit, '(a)') 'kcreep: resuming from '''//kept//''' (kept there when another list ran on '// &
+        'this table)'
+    end if
+    if (size(lines) > 0) then
+      if (lines(1)%s /= signature .and. count_rows(lines) > 0) then
+        other = partial_path//'.'//lines(1)%s(max(1, len(lines(1)%s) - 7):)   ! its list's signature
+        inquire (file=other, exist=exists)
+        if (exists .or. other == kept) then
           call fail(status, exit_bad_input, 'batch table '''//partial_path//''' is left from a batch of '// &
-                    'another list (its first line differs); remove it to start over')
+                    'another list, and '''//other//''', where it would be kept, exists too; remove one of them')
           return
         end if
-        if (count_rows(lines) > n_cases) then
-          call fail(status, exit_bad_input, 'batch table '''//partial_path//''' has more rows than the '// &
-                    'list has cases; remove it to start over')
-          return
-        end if
-        if (len(tail) == 0) return      ! clean: append to it as it is
+        call write_text_file(other, joined(lines), 'batch table', status)
+        if (status%failed()) return
+        write (output_unit, '(a)') 'kcreep: '''//partial_path//''' held the unfinished batch of another list ('// &
+          itoa(count_rows(lines))//' rows): kept as '''//other//''' (that list resumes from it); starting afresh'
       end if
-      ! else killed before its first line was complete: start afresh
+      if (lines(1)%s /= signature) then
+        deallocate (lines)
+        allocate (lines(0))
+      else if (len(tail) == 0 .and. .not. from_kept) then
+        return                          ! clean: append to it as it is
+      end if
     end if
-    if (.not. allocated(lines)) allocate (lines(0))
-    if (size(lines) == 0) then
-      deallocate (lines)
-      allocate (lines(1))
-      lines(1)%s = signature
-    end if
+    if (size(lines) == 0) lines = [text_t(signature)]
     call rewrite_locked(partial_path, lock_fd, lines, status)
+    if (from_kept .and. .not. status%failed()) then
+      open (newunit=unit, file=kept, status='old', iostat=ios)
+      if (ios == 0) close (unit, status='delete')
+    end if
   end subroutine resume_partial
 
   !> Replace the contents of the locked partial table in place (a new file
@@ -294,13 +429,16 @@ contains
   end subroutine rewrite_locked
 
   !> Write the finished table from the partial one, then remove the partial one.
-  subroutine finish_table(partial_path, out_path, list_path, n_cases, n_failed, status)
+  !> tables: the cases are contact tables (&wheel_rail), else single patches.
+  subroutine finish_table(partial_path, out_path, list_path, n_cases, n_failed, tables, status)
     character(len=*), intent(in) :: partial_path, out_path, list_path
     integer, intent(in) :: n_cases, n_failed
+    logical, intent(in) :: tables
     type(status_t), intent(inout) :: status
-    type(text_t), allocatable :: partial(:), lines(:), print_of(:)
+    type(text_t), allocatable :: partial(:), lines(:), print_of(:), head(:)
     character(len=:), allocatable :: tail
-    character(len=line_length), allocatable :: head(:)
+    character(len=line_length), allocatable :: point_head(:)
+    character(len=600), allocatable :: table_head(:)
     character(len=0) :: no_warnings(0)
     integer, allocatable :: case_of(:), order(:)
     integer :: j, k, nh, unit, ios
@@ -311,12 +449,21 @@ contains
       call fail(status, exit_io, 'batch table '''//partial_path//''': last line incomplete')
       return
     end if
-    head = table_lines([run_record_t ::], no_warnings)   ! fixed comments, then the column names
+    ! fixed comments, then the column names
+    allocate (head(0), lines(0))
+    if (tables) then
+      table_head = wheel_rail_batch_head()
+      do k = 1, size(table_head)
+        head = [head, text_t(trim(table_head(k)))]
+      end do
+    else
+      point_head = table_lines([run_record_t ::], no_warnings)
+      do k = 1, size(point_head)
+        head = [head, text_t(trim(point_head(k)))]
+      end do
+    end if
     nh = size(head)
-    allocate (lines(0))
-    do k = 1, nh - 1
-      lines = [lines, text_t(trim(head(k)))]
-    end do
+    lines = head(1:nh - 1)
     lines = [lines, text_t('# batch '''//list_path//''': '//itoa(n_cases)//' cases, '// &
                            itoa(n_failed)//' failed (verdict error:...)')]
     ! per-case comments first, then the rows, both in list order (a resume may
@@ -329,7 +476,7 @@ contains
       if (index(partial(k)%s, fingerprint_mark) == 1) cycle
       lines = [lines, partial(k)]
     end do
-    lines = [lines, text_t(trim(head(nh)))]
+    lines = [lines, head(nh)]
     do j = 1, size(order)
       if (is_row(partial(order(j))%s)) lines = [lines, partial(order(j))]
     end do
@@ -425,34 +572,55 @@ contains
     if (len(name) == 0) name = '-'
   end function listed_case_name
 
-  !> Two cases that write the same traction file would overwrite each other:
-  !> refuse the list before any work. Cases that cannot be read are left to
-  !> their own error rows.
-  subroutine check_traction_files(list_path, cases, status)
+  !> One kind per batch table: tables is true when the cases (those that can
+  !> be read; the others get their error rows) all have &wheel_rail, false
+  !> when none has; a list mixing them is refused before any work. Two cases
+  !> that write the same traction file, or the same wheel_rail_file, would
+  !> overwrite each other: refused too.
+  subroutine check_cases(list_path, cases, tables, status)
     character(len=*), intent(in) :: list_path
     type(text_t), intent(in) :: cases(:)
+    logical, intent(out) :: tables
     type(status_t), intent(inout) :: status
-    type(text_t), allocatable :: traction(:)
+    type(text_t), allocatable :: output(:)
     type(config_t) :: cfg
     type(status_t) :: case_status
-    integer :: k, j
-    allocate (traction(size(cases)))
+    integer :: k, j, first_table, first_patch
+    allocate (output(size(cases)))
+    first_table = 0
+    first_patch = 0
     do k = 1, size(cases)
-      traction(k)%s = ''
+      output(k)%s = ''
       case_status = status_t()
       call read_config(cases(k)%s, cfg, case_status)
-      if (case_status%failed() .or. len(cfg%traction_file) == 0) cycle
-      traction(k)%s = canonical_output(cfg%traction_file)
+      if (case_status%failed()) cycle
+      if (cfg%wheel_rail_on) then
+        if (first_table == 0) first_table = k
+        output(k)%s = canonical_output(cfg%wheel_rail_file)
+      else
+        if (first_patch == 0) first_patch = k
+        if (len(cfg%traction_file) > 0) output(k)%s = canonical_output(cfg%traction_file)
+      end if
+      if (first_table > 0 .and. first_patch > 0) then
+        call fail(status, exit_bad_input, 'batch list '''//list_path//''': case '//itoa(first_table)//' '''// &
+                  cases(first_table)%s//''' is a contact table (&wheel_rail) and case '//itoa(first_patch)// &
+                  ' '''//cases(first_patch)%s//''' a single patch: one batch table holds one kind (give each '// &
+                  'kind its own list)')
+        return
+      end if
+      if (len(output(k)%s) == 0) cycle
       do j = 1, k - 1
-        if (traction(j)%s == traction(k)%s) then
+        if (output(j)%s == output(k)%s) then
           call fail(status, exit_bad_input, 'batch list '''//list_path//''': cases '//itoa(j)//' '''// &
-                    cases(j)%s//''' and '//itoa(k)//' '''//cases(k)%s//''' both write traction_file '''// &
-                    traction(k)%s//''' (the second would overwrite the first; give each case its own)')
+                    cases(j)%s//''' and '//itoa(k)//' '''//cases(k)%s//''' both write '// &
+                    trim(merge('wheel_rail_file', 'traction_file  ', cfg%wheel_rail_on))//' '''//output(k)%s// &
+                    ''' (the second would overwrite the first; give each case its own)')
           return
         end if
       end do
     end do
-  end subroutine check_traction_files
+    tables = first_table > 0
+  end subroutine check_cases
 
   !> An output path made comparable: its folder resolved (the file itself may not exist yet).
   function canonical_output(path) result(canonical)
@@ -476,64 +644,6 @@ contains
     character(len=:), allocatable :: name
     name = case_name(list_path)//'.tab'
   end function default_batch_table
-
-  !> The whole file as lines; tail is what follows the last newline (a torn line).
-  subroutine read_text_file(path, what, lines, tail, status)
-    character(len=*), intent(in) :: path, what
-    type(text_t), allocatable, intent(out) :: lines(:)
-    character(len=:), allocatable, intent(out) :: tail
-    type(status_t), intent(inout) :: status
-    character(len=:), allocatable :: buffer
-    integer :: unit, ios, size_bytes, first, k, n
-    character(len=512) :: msg
-
-    allocate (lines(0))
-    tail = ''
-    open (newunit=unit, file=path, access='stream', form='unformatted', status='old', action='read', &
-          iostat=ios, iomsg=msg)
-    if (ios /= 0) then
-      call fail(status, exit_bad_input, what//' '''//path//''': cannot open ('//trim(msg)//')')
-      return
-    end if
-    inquire (unit=unit, size=size_bytes)
-    allocate (character(len=max(size_bytes, 0)) :: buffer)
-    if (size_bytes > 0) read (unit, iostat=ios, iomsg=msg) buffer
-    close (unit)
-    if (ios /= 0) then
-      call fail(status, exit_bad_input, what//' '''//path//''': cannot read ('//trim(msg)//')')
-      return
-    end if
-    n = 0
-    do k = 1, len(buffer)
-      if (buffer(k:k) == achar(10)) n = n + 1
-    end do
-    deallocate (lines)
-    allocate (lines(n))
-    first = 1
-    n = 0
-    do k = 1, len(buffer)
-      if (buffer(k:k) /= achar(10)) cycle
-      n = n + 1
-      lines(n)%s = buffer(first:k - 1)
-      first = k + 1
-    end do
-    tail = buffer(first:)
-  end subroutine read_text_file
-
-  !> Lines as one fixed-length array for write_text_file.
-  function joined(lines) result(fixed)
-    type(text_t), intent(in) :: lines(:)
-    character(len=:), allocatable :: fixed(:)
-    integer :: k, width
-    width = 1
-    do k = 1, size(lines)
-      width = max(width, len(lines(k)%s))
-    end do
-    allocate (character(len=width) :: fixed(size(lines)))
-    do k = 1, size(lines)
-      fixed(k) = lines(k)%s
-    end do
-  end function joined
 
   pure function seconds(t) result(text)
     real(real64), intent(in) :: t

@@ -3,7 +3,7 @@
 !> of the maps, and the summary lines.
 module kcreep_app_fastsim
   use, intrinsic :: iso_fortran_env, only: real64, int64
-  use kcreep_status, only: status_t
+  use kcreep_status, only: status_t, fail, exit_bad_input
   use kcreep_namelist, only: config_t
   use kcreep_table, only: run_record_t
   use kcreep, only: hertz_pressure, strip_parabolic_pressure, creep_point_t, creep_map_t, creep_curve, source_names, &
@@ -57,6 +57,10 @@ contains
         if (status%failed()) return
       case ('normal')
         ! the normal solve's pressure, per patch cell, onto the patch's grid
+        if (.not. (record%normal_solved .and. allocated(record%pressure))) then
+          call fail(status, exit_bad_input, who//' pressure = ''normal'': this case solved no normal problem')
+          return
+        end if
         allocate (pn(p%mx, p%my))
         pn = 0
         do k = 1, p%n

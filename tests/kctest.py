@@ -83,6 +83,30 @@ def namelist(patch="", material="", solver="", output=""):
     return f"&patch {patch} /\n&material {material} /\n&solver {solver} /\n&output {output} /\n"
 
 
+#: the profiles of input/s1002_uic60.nml (../shared/profiles beside the repository)
+PROFILES = os.path.abspath(os.path.join(REPO, "..", "shared", "profiles"))
+
+#: fast settings for a wheel/rail table whose test is about routing, not accuracy:
+#: two shifts (0 and 1 mm, one patch each) at target_error 1e-2 (0.2-0.5 s per shift here)
+S1002_FAST = {"shift_from = -6, shift_to = 10": "shift_from = 0, shift_to = 1"}
+
+#: the two creepage points of the issue-45 runs (&fastsim or &rolling appended to the example)
+S1002_CREEP = "mu = 0.3, creepages = 0 0 0, 2e-3 0 0 /"
+
+
+def s1002_case(extra="", target_error=1e-2):
+    """input/s1002_uic60.nml with its profiles by absolute path, shifts 0 and 1,
+    &solver target_error, and extra groups appended; None when ../shared is absent."""
+    if not os.path.isdir(PROFILES):
+        return None
+    text = open(os.path.join(REPO, "input", "s1002_uic60.nml")).read()
+    text = text.replace("'../../shared/profiles", "'" + PROFILES)
+    for old, new in S1002_FAST.items():
+        assert old in text, f"input/s1002_uic60.nml no longer has {old!r}"
+        text = text.replace(old, new)
+    return text + f"&solver target_error = {target_error:g} /\n" + extra
+
+
 def run(text, folder, name="case", expect_ok=True, files=None):
     """Write text to folder/name.nml and run kcreep there.
     Returns (returncode, stdout, stderr, table or None)."""

@@ -12,6 +12,7 @@ module kcreep_wheel_rail_table
   implicit none
   private
   public :: wheel_rail_lines, line_length, wheel_rail_creep_header, wheel_rail_creep_rows, wheel_rail_creep_columns
+  public :: wheel_rail_header_lines, wheel_rail_batch_head, wheel_rail_batch_columns, wheel_rail_row
   public :: wheel_rail_rolling_header, wheel_rail_rolling_rows, wheel_rail_rolling_columns
 
   !> The columns that lead each row of the per-patch tables: which shift and patch, its geometric spin.
@@ -23,6 +24,22 @@ module kcreep_wheel_rail_table
   character(len=*), parameter :: wheel_rail_rolling_columns = patch_columns//' '//rolling_columns
 
   integer, parameter :: line_length = 600
+
+  !> The columns of a batch's merged table of contact tables (kcreep --batch,
+  !> scripts/run_cases.sh): the case's name, then the columns of its table.
+  character(len=*), parameter :: wheel_rail_batch_columns = 'case '//wheel_rail_columns
+
+  !> Lines of a table before its rows: lines 1-5 describe the case (its side,
+  !> profiles, placement, load, material), lines 6-8 the columns.
+  integer, parameter :: wheel_rail_header_lines = 8
+
+  !> The comment lines on the columns (a table's lines 6 and 7).
+  character(len=*), parameter :: point_note = '# delta: contact angle; y_rail, y_wheel: contact point in each '// &
+    'profile''s own coordinates; r_wheel: rolling radius there; area = pi c^2, length x width: extent of the '// &
+    'contact area'
+  character(len=*), parameter :: coefficient_note = '# c11 c22 c23 = f/(G c^2), f23/(G c^3), c33 = f33/(G c^4) '// &
+    'about the contact point; err: estimated relative errors; l1 l2 l3: FASTSIM flexibilities; '// &
+    'spin = sin(delta)/r_wheel'
 
 contains
 
@@ -46,19 +63,36 @@ contains
     end if
     lines(5) = '# material g '//rtoa(g)//', nu '//rtoa(nu)//'; target_error '//rtoa(target_error)// &
                '; lengths mm, forces N, angles rad'
-    lines(6) = '# delta: contact angle; y_rail, y_wheel: contact point in each profile''s own coordinates; '// &
-               'r_wheel: rolling radius there; area = pi c^2, length x width: extent of the contact area'
-    lines(7) = '# c11 c22 c23 = f/(G c^2), f23/(G c^3), c33 = f33/(G c^4) about the contact point; err: '// &
-               'estimated relative errors; l1 l2 l3: FASTSIM flexibilities; spin = sin(delta)/r_wheel'
+    lines(6) = point_note
+    lines(7) = coefficient_note
     lines(8) = '# '//wheel_rail_columns
     do k = 1, size(rows)
-      associate (r => rows(k))
-        write (lines(k + 8), '(2(es15.7), i4, 5(es16.8), 3(es14.6), 4(es15.7), 3(es10.2), 1x, a, 4(es14.6))') &
-          r%shift, r%yaw, r%patch, r%fn, r%delta, r%y_rail, r%y_wheel, r%r_wheel, r%area, r%length, r%width, &
-          r%c, r%err, trim(no_blanks(r%verdict)), r%l, r%spin
-      end associate
+      lines(k + 8) = wheel_rail_row(rows(k))
     end do
   end function wheel_rail_lines
+
+  !> One row of the table (the columns wheel_rail_columns).
+  function wheel_rail_row(r) result(line)
+    type(wheel_rail_row_t), intent(in) :: r
+    character(len=line_length) :: line
+    write (line, '(2(es15.7), i4, 5(es16.8), 3(es14.6), 4(es15.7), 3(es10.2), 1x, a, 4(es14.6))') &
+      r%shift, r%yaw, r%patch, r%fn, r%delta, r%y_rail, r%y_wheel, r%r_wheel, r%area, r%length, r%width, &
+      r%c, r%err, trim(no_blanks(r%verdict)), r%l, r%spin
+  end function wheel_rail_row
+
+  !> The fixed comment lines and the column names of a batch's merged table
+  !> of contact tables: one block of rows per case, each row led by the case's
+  !> name; each case's own description (wheel_rail_lines 1-5) comes with it.
+  function wheel_rail_batch_head() result(lines)
+    character(len=line_length), allocatable :: lines(:)
+    allocate (lines(4))
+    lines(1) = '# kcreep: contact tables of wheels on rails over the lateral shift, one block of rows per case '// &
+               '(its &wheel_rail), each row led by the case''s name; each case''s profiles, load and material '// &
+               'in the comments ''# case K ...'''
+    lines(2) = point_note
+    lines(3) = coefficient_note
+    lines(4) = '# '//wheel_rail_batch_columns
+  end function wheel_rail_batch_head
 
   !> The creep table's comment lines and column names.
   function wheel_rail_creep_header(setup, request) result(lines)

@@ -202,11 +202,108 @@ kc.check([r["case"] for r in fp_rows] == ["sub/fp_mask", "sub/s1_12"] + [r["case
 kc.check(not any(l.startswith("# fingerprint") for l in open(os.path.join(folder, "fp.tab"))),
          "the finished table carries no fingerprint lines")
 
-# a partial table of another list is not resumed
+# a partial table of another list, left by a batch that was killed (its lock
+# went with it), blocks nothing: it is kept as OTHER.partial.<its list's
+# signature>, this list runs afresh, and the first list resumes from it later
 write(os.path.join(folder, "other.tab.partial"), kept_partial)
 proc = batch("good.list", "other.tab")
-kc.check(proc.returncode == 2 and "another list" in proc.stderr and len(proc.stderr.strip().splitlines()) == 1,
-         f"partial of another list refused: {proc.stderr.strip()!r}")
+aside = [f for f in os.listdir(folder) if f.startswith("other.tab.partial.")]
+kc.check(proc.returncode == 0 and os.path.exists(os.path.join(folder, "other.tab")) and "kept as" in proc.stdout
+         and len(aside) == 1 and open(os.path.join(folder, aside[0])).read() == kept_partial,
+         f"another list's partial kept aside ({aside}), this list done: {proc.returncode} {proc.stdout.splitlines()[:1]}")
+proc = batch("sweep.list", "other.tab")
+kc.check(proc.returncode == 0 and "resuming from" in proc.stdout
+         and f"{done_before_kill} of {len(sweep)} cases already done" in proc.stdout
+         and not any(f.startswith("other.tab.partial") for f in os.listdir(folder)),
+         f"its own list resumes from the kept partial, which is then gone: {proc.stdout.splitlines()[:2]}")
+other_rows = kc.read_table(os.path.join(folder, "other.tab"))
+kc.check([r["case"] for r in other_rows] == [r["case"] for r in reference], "resumed from the kept partial: in order")
+
+# --- issue 45, item 1: contact tables (&wheel_rail) in a batch. Each case writes
+# its .wr (and .creep/.roll with &fastsim/&rolling) as a single run started in the
+# batch's working folder does, and its rows go to the batch table led by the case's name.
+# (Before: the default unit circle was solved, one row, no .wr; with &fastsim a
+# segmentation fault, the normal pressure of a normal solve that never ran.)
+wr_dir = os.path.join(folder, "wr")
+os.makedirs(wr_dir)
+one_thread = dict(os.environ, OMP_NUM_THREADS="1")   # (item 2 of issue 45 is another's: keep this test fast)
+wr_cases = {"plain": kc.s1002_case(), "fast": kc.s1002_case("&fastsim " + kc.S1002_CREEP + "\n"),
+            "roll": kc.s1002_case("&rolling " + kc.S1002_CREEP + "\n"),
+            "nowheel": (kc.s1002_case() or "").replace("MBench_S1002_v3.prw", "no_such_wheel.prw")}
+if wr_cases["plain"] is None:
+    kc.check(False, f"the profiles of input/s1002_uic60.nml are not at {kc.PROFILES}")
+else:
+    for name, text in wr_cases.items():
+        write(os.path.join(wr_dir, name + ".nml"), text)
+    write(os.path.join(folder, "wr.list"), "wr/plain.nml\nwr/fast.nml\nwr/nowheel.nml\nwr/roll.nml\n")
+    proc = batch("wr.list", "wr.tab", env=one_thread)
+    kc.check(proc.returncode == 5 and "segmentation" not in proc.stderr.lower(),
+             f"contact tables in a batch: exit 5 for the one bad case ({proc.returncode}, {proc.stderr.strip()[-300:]!r})")
+    wr_rows = kc.read_table(os.path.join(folder, "wr.tab")) if os.path.exists(os.path.join(folder, "wr.tab")) else []
+    kc.check(all(os.path.exists(os.path.join(folder, f)) for f in ["plain.wr", "fast.wr", "fast.creep", "roll.wr",
+                                                                 "roll.roll"]),
+             f"each case's own files in the working folder: {sorted(os.listdir(folder))}")
+    by_case = {}
+    for r in wr_rows:
+        by_case.setdefault(r["case"], []).append(r)
+    kc.check(list(by_case) == ["wr/plain", "wr/fast", "wr/nowheel", "wr/roll"],
+             f"the case's name leads each row, cases in list order: {list(by_case)}")
+    for name in ["plain", "fast", "roll"]:
+        own = kc.read_table(os.path.join(folder, name + ".wr")) if os.path.exists(os.path.join(folder, name + ".wr")) else []
+        got = by_case.get("wr/" + name, [])
+        kc.check(len(own) == 2 and len(got) == len(own) and
+                 all({k: v for k, v in a.items() if k != "case"} == b for a, b in zip(got, own)),
+                 f"{name}: the batch rows are the rows of its .wr ({len(got)} and {len(own)} rows, 2 shifts)")
+    bad = by_case.get("wr/nowheel", [{}])
+    kc.check(len(bad) == 1 and bad[0].get("verdict") == "error:bad-input" and math.isnan(bad[0].get("c11", 0.0)),
+             f"the case that cannot run: one NaN row, error:bad-input ({bad})")
+    comments = [l for l in open(os.path.join(folder, "wr.tab")) if l.startswith("#")] if wr_rows else []
+    kc.check(comments and comments[-1].split()[1:] == list(wr_rows[0].keys()) and comments[-1].split()[1] == "case"
+             and any(l.startswith("# case 1 'wr/plain.nml': ") and "S1002" in l for l in comments),
+             "the column line starts with case; each case's profiles in its comments")
+
+    # resumable: killed after its first case, the batch resumes with the others;
+    # a block whose rows were cut short (a kill while they were written) runs again
+    write(os.path.join(folder, "wr3.list"), "wr/plain.nml\nwr/fast.nml\nwr/roll.nml\n")
+    wr_partial = os.path.join(folder, "wr3.tab.partial")
+    victim = subprocess.Popen([kc.KCREEP, "--batch", "wr3.list", "wr3.tab"], cwd=folder, env=one_thread,
+                              stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
+    deadline = time.time() + 120
+    while time.time() < deadline and victim.poll() is None:
+        if os.path.exists(wr_partial) and sum(l.startswith("# fingerprint ") for l in open(wr_partial)) >= 1:
+            time.sleep(0.05)     # the block's rows follow its mark in the same flush
+            break
+        time.sleep(0.01)
+    victim.send_signal(signal.SIGKILL)
+    victim.wait()
+    killed = open(wr_partial).read() if os.path.exists(wr_partial) else ""
+    marks = [l.split() for l in killed.splitlines() if l.startswith("# fingerprint ")]
+    kc.check(len(marks) >= 1 and marks[0][2] == "1" and marks[0][4] == "2" and
+             not os.path.exists(os.path.join(folder, "wr3.tab")),
+             f"killed after case 1: its mark says its 2 rows ({marks[:1]}), no final table")
+    if len(marks) == 1:
+        proc = batch("wr3.list", "wr3.tab", env=one_thread)
+        kc.check(proc.returncode == 0 and "1 of 3 cases already done" in proc.stdout and
+                 sum(l.startswith("kcreep: ") and "/3 " in l for l in proc.stdout.splitlines()) == 2,
+                 f"resumed: case 1 kept, the 2 others run ({proc.stdout.splitlines()[:1]})")
+        resumed_wr = kc.read_table(os.path.join(folder, "wr3.tab"))
+        kc.check([r["case"] for r in resumed_wr] == [r["case"] for r in wr_rows if r["case"] != "wr/nowheel"] and
+                 all(a == b for a, b in zip(resumed_wr, [r for r in wr_rows if r["case"] != "wr/nowheel"])),
+                 "the resumed table: the rows of the uninterrupted one")
+        cut = killed.rstrip("\n").split("\n")
+        write(os.path.join(folder, "wr4.tab.partial"), "\n".join(cut[:-1]) + "\n")   # case 1 lost its 2nd row
+        write(os.path.join(folder, "wr4.list"), open(os.path.join(folder, "wr3.list")).read())
+        proc = batch("wr4.list", "wr4.tab", env=one_thread)
+        kc.check(proc.returncode == 0 and "already done" not in proc.stdout and
+                 len(kc.read_table(os.path.join(folder, "wr4.tab"))) == 6,
+                 f"a block cut short is run again: {proc.stdout.splitlines()[:1]}")
+
+    # one table holds one kind: a list mixing contact tables and single patches is refused at once
+    write(os.path.join(folder, "mixed.list"), "sub/e10.nml\nwr/plain.nml\n")
+    proc = batch("mixed.list", "mixed.tab")
+    kc.check(proc.returncode == 2 and len(proc.stderr.strip().splitlines()) == 1 and "one kind" in proc.stderr
+             and not os.path.exists(os.path.join(folder, "mixed.tab.partial")),
+             f"a mixed list refused in one line: {proc.returncode} {proc.stderr.strip()!r}")
 
 # --- --estimate-memory: what the case's solve path allocates, plus a little.
 # method = 'dense' on a y-symmetric ellipse: the two half systems of n unknowns,
