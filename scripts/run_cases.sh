@@ -7,7 +7,10 @@
 #
 # LIST: one namelist path per line (blank lines and '#' lines skipped;
 # relative paths are relative to LIST's folder). Each case runs in its own
-# folder, so its default table <name>.tab lands next to the namelist.
+# folder, so its default table <name>.tab lands next to the namelist (for a
+# contact table, a case with &wheel_rail: <name>.wr; one merged table holds
+# one kind, so a list that mixes them is refused; the &output table_file
+# and wheel_rail_file of a case are not followed: use the defaults).
 # Cases run in parallel, N at a time (default: the number of cores; each
 # kcreep gets one BLAS thread then). A case is skipped when its .tab exists
 # and its input fingerprint has not changed since that table was made
@@ -18,8 +21,10 @@
 # A failed case is reported and the others go on; the summary counts them.
 # Finally all rows are merged into OUT_TABLE (header of the first table,
 # rows in LIST order, each named as kcreep --batch names it: the case's
-# path in LIST without the extension, e.g. a/case). Exit status: 0 all done, 1 some cases failed,
-# 2 bad usage.
+# path in LIST without the extension, e.g. a/case; contact tables as
+# kcreep --batch merges them: each row led by its case's name, each case's
+# description in '# case K' comments). Exit status: 0 all done, 1 some cases
+# failed, 2 bad usage.
 #
 # Environment: KCREEP (the binary; default build/kcreep of this repository).
 # --slurm hands the same job to scripts/slurm/run_cases_slurm.sh.
@@ -82,6 +87,15 @@ while IFS= read -r line || [[ -n $line ]]; do
 done <"$list"
 n=${#cases[@]}
 ((n > 0)) || die "case list '$list' names no cases"
+# A contact table: the namelist has a &wheel_rail group (outside '!' comments).
+is_table() { [[ -r $1 ]] && sed 's/!.*//' "$1" | grep -qiE '(^|[^[:alnum:]_])&wheel_rail([^[:alnum:]_]|$)'; }
+kinds=() first_table= first_patch=
+for ((k = 0; k < n; k++)); do
+  if is_table "${cases[k]}"; then kinds+=(wr); first_table=${first_table:-${cases[k]}}
+  else kinds+=(tab); [[ -r ${cases[k]} ]] && first_patch=${first_patch:-${cases[k]}}; fi
+done
+[[ -n $first_table && -n $first_patch ]] &&
+  die "case list '$list': '$first_table' is a contact table (&wheel_rail) and '$first_patch' a single patch: one merged table holds one kind (give each kind its own list)"
 # what each case reads, fingerprinted (one line per case, in list order)
 mapfile -t stamps < <(printf '%s\n' "${cases[@]}" | xargs -d '\n' "$kcreep" --fingerprint | cut -d' ' -f1)
 ((${#stamps[@]} == n)) || die "could not fingerprint the inputs of the cases (kcreep --fingerprint failed)"
@@ -104,7 +118,13 @@ interrupted() {  # stop the running cases (their kcreep children by id), keep wh
 }
 trap interrupted INT TERM HUP
 
-table_of() { local nml=$1; echo "${nml%.*}.tab"; }
+table_of() {  # the case's own table (the default name a single run writes in the namelist's folder)
+  local nml=$1 k
+  for ((k = 0; k < n; k++)); do
+    [[ ${cases[k]} == "$nml" && ${kinds[k]} == wr ]] && { echo "${nml%.*}.wr"; return; }
+  done
+  echo "${nml%.*}.tab"
+}
 stamp_of() { echo "$(table_of "$1").stamp"; }
 
 run_one() {  # k nml: run in the namelist's folder, leave k.rc and k.err in $state
@@ -183,8 +203,8 @@ wait
 
 # Merge: the header of the first table, then the rows in list order.
 tmp_out=$out.run_cases-tmp.$$
-header_done=0 merged=0
-{
+header_done=0 merged=0 rows=0
+merge_patches() {
   for ((k = 0; k < n; k++)); do
     [[ $(<"$state/$k.rc") == 0 ]] || continue
     tab=$(table_of "${cases[k]}")
@@ -195,14 +215,34 @@ header_done=0 merged=0
     fi
     # the row named by the list, as --batch names it (the table says only its file name)
     grep -v '^#' "$tab" | awk -v name="${names[k]}" '{ i = index($0, " "); print name substr($0, i) }'
-    merged=$((merged + 1))
+    merged=$((merged + 1)) rows=$((rows + $(grep -vc '^#' "$tab")))
   done
-} >"$tmp_out"
+}
+merge_tables() {  # as kcreep --batch: each case's description, the column notes, then its rows led by its name
+  local first=
+  for ((k = 0; k < n; k++)); do
+    [[ $(<"$state/$k.rc") == 0 && -r $(table_of "${cases[k]}") ]] || continue
+    tab=$(table_of "${cases[k]}")
+    first=${first:-$tab}
+    awk -v lead="# case $((k + 1)) '${names[k]}': " 'NR > 5 { exit } { sub(/^# /, ""); print lead $0 }' "$tab"
+  done
+  [[ -n $first ]] || return 0
+  sed -n '6,7p' "$first"
+  sed -n '8s/^# /# case /p' "$first"
+  header_done=1
+  for ((k = 0; k < n; k++)); do
+    [[ $(<"$state/$k.rc") == 0 && -r $(table_of "${cases[k]}") ]] || continue
+    tab=$(table_of "${cases[k]}")
+    grep -v '^#' "$tab" | awk -v name="${names[k]}" '{ print name " " $0 }'
+    merged=$((merged + 1)) rows=$((rows + $(grep -vc '^#' "$tab")))
+  done
+}
+if [[ -n $first_table ]]; then merge_tables >"$tmp_out"; else merge_patches >"$tmp_out"; fi
 if ((header_done)); then
   mv "$tmp_out" "$out"
 else
   rm -f "$tmp_out"
 fi
 elapsed=$(($(date +%s) - start))
-echo "run_cases: done: $n points, $((n - failed)) ok ($skipped already done), $failed failed, ${elapsed}s; table $out ($merged rows)"
+echo "run_cases: done: $n points, $((n - failed)) ok ($skipped already done), $failed failed, ${elapsed}s; table $out ($rows rows of $merged cases)"
 ((failed == 0))

@@ -7,7 +7,9 @@ one table, checking that every case of the list is present exactly once.
 
 WORKDIR holds cases.list (one absolute namelist path per line), chunk_size
 and chunks/NNNNN.{list,tab,tab.partial}. Every row must stand at its place
-(row j of chunk i is case (i-1)*chunk_size + j, checked by its name). When
+(row j of chunk i is case (i-1)*chunk_size + j, checked by its name; in a
+table of contact tables, &wheel_rail, case j has a block of rows, one per
+shift and patch, each led by its name). When
 all cases are present OUT_TABLE is written whole (temporary file, rename):
 comments first, then the column names, then one row per case in list order.
 Otherwise OUT_TABLE is left as it was, the missing cases are listed on
@@ -69,7 +71,7 @@ def main():
         list_dir = None
     chunks_dir = os.path.realpath(os.path.join(workdir, "chunks"))
 
-    header, columns, per_case_comments, rows = None, None, [], []
+    header, columns, per_case_comments, rows, n_gathered = None, None, [], [], 0
     missing, problems = [], []
     for i in range(1, n_chunks + 1):
         first = (i - 1) * chunk_size
@@ -77,8 +79,8 @@ def main():
         stem = os.path.join(workdir, "chunks", f"{i:05d}")
         if not os.path.exists(stem + ".tab"):
             done = 0
-            if os.path.exists(stem + ".tab.partial"):   # rows of a killed task, kept for the resubmit
-                done = sum(1 for l in open(stem + ".tab.partial") if l.strip() and not l.startswith("#"))
+            if os.path.exists(stem + ".tab.partial"):   # cases of a killed task, kept for the resubmit
+                done = sum(1 for l in open(stem + ".tab.partial") if l.startswith("# fingerprint "))
             missing += expected[done:] if done else expected
             if done:
                 problems.append(f"chunk {i}: killed after {done} of {len(expected)} cases (kept in {stem}.tab.partial)")
@@ -93,20 +95,30 @@ def main():
             problems.append(f"chunk {i}: other columns than chunk 1")
             missing += expected
             continue
+        # each case's rows: one, or a block (contact tables: their second column is shift)
         names = [r.split(None, 1)[0] for r in chunk_rows]
-        if names != [listed_name(p, chunks_dir) for p in expected]:
+        blocks = [[k] for k in range(len(names))]
+        if cols.split()[2:3] == ["shift"]:
+            blocks = []
+            for k, name in enumerate(names):
+                if blocks and names[blocks[-1][0]] == name:
+                    blocks[-1].append(k)
+                else:
+                    blocks.append([k])
+        if [names[b[0]] for b in blocks] != [listed_name(p, chunks_dir) for p in expected]:
             problems.append(f"chunk {i}: rows {names} do not match its cases")
             missing += expected
             continue
-        chunk_rows = [(listed_name(p, list_dir) if list_dir else case_name(p)) + r[len(name):]
-                      for p, r, name in zip(expected, chunk_rows, names)]
+        chunk_rows = [(listed_name(p, list_dir) if list_dir else case_name(p)) + chunk_rows[k][len(names[k]):]
+                      for p, b in zip(expected, blocks) for k in b]
+        n_gathered += len(blocks)
         for c in comments:            # per-case messages, renumbered to the place in the whole list
             m = re.match(r"# case (\d+) (.*)", c)
             if m:
                 per_case_comments.append(f"# case {first + int(m.group(1))} {m.group(2)}")
         rows += chunk_rows
 
-    if missing or len(rows) != len(cases):
+    if missing or n_gathered != len(cases):
         with open(os.path.join(workdir, "missing.list"), "w") as f:
             f.write("".join(p + "\n" for p in missing))
         for p in problems:

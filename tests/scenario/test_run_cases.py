@@ -155,7 +155,49 @@ def main():
     rc, skipped, rows, log = run_cases(folder, other)
     kctest.check(rc == 0 and skipped == 0, f"another kcreep binary: the case runs again ({skipped} skipped)")
     check_names(scratch)
+    check_tables(scratch)
     kctest.finish()
+
+
+def check_tables(scratch):
+    """Issue 45, item 1: contact tables (&wheel_rail), with and without &fastsim
+    and &rolling: each case's .wr beside its namelist, the merged table holds
+    their rows led by the case's name -- the rows kcreep --batch writes -- and a
+    second run skips them (before: "table (0 rows)", no merged table, exit 0)."""
+    folder = os.path.join(scratch, "tables")
+    os.makedirs(os.path.join(folder, "w"))
+    texts = {"plain": kctest.s1002_case(), "fast": kctest.s1002_case("&fastsim " + kctest.S1002_CREEP + "\n"),
+             "roll": kctest.s1002_case("&rolling " + kctest.S1002_CREEP + "\n")}
+    if texts["plain"] is None:
+        kctest.check(False, f"the profiles of input/s1002_uic60.nml are not at {kctest.PROFILES}")
+        return
+    for name, text in texts.items():
+        write(os.path.join(folder, "w", name + ".nml"), text)
+    write(os.path.join(folder, "cases.list"), "w/plain.nml\nw/fast.nml\nw/roll.nml\n")
+    env = dict(os.environ, KCREEP=kctest.KCREEP, OMP_NUM_THREADS="1")   # (issue 45 item 2 is another's)
+    run = lambda *a: subprocess.run(list(a), cwd=folder, capture_output=True, text=True, env=env)
+    proc = run("bash", RUN_CASES, "--jobs", "1", "cases.list", "merged.tab")
+    kctest.check(proc.returncode == 0 and "(6 rows of 3 cases)" in proc.stdout,
+                 f"run_cases.sh on 3 contact tables: exit 0, 6 rows ({proc.returncode}, {proc.stdout.strip()[-120:]!r})")
+    kctest.check(all(os.path.exists(os.path.join(folder, "w", f)) for f in
+                     ["plain.wr", "fast.wr", "fast.creep", "roll.wr", "roll.roll"]),
+                 f"each case's files beside its namelist: {sorted(os.listdir(os.path.join(folder, 'w')))}")
+    batch = run(kctest.KCREEP, "--batch", "cases.list", "batch.tab")
+    merged = kctest.read_table(os.path.join(folder, "merged.tab")) if os.path.exists(os.path.join(folder, "merged.tab")) else []
+    batched = kctest.read_table(os.path.join(folder, "batch.tab")) if batch.returncode == 0 else []
+    kctest.check(len(merged) == 6 and [r["case"] for r in merged] == ["w/plain"] * 2 + ["w/fast"] * 2 + ["w/roll"] * 2,
+                 f"the merged rows led by their case's name: {[r['case'] for r in merged]}")
+    kctest.check(merged == batched, "run_cases.sh merges the rows kcreep --batch writes (same columns, same values)")
+    proc = run("bash", RUN_CASES, "--jobs", "1", "cases.list", "merged.tab")
+    kctest.check(proc.returncode == 0 and "(3 already done)" in proc.stdout and
+                 kctest.read_table(os.path.join(folder, "merged.tab")) == merged,
+                 f"second run: all 3 skipped, the same table ({proc.stdout.strip()[-120:]!r})")
+    # one merged table holds one kind
+    write(os.path.join(folder, "e.nml"), "&patch mx = 12, my = 12 /\n")
+    write(os.path.join(folder, "mixed.list"), "e.nml\nw/plain.nml\n")
+    proc = run("bash", RUN_CASES, "--jobs", "1", "mixed.list", "mixed.tab")
+    kctest.check(proc.returncode == 2 and "one kind" in proc.stderr and not os.path.exists(os.path.join(folder, "e.tab")),
+                 f"a mixed list refused before any case runs ({proc.returncode}, {proc.stderr.strip()!r})")
 
 
 def check_names(scratch):

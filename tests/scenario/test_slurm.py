@@ -264,7 +264,38 @@ try:
     cells = [r["n"] for r in kc.read_table(os.path.join(folder, "full.tab"))][2:3]
     kc.check(redo.returncode == 5 and "submitted 1 array task(s)" in redo.stdout
              and "chunk 2: its cases' inputs changed" in redo.stdout and cells == [80],
-             f"its mask file rewritten: its chunk alone runs again, 80 cells ({cells}) {redo.stdout.strip()[-200:]}")
+             f"its mask file rewritten: its chunk alone runs again, 80 cells ({cells}) ({redo.returncode}) "
+             f"{redo.stdout.strip()[-200:]} {redo.stderr.strip()[-300:]}")
+
+    # --- issue 45, item 1: contact tables (&wheel_rail) through SLURM, with and
+    # without &fastsim and &rolling: each case's .wr, one block of rows per case in
+    # the gathered table, the rows the local kcreep --batch writes
+    tables = {"w_plain": kc.s1002_case(), "w_fast": kc.s1002_case("&fastsim " + kc.S1002_CREEP + "\n"),
+              "w_roll": kc.s1002_case("&rolling " + kc.S1002_CREEP + "\n")}
+    kc.check(tables["w_plain"] is not None, f"the profiles of input/s1002_uic60.nml at {kc.PROFILES}")
+    if tables["w_plain"] is not None:
+        for name, text in tables.items():
+            with open(os.path.join(folder, name + ".nml"), "w") as f:
+                f.write(text)
+        with open(os.path.join(folder, "tables.list"), "w") as f:
+            f.write("".join(name + ".nml\n" for name in tables))
+        one = dict(os.environ, OMP_NUM_THREADS="1")       # as each array task runs (1 CPU per task)
+        local_wr = run([kc.KCREEP, "--batch", "tables.list", "tables_local.tab"], env=one, cwd=folder, timeout=120)
+        local_wr_rows = kc.read_table(os.path.join(folder, "tables_local.tab")) if local_wr.returncode == 0 else []
+        wr = run([run_cases, "tables.list", "tables_slurm.tab", "--chunk", "2", "--wait"], env=env, cwd=folder,
+                 timeout=150)
+        slurm_wr_rows = kc.read_table(os.path.join(folder, "tables_slurm.tab")) if wr.returncode == 0 else []
+        kc.check(wr.returncode == 0 and len(local_wr_rows) == 6 and
+                 [r["case"] for r in slurm_wr_rows] == [r["case"] for r in local_wr_rows] ==
+                 ["w_plain"] * 2 + ["w_fast"] * 2 + ["w_roll"] * 2,
+                 f"contact tables through SLURM: 3 cases, 2 rows each, as locally ({wr.returncode}: "
+                 f"{wr.stdout.strip()[-200:]} {wr.stderr.strip()[-300:]})")
+        worst = max([abs(a[c] - b[c]) / max(abs(a[c]), 1e-300) for a, b in zip(local_wr_rows, slurm_wr_rows)
+                     for c in ("fn", "c11", "c22", "c23") if a[c] == a[c]] + [0.0])
+        kc.check(slurm_wr_rows and worst <= TOL, f"contact tables: SLURM rows = local rows (max relative "
+                 f"difference {worst:.1e} <= {TOL:.0e})")
+        kc.check(all(os.path.exists(os.path.join(folder, f)) for f in ["w_plain.wr", "w_fast.creep", "w_roll.roll"]),
+                 "each case's own files written by its array task")
 finally:
     stop = subprocess.run([local_cluster, "stop", cluster], capture_output=True, text=True, timeout=90)
     if stop.returncode != 0:
