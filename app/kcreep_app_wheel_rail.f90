@@ -204,7 +204,7 @@ contains
     character(len=:), allocatable :: line
     character(len=8), parameter :: names(14) = [character(len=8) :: 'shift', 'patch', 'fn', 'delta', 'y_rail', &
       'y_wheel', 'r_wheel', 'c11', 'c22', 'c23', 'err11', 'err22', 'err23', 'verdict']
-    integer, parameter :: widths(13) = [8, 6, 11, 10, 10, 10, 10, 9, 9, 9, 9, 9, 9]
+    integer, parameter :: widths(13) = [9, 6, 11, 10, 10, 10, 10, 9, 9, 9, 9, 9, 9]
     integer :: k
     line = ''
     do k = 1, 13
@@ -221,7 +221,7 @@ contains
     character(len=:), allocatable :: line
     character(len=16) :: buf
     integer :: k
-    line = cell(r%shift, 8, 2)
+    line = cell(r%shift, 9, 2)
     write (buf, '(i6)') r%patch
     line = line//buf(1:6)
     write (buf, '(es11.3)') r%fn     ! (1x, es10.3: holds any sign and exponent up to 99)
@@ -239,7 +239,7 @@ contains
 
   !> x in exactly width characters, the first a blank: fixed with decimals
   !> digits where it fits, else ES with as many digits as fit (width >= 9:
-  !> a sign, 'd.d' and a two-digit exponent).
+  !> a sign, 'd.d' and a two-digit exponent: 8 characters and the blank).
   function cell(x, width, decimals) result(text)
     real(real64), intent(in) :: x
     integer, intent(in) :: width, decimals
