@@ -19,14 +19,15 @@ module kcreep
   use kcreep_assembly, only: scheme_t, n_load_cases, load_case_names
   use kcreep_solver_options, only: solver_options_t, validate_solver_options
   use kcreep_dense, only: refine_modes
-  use kcreep_solve_memory, only: process_bytes
+  use kcreep_solve_memory, only: process_bytes, wheel_rail_shift_bytes, wheel_rail_cell_bytes, &
+                                 wheel_rail_row_cell_bytes
   use kcreep_threads, only: team_size, enter_team, leave_team, cells_per_thread_iterative, solve_started, &
                             solve_ended, max_threads, serial_blas
   use kcreep_verdict, only: verdict_ok, verdict_degenerate, verdict_nonphysical, verdict_alpha_edge, &
                             verdict_coarse, verdict_ill_conditioned, verdict_inaccurate, verdict_uncertain, &
                             verdict_words, &
                             message_length
-  use kcreep_problem, only: problem_t, result_t, default_problem, normal_problem_t
+  use kcreep_problem, only: problem_t, result_t, default_problem, normal_problem_t, cell_budget_or
   use kcreep_normal_solve, only: normal_result_t, normal_options_t
   use kcreep_gap, only: gap_t, polynomial_gap_t, gap_from_array, gap_from_polynomial, auto_grid
   use kcreep_creep_matrix, only: normalised_about
@@ -43,7 +44,7 @@ module kcreep
   use kcreep_extrapolation, only: run_extrapolated, memory_need
   use kcreep_error_run, only: run_controlled, controlled_finest_patch
   use kcreep_gap_levels, only: normal_grid_cells
-  use kcreep_refine_estimate, only: default_target_error, nominal_ellipse_cells
+  use kcreep_refine_estimate, only: default_target_error, nominal_ellipse_cells, level_cell_budget
   use kcreep_normal_influence, only: compliance_from_e_nu, combined_g_nu_from_e_nu
   use kcreep_table_run, only: run_table, table_meets_target
   use kcreep_wheel_rail_run, only: wheel_rail_base_cells => base_cells
@@ -241,6 +242,8 @@ contains
     character(len=:), allocatable, intent(out) :: method
     type(status_t), intent(inout) :: status
     type(problem_t) :: patch_problem
+    integer(int64) :: budget
+    integer :: at_once
     patch_problem = problem
     patch_problem%normal%active = .true.
     patch_problem%normal%force_given = .true.
@@ -250,7 +253,15 @@ contains
     if (status%failed()) return
     call kcreep_memory_need(patch_problem, bytes, method, status)
     if (status%failed()) return
-    bytes = process_bytes + most_shifts_at_once(problem%solve%threads, shifts) * (bytes - process_bytes)
+    at_once = most_shifts_at_once(problem%solve%threads, shifts)
+    if (problem%target_error > 0 .and. problem%refine_grid) then
+      ! the levels up to the cell budget, as measured (kcreep_solve_memory)
+      budget = int(cell_budget_or(problem, level_cell_budget(problem%target_error)), int64)
+      bytes = process_bytes + at_once * (wheel_rail_shift_bytes + wheel_rail_cell_bytes * budget) + &
+              (shifts - 1) * wheel_rail_row_cell_bytes * budget
+    else
+      bytes = process_bytes + at_once * (bytes - process_bytes)
+    end if
   end subroutine kcreep_wheel_rail_memory_need
 
   !> f13, f23, f31, f32, f33 refer to the spin centre: when it lies outside

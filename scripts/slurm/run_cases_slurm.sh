@@ -172,7 +172,9 @@ if [[ -z $mem_mb ]]; then
   while IFS= read -r path; do
     # a case kcreep cannot read gets an error row in its task; it needs no memory
     # 'FILE BYTES PATH': the bytes are the last field but one
-    bytes=$("$kcreep" --estimate-memory "$path" 2>/dev/null | awk '{print $(NF - 1)}') && [[ -n $bytes ]] || continue
+    # with the task's CPUs, not this host's: a contact table counts a shift per CPU at once
+    bytes=$(OMP_NUM_THREADS=$cpus "$kcreep" --estimate-memory "$path" 2>/dev/null | awk '{print $(NF - 1)}') &&
+      [[ -n $bytes ]] || continue
     ((bytes > max_bytes)) && max_bytes=$bytes
   done <"$todo"
   rm -f "$todo"

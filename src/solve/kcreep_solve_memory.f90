@@ -41,10 +41,31 @@ module kcreep_solve_memory
   implicit none
   private
   public :: iterative_bytes, dense_bytes, table_bytes, process_bytes, counted_iterations
+  public :: wheel_rail_shift_bytes, wheel_rail_cell_bytes, wheel_rail_row_cell_bytes
 
   !> The program's own resident set before any solve (code, libraries,
   !> OpenBLAS and FFTW state): B of the fit above (a 10 x 10 grid: 13.1 MB).
   integer(int64), parameter :: process_bytes = 11000000_int64
+
+  !> A shift of a wheel/rail table under error control, at its peak: the
+  !> fixed part and the bytes per cell of the level cell budget B (the
+  !> ladder's finest grid, the contact area's box, has at most B cells);
+  !> each earlier shift's rows keep wheel_rail_row_cell_bytes per budget
+  !> cell (their finest grid's tractions and pressure). Evidence: peak RSS
+  !> (/usr/bin/time -v, one thread) of S1002 on UIC60 at shift 0, target
+  !> 1e-5 so that the ladder runs to the budget: B = 10,000, 40,000 and
+  !> 160,000 reached finest grids of 8,827, 35,308 and 139,370 cells
+  !> (7,015 to 117,008 in contact) at peaks of 38.0, 107.5 and 356.6 MB,
+  !> 23 MB + 2,392 bytes per finest-grid cell; 2,700 bytes per budget cell
+  !> counts a box full of contact (0.80 to 0.84 of it was): the bound is
+  !> 1.22 to 1.32 times those peaks. Two shifts at once (threads = 2, B =
+  !> 40,000): 169 MB against 251 MB counted. The 17 shifts -6 to 10 mm at
+  !> the default target: 181 MB at the peak, 168 MB for the largest shift
+  !> (9 mm, 68,112 cells) alone: 13 MB kept for 15 earlier rows of 283,721
+  !> finest-grid cells in all, 46 bytes per cell.
+  integer(int64), parameter :: wheel_rail_shift_bytes = 12000000_int64
+  integer(int64), parameter :: wheel_rail_cell_bytes = 2700
+  integer(int64), parameter :: wheel_rail_row_cell_bytes = 60
   !> Bytes per grid cell besides the basis: operator table (table_bytes) and
   !> the FFT operator's and circulant preconditioner's grids and spectra.
   real(real64), parameter :: grid_cell_bytes = 775
