@@ -9,6 +9,9 @@
 #
 # LIST: one namelist path per line, relative to LIST's folder; blank lines
 # and lines starting with # are skipped (as for kcreep --batch).
+# One table holds one kind: single patches, or contact tables (&wheel_rail:
+# each task writes their <name>.wr in this folder, the jobs' working folder,
+# and the table holds their rows); a list mixing them is refused.
 #
 # Options (defaults in brackets):
 #   --partition P       partition [the cluster's default]
@@ -113,6 +116,22 @@ while IFS= read -r line || [[ -n $line ]]; do
 done <"$list" >"$cases_new"
 n_cases=$(wc -l <"$cases_new")
 ((n_cases > 0)) || die "list '$list': no cases"
+# one table holds one kind (kcreep --batch's rule, over the whole list: the
+# chunks must agree); contact tables (&wheel_rail) write <name>.wr in the tasks'
+# working folder, this one: two cases of one name would write the same file
+is_table() { [[ -r $1 ]] && sed 's/!.*//' "$1" | grep -qiE '(^|[^[:alnum:]_])&wheel_rail([^[:alnum:]_]|$)'; }
+n_tables=0 n_patches=0 table_names=()
+while IFS= read -r path; do
+  if is_table "$path"; then
+    n_tables=$((n_tables + 1)) name=${path##*/} && table_names+=("${name%.*}")
+  elif [[ -r $path ]]; then
+    n_patches=$((n_patches + 1))
+  fi
+done <"$cases_new"
+((n_tables == 0 || n_patches == 0)) ||
+  die "list '$list': $n_tables contact tables (&wheel_rail) and $n_patches single patches: one table holds one kind (give each kind its own list)"
+twice=$(printf '%s\n' "${table_names[@]}" | sort | uniq -d | head -n 1)
+[[ -z $twice ]] || die "list '$list': two contact tables named '$twice' would both write $PWD/$twice.wr (rename one)"
 chunk=${chunk:-$(((n_cases + 99) / 100))}
 n_chunks=$(((n_cases + chunk - 1) / chunk))
 

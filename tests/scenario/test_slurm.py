@@ -296,6 +296,12 @@ try:
                  f"difference {worst:.1e} <= {TOL:.0e})")
         kc.check(all(os.path.exists(os.path.join(folder, f)) for f in ["w_plain.wr", "w_fast.creep", "w_roll.roll"]),
                  "each case's own files written by its array task")
+        with open(os.path.join(folder, "mixed.list"), "w") as f:
+            f.write("w_plain.nml\n" + sweep[0] + "\n")
+        mixed = run([run_cases, "mixed.list", "mixed.tab"], env=env, cwd=folder)
+        kc.check(mixed.returncode == 2 and "one kind" in mixed.stderr and
+                 not os.path.exists(os.path.join(folder, "mixed.tab.slurm")),
+                 f"a list mixing contact tables and single patches refused before submitting: {mixed.stderr.strip()}")
 finally:
     stop = subprocess.run([local_cluster, "stop", cluster], capture_output=True, text=True, timeout=90)
     if stop.returncode != 0:
