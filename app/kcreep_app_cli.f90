@@ -12,7 +12,7 @@ module kcreep_app_cli
   use, intrinsic :: iso_fortran_env, only: int64, output_unit, error_unit
   use kcreep_status, only: status_t, fail, exit_bad_input
   use kcreep_strings, only: itoa
-  use kcreep, only: kcreep_version
+  use kcreep, only: kcreep_version, run_team, enter_team, leave_team
   use kcreep_namelist, only: config_t, group_list
   use kcreep_table, only: run_record_t, table_lines, traction_lines, pressure_lines, contact_mask_lines
   use kcreep_app_case, only: solve_input
@@ -74,6 +74,15 @@ contains
   subroutine run_command(command, status)
     type(command_t), intent(in) :: command
     type(status_t), intent(inout) :: status
+    integer :: previous_team
+    ! memory is estimated for the CPUs the process may use, whatever the load now
+    if (command%mode == 'estimate') then
+      call estimate_mode(command%args, status)
+      return
+    end if
+    ! the one place that opens the team of the whole run: every stage, also
+    ! one that chooses none, runs on at most the CPUs free now (kcreep_threads)
+    call enter_team(run_team(), previous_team)
     select case (command%mode)
     case ('help')
       write (output_unit, '(a)') 'kcreep '//kcreep_version//': creep coefficients of any contact patch', &
@@ -87,13 +96,12 @@ contains
       write (output_unit, '(a)') 'kcreep '//kcreep_version
     case ('batch')
       call batch_mode(command%args, status)
-    case ('estimate')
-      call estimate_mode(command%args, status)
     case ('fingerprint')
       call fingerprint_mode(command%args)
     case default
       call single_mode(command%args(1)%s, status)
     end select
+    call leave_team(previous_team)
   end subroutine run_command
 
   !> kcreep --fingerprint: one line 'FINGERPRINT FILE' per namelist (64 hex

@@ -73,8 +73,9 @@ contains
     end if
     seconds = sum(points%seconds)
     allocate (summary(2))
-    write (summary(1), '(a, i0, a, es10.3, a, f9.4, a, f6.2, a, f7.1, a)') 'exact rolling: ', size(points), &
-      ' creepage points, mu = ', cfg%rolling%request%mu, ', ', seconds, ' s; Newton steps per point ', &
+    write (summary(1), '(a, i0, a, es10.3, a, f9.4, a, i0, a, f6.2, a, f7.1, a)') 'exact rolling: ', size(points), &
+      ' creepage points, mu = ', cfg%rolling%request%mu, ', ', seconds, ' s on ', maxval([1, points%threads]), &
+      ' thread(s); Newton steps per point ', &
       real(sum(points%info%newton), real64) / max(1, size(points)), ', operator products per point ', &
       real(sum(points%info%products), real64) / max(1, size(points)), ''
     write (summary(2), '(a, es9.2, a)') '  largest residual max|F|/max(mu pn) ', maxval(points%info%residual), &

@@ -108,7 +108,8 @@ contains
     if (cfg%rolling%on) then
       write (buf, '(a, es10.3, a, f9.4, a, f6.2, a, es9.2)') 'exact rolling on each patch (phi + its geometric '// &
         'spin): '//itoa(size(cfg%rolling%request%creepages, 2))//' creepage points per patch, mu =', &
-        cfg%rolling%request%mu, ',', sum(rolled%seconds), ' s; Newton steps per point', &
+        cfg%rolling%request%mu, ',', sum(rolled%seconds), ' s on '//itoa(maxval([1, rolled%threads]))// &
+        ' thread(s); Newton steps per point', &
         real(sum(rolled%info%newton), real64) / max(1, size(rolled)), ', largest residual', &
         maxval(rolled%info%residual)
       call add(trim(buf)//'; rolling table: '//cfg%rolling%rolling_file)

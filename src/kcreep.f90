@@ -22,7 +22,7 @@ module kcreep
   use kcreep_solve_memory, only: process_bytes, wheel_rail_shift_bytes, wheel_rail_cell_bytes, &
                                  wheel_rail_row_cell_bytes
   use kcreep_threads, only: team_size, enter_team, leave_team, cells_per_thread_iterative, solve_started, &
-                            solve_ended, max_threads, serial_blas
+                            solve_ended, max_threads, serial_blas, run_team
   use kcreep_verdict, only: verdict_ok, verdict_degenerate, verdict_nonphysical, verdict_alpha_edge, &
                             verdict_coarse, verdict_ill_conditioned, verdict_inaccurate, verdict_uncertain, &
                             verdict_words, &
@@ -53,7 +53,7 @@ module kcreep
   implicit none
   private
   public :: kcreep_solve, kcreep_memory_need, kcreep_wheel_rail_memory_need
-  public :: kcreep_version, kcreep_version_number, max_threads, serial_blas
+  public :: kcreep_version, kcreep_version_number, max_threads, serial_blas, run_team, enter_team, leave_team
   public :: rolling_request_t, rolling_point_t, rolling_curve, default_rolling_tolerance, cell_stick, cell_slip, &
             rolling_residual_of
   public :: creep_request_t, creep_point_t, creep_map_t, creep_curve, source_names, source_flexibilities

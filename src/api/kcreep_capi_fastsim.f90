@@ -102,6 +102,7 @@ contains
       call c_f_pointer(creep, creepages, [3, int(n)])
       request%mu = mu
       request%creepages = creepages
+      request%threads = h%problem%solve%threads
       if (allocated(h%result%traction)) then
         call rolling_curve(h%result%patch, h%problem%scheme, h%result%nu, h%result%g, h%result%spin_centre, pn, &
                            request, points, maps, h%last, h%result%traction)

@@ -19,13 +19,16 @@
 !> A stage sets its team on the calling thread's OpenMP ICV and restores
 !> the caller's value when it ends (enter_team / leave_team), so callers
 !> on several threads, each with its own handle, do not disturb each other.
+!> A whole run (the command line's case or batch) first enters run_team():
+!> every stage then runs on at most that team, and a stage that chose no
+!> team of its own runs on it too, never on OpenMP's default count.
 module kcreep_threads
   use, intrinsic :: iso_c_binding, only: c_int
   use, intrinsic :: iso_fortran_env, only: int64
   !$ use omp_lib, only: omp_get_max_threads, omp_set_num_threads
   implicit none
   private
-  public :: team_size, enter_team, leave_team, cpus_allowed, serial_blas, solve_started, solve_ended
+  public :: team_size, run_team, enter_team, leave_team, cpus_allowed, serial_blas, solve_started, solve_ended
   public :: cells_per_thread_iterative, cells_per_thread_dense, cells_per_thread_normal, max_threads
 
   !> Patch cells per thread before a second thread pays, measured on the
@@ -121,6 +124,13 @@ contains
     if (n > 1) n = min(n, cpus_free())
     n = max(n, 1)
   end function team_size
+
+  !> The team of a whole run: the CPUs this process may use that are free
+  !> now (team_size with no bound from the work). Stages inside choose at
+  !> most this many, fewer where their work is small or the load has grown.
+  integer function run_team() result(n)
+    n = team_size(0, huge(1_int64), 1)
+  end function run_team
 
   !> Run the calling thread's next parallel regions on n threads; previous
   !> receives what leave_team restores.

@@ -145,6 +145,7 @@ contains
       call read_rolling_group(unit, path, text, .true., closed(8) .and. last_line_open, cfg%shape, cfg%extrapolate, &
                               cfg%wheel_rail_on, cfg%rolling, status)
       if (.not. status%failed()) call apply_rolling_output(cfg, output%rolling_file, output%rolling_map_file, status)
+      cfg%rolling%request%threads = cfg%solve%threads    ! &solver threads, for the rolling stage too
     end if
     close (unit)
     if (status%failed()) return

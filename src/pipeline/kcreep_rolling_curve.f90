@@ -16,6 +16,8 @@ module kcreep_rolling_curve
   use kcreep_assembly, only: scheme_t, operator_table_t, build_operator_table, rigid_creepage
   use kcreep_fastsim_forces, only: fastsim_result_t
   use kcreep_creep_curve, only: creep_map_t
+  use kcreep_threads, only: team_size, enter_team, leave_team, solve_started, solve_ended, &
+                            cells_per_thread_iterative
   use kcreep_rolling_solve, only: rolling_solver_t, rolling_options_t, rolling_info_t, create_rolling_solver, &
                                   destroy_rolling_solver, solve_rolling, rolling_residual, cell_stick, cell_slip, &
                                   default_rolling_tolerance
@@ -29,6 +31,7 @@ module kcreep_rolling_curve
     real(real64), allocatable :: creepages(:, :)  !< (3, n): (xi, eta, phi) of each point
     real(real64) :: tolerance = default_rolling_tolerance   !< max |F| / max(mu pn) to stop at
     logical :: maps = .false.                     !< keep the traction and stick/slip map of every point
+    integer :: threads = 0                        !< &solver threads: 0 automatic (kcreep_threads), else as given
   end type rolling_request_t
 
   type :: rolling_point_t
@@ -36,6 +39,7 @@ module kcreep_rolling_curve
     type(fastsim_result_t) :: force               !< fx fy mz fn adhesion, as FASTSIM's
     type(rolling_info_t) :: info                  !< Newton steps, products, residual
     real(real64) :: seconds = 0
+    integer :: threads = 1                        !< the team the point was solved on
   end type rolling_point_t
 
 contains
@@ -44,6 +48,8 @@ contains
   !> pressure pn (mx, my) for every creepage of request.
   !> unit_traction: (2n, 3) full-adhesion tractions per unit xi, eta, phi
   !> (result%traction), used to start; absent or NaN: not used.
+  !> The curve runs on the team kcreep_threads chooses for its n cells
+  !> (request%threads when positive), as every stage does; points%threads says.
   subroutine rolling_curve(patch, scheme, nu, g, spin_centre, pn, request, points, maps, status, unit_traction)
     type(patch_t), intent(in) :: patch
     type(scheme_t), intent(in) :: scheme
@@ -62,7 +68,7 @@ contains
     integer, allocatable :: state(:)
     real(real64) :: fnorm_warm, fnorm_adh, fmax, da
     logical :: have_unit, have_warm
-    integer :: n, k, j, c
+    integer :: n, k, j, c, team, previous_team
     integer(int64) :: t0, t1, rate
 
     allocate (points(0), maps(0))
@@ -97,6 +103,9 @@ contains
       if (size(unit_traction, 1) == 2 * n .and. size(unit_traction, 2) == 3) &
         have_unit = all(unit_traction == unit_traction)
     end if
+    team = team_size(request%threads, int(n, int64), cells_per_thread_iterative)
+    call solve_started()
+    call enter_team(team, previous_team)
     call build_operator_table(centred, scheme, nu, g, table)
     call create_rolling_solver(centred, table, solver)
     options%tolerance = request%tolerance
@@ -114,6 +123,7 @@ contains
     p = 0
     do k = 1, size(points)
       call system_clock(t0, rate)
+      points(k)%threads = team
       associate (cr => request%creepages(:, k))
         w = cr(1) * unit_w(:, 1) + cr(2) * unit_w(:, 2) + cr(3) * unit_w(:, 3)
         points(k)%creep = cr
@@ -159,6 +169,8 @@ contains
       points(k)%seconds = real(t1 - t0, real64) / rate
     end do
     call destroy_rolling_solver(solver)
+    call leave_team(previous_team)
+    call solve_ended()
 
   contains
 
@@ -180,7 +192,8 @@ contains
   !> The residual max|F_i| / max(mu pn) of given tractions (2n: px, py per
   !> patch cell) in the discrete rolling problem of (patch, creep, mu, pn):
   !> how far another solver's answer (CONTACT's element file) is from
-  !> satisfying the Coulomb conditions of this discretisation.
+  !> satisfying the Coulomb conditions of this discretisation. On the
+  !> automatic team of kcreep_threads.
   function rolling_residual_of(patch, scheme, nu, g, spin_centre, pn, mu, creep, traction) result(residual)
     type(patch_t), intent(in) :: patch
     type(scheme_t), intent(in) :: scheme
@@ -191,7 +204,7 @@ contains
     type(rolling_solver_t) :: solver
     real(real64), allocatable :: unit_w(:), w(:), bound(:), f(:), q(:)
     real(real64) :: fnorm, fmax
-    integer :: j, k, n
+    integer :: j, k, n, previous_team
     n = patch%n
     centred = patch
     centred%x0 = patch%x0 - spin_centre(1)
@@ -205,11 +218,15 @@ contains
     do k = 1, n
       bound(k) = mu * pn(patch%ix(k), patch%iy(k))
     end do
+    call solve_started()
+    call enter_team(team_size(0, int(n, int64), cells_per_thread_iterative), previous_team)
     call build_operator_table(centred, scheme, nu, g, table)
     call create_rolling_solver(centred, table, solver)
     call rolling_residual(solver, w, bound, traction, f, q, fnorm, fmax)
     residual = fmax / max(maxval(bound), tiny(1.0_real64))
     call destroy_rolling_solver(solver)
+    call leave_team(previous_team)
+    call solve_ended()
   end function rolling_residual_of
 
 end module kcreep_rolling_curve
