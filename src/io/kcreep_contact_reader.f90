@@ -16,8 +16,8 @@ module kcreep_contact_reader
   use, intrinsic :: iso_fortran_env, only: real64
   use kcreep_status, only: status_t, fail, exit_bad_input
   use kcreep_strings, only: itoa, rtoa
-  use kcreep_contact_text, only: text_t, max_line, max_tokens, find_line, read_columns, column, has, to_reals, &
-                                 to_integers, split, read_text
+  use kcreep_contact_text, only: text_t, max_tokens, find_line, read_columns, column, has, to_reals, &
+                                 to_integers, split, read_text, token_bounds, integer_of
   implicit none
   private
   public :: contact_case_t, read_contact_case, combined_material, contact_mat_path, count_contact_cases
@@ -82,7 +82,7 @@ contains
     call read_text(out_path, 'contact_file', text, status)
     if (status%failed()) return
     do i = 1, text%n
-      if (case_header(text%lines(i), k)) n_cases = n_cases + 1
+      if (case_header(text%lines(i)%s, k)) n_cases = n_cases + 1
     end do
   end subroutine count_contact_cases
 
@@ -108,7 +108,7 @@ contains
     last = text%n
     n_cases = 0
     do i = 1, text%n
-      if (.not. case_header(text%lines(i), k)) cycle
+      if (.not. case_header(text%lines(i)%s, k)) cycle
       n_cases = n_cases + 1
       if (first > 0 .and. last == text%n) last = i - 1
       if (k == case_number .and. first == 0) first = i
@@ -207,7 +207,7 @@ contains
     grid_printed = .false.
     line_no = find_line(text, first, last, 'DISCRETISATION MX,MY, DX,DY:')
     if (line_no > 0) then
-      call split(text%lines(line_no)(index(text%lines(line_no), ':') + 1:), tok, nt)
+      call split(text%lines(line_no)%s(index(text%lines(line_no)%s, ':') + 1:), tok, nt)
       ios = merge(0, 1, nt == 4)
       if (ios == 0) read (tok(1), *, iostat=ios) c%mx
       if (ios == 0) read (tok(2), *, iostat=ios) c%my
@@ -218,7 +218,7 @@ contains
       c%dy = simplest_fraction(v(2), printed_half_unit(tok(4)))
       if (ios /= 0) then
         call fail(status, exit_bad_input, where//'line '//itoa(line_no)//': cannot read MX, MY, DX, DY from "'// &
-                  trim(adjustl(text%lines(line_no)))//'"')
+                  trim(adjustl(text%lines(line_no)%s))//'"')
         return
       end if
       line_no = find_line(text, first, last, 'POTENTIAL CONTACT, SCALE:')
@@ -226,7 +226,7 @@ contains
         call fail(status, exit_bad_input, where//'DISCRETISATION printed without the POTENTIAL CONTACT line')
         return
       end if
-      call split(text%lines(line_no)(index(text%lines(line_no), ':') + 1:), tok, nt)
+      call split(text%lines(line_no)%s(index(text%lines(line_no)%s, ':') + 1:), tok, nt)
       ios = merge(0, 1, nt == 3)
       if (ios == 0) call to_reals(tok(1:3), where//'POTENTIAL CONTACT XL, YL, SCALE', v(1:3), status)
       if (status%failed()) return
@@ -234,7 +234,7 @@ contains
       yl = simplest_fraction(v(2), printed_half_unit(tok(2)))
       if (ios /= 0) then
         call fail(status, exit_bad_input, where//'line '//itoa(line_no)//': cannot read XL, YL from "'// &
-                  trim(adjustl(text%lines(line_no)))//'"')
+                  trim(adjustl(text%lines(line_no)%s))//'"')
         return
       end if
       c%xl = xl
@@ -258,7 +258,9 @@ contains
     character(len=32) :: head(max_tokens), vals(max_tokens)
     integer :: nh, nv, i, ios, mx, my, element, igs, ix, iy, n_slip, first_element, pn_column
     real(real64) :: xl, yl, dx, dy, gg(2), poiss(2), material(4), grid(4)
-    real(real64), allocatable :: row(:)
+    real(real64) :: pn
+    integer :: f1, l1, f2, l2, fp, lp
+    logical :: ok1, ok2
     integer :: grid_size(2), k
     logical :: have_grid, have_material
     logical, allocatable :: seen(:, :)
@@ -271,10 +273,10 @@ contains
     have_material = .false.
     first_element = 0
     do i = 1, text%n - 1
-      if (adjustl(text%lines(i)) /= '%' .and. index(adjustl(text%lines(i)), '%') /= 1) cycle
-      call split(text%lines(i), head, nh)
+      if (adjustl(text%lines(i)%s) /= '%' .and. index(adjustl(text%lines(i)%s), '%') /= 1) cycle
+      call split(text%lines(i)%s, head, nh)
       if (has(head(1:nh), 'MX') .and. has(head(1:nh), 'XL')) then
-        call split(text%lines(i + 1), vals, nv)
+        call split(text%lines(i + 1)%s, vals, nv)
         call to_integers(vals(1:2), where//'line '//itoa(i + 1)//': MX, MY', grid_size, status)
         call to_reals(vals(3:6), where//'line '//itoa(i + 1)//': XL, YL, DX, DY', grid, status)
         if (status%failed()) return
@@ -292,7 +294,7 @@ contains
         dy = grid(4)
         have_grid = .true.
       else if (has(head(1:nh), 'GG1')) then
-        call split(text%lines(i + 1), vals, nv)
+        call split(text%lines(i + 1)%s, vals, nv)
         call to_reals([column(head, nh, vals, nv, 'GG1'), column(head, nh, vals, nv, 'GG2'), &
                        column(head, nh, vals, nv, 'POISS1'), column(head, nh, vals, nv, 'POISS2')], &
                       where//'line '//itoa(i + 1)//': GG1, GG2, POISS1, POISS2', material, status)
@@ -345,18 +347,27 @@ contains
     c%xl = xl
     c%yl = yl
 
-    allocate (c%inside(mx, my), seen(mx, my), c%pn(mx, my), row(max(2, pn_column)))
+    allocate (c%inside(mx, my), seen(mx, my), c%pn(mx, my))
     c%inside = .false.
     c%pn = 0
     seen = .false.
     n_slip = 0
     do i = first_element, text%n
-      if (len_trim(text%lines(i)) == 0) cycle
-      if (index(adjustl(text%lines(i)), '%') == 1) exit
-      read (text%lines(i), *, iostat=ios) element, igs
-      if (ios /= 0) then
+      ! I and IGS, and PN below, found in place: a formatted read per line
+      ! cost more than the solve on large grids (issue 45)
+      associate (line => text%lines(i)%s)
+        call token_bounds(line, 1, f1, l1)
+        if (f1 == 0) cycle                    ! a blank line
+        if (line(f1:f1) == '%') exit          ! the next comment block
+        call token_bounds(line, 2, f2, l2)
+        ok1 = f2 > 0
+        ok2 = .false.
+        if (ok1) call integer_of(line(f1:l1), element, ok1)
+        if (ok1) call integer_of(line(f2:l2), igs, ok2)
+      end associate
+      if (.not. (ok1 .and. ok2)) then
         call fail(status, exit_bad_input, where//'line '//itoa(i)//': cannot read I, IGS from "'// &
-                  trim(text%lines(i)(1:min(60, len_trim(text%lines(i)))))//'"')
+                  trim(text%lines(i)%s(1:min(60, len_trim(text%lines(i)%s))))//'"')
         return
       end if
       if (element < 1 .or. element > mx * my) then
@@ -379,18 +390,20 @@ contains
       seen(ix, iy) = .true.
       c%inside(ix, iy) = igs >= 1
       if (pn_column >= 3 .and. igs >= 1) then
-        read (text%lines(i), *, iostat=ios) row
+        call token_bounds(text%lines(i)%s, pn_column, fp, lp)
+        ios = 1
+        if (fp > 0) read (text%lines(i)%s(fp:lp), *, iostat=ios) pn
         if (ios /= 0) then
           call fail(status, exit_bad_input, where//'line '//itoa(i)//': cannot read PN (column '// &
-                    itoa(pn_column)//') from "'//trim(text%lines(i)(1:min(60, len_trim(text%lines(i)))))//'"')
+                    itoa(pn_column)//') from "'//trim(text%lines(i)%s(1:min(60, len_trim(text%lines(i)%s))))//'"')
           return
         end if
-        if (.not. (row(pn_column) >= 0 .and. row(pn_column) <= huge(1.0_real64))) then
-          call fail(status, exit_bad_input, where//'line '//itoa(i)//': PN = '//rtoa(row(pn_column))// &
+        if (.not. (pn >= 0 .and. pn <= huge(1.0_real64))) then
+          call fail(status, exit_bad_input, where//'line '//itoa(i)//': PN = '//rtoa(pn)// &
                     ' (a normal pressure must be finite and >= 0)')
           return
         end if
-        c%pn(ix, iy) = row(pn_column)
+        c%pn(ix, iy) = pn
       end if
       if (igs == 2) n_slip = n_slip + 1
     end do
@@ -425,7 +438,7 @@ contains
     bottom = 0
     first_symbol = 0
     do i = start + 1, last
-      call split(text%lines(i), tok, nt)
+      call split(text%lines(i)%s, tok, nt)
       if (nt < 2) exit
       read (tok(1), *, iostat=ios) row
       ! a map row: its number, then one non-digit symbol per column (the
@@ -433,10 +446,10 @@ contains
       if (ios /= 0 .or. any(len_trim(tok(2:nt)) /= 1) .or. any(scan(tok(2:nt), '0123456789') > 0)) exit
       if (rows_read == 0) then
         top = row
-        first_symbol = index(text%lines(i), trim(tok(2)))
+        first_symbol = index(text%lines(i)%s, trim(tok(2)))
         ! the first symbol follows the row number: look past it
-        first_symbol = index(text%lines(i)(index(text%lines(i), trim(tok(1))) + len_trim(tok(1)):), trim(tok(2))) &
-                       + index(text%lines(i), trim(tok(1))) + len_trim(tok(1)) - 1
+        first_symbol = index(text%lines(i)%s(index(text%lines(i)%s, trim(tok(1))) + len_trim(tok(1)):), trim(tok(2))) &
+                       + index(text%lines(i)%s, trim(tok(1))) + len_trim(tok(1)) - 1
       end if
       rows_read = rows_read + 1
       bottom = row
@@ -463,8 +476,8 @@ contains
     tens_line = ''
     units_line = ''
     if (start + rows_read + 2 <= last) then
-      tens_line = text%lines(start + rows_read + 1)
-      units_line = text%lines(start + rows_read + 2)
+      tens_line = text%lines(start + rows_read + 1)%s
+      units_line = text%lines(start + rows_read + 2)%s
     end if
     if (top /= c%my .or. bottom /= 1 .or. rows_read /= c%my .or. first_symbol < 1 .or. &
         first_symbol > len(units_line)) then
@@ -540,7 +553,7 @@ contains
   logical function case_header(line, k)
     character(len=*), intent(in) :: line
     integer, intent(out) :: k
-    character(len=max_line) :: s
+    character(len=max(len(line), 5)) :: s
     integer :: ios
     case_header = .false.
     k = 0

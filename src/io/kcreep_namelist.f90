@@ -9,7 +9,7 @@
 module kcreep_namelist
   use, intrinsic :: iso_fortran_env, only: real64, iostat_end
   use kcreep_status, only: status_t, fail, exit_bad_input
-  use kcreep_strings, only: rtoa, itoa, resolve_path, folder_of
+  use kcreep_strings, only: rtoa, itoa, resolve_path, folder_of, lower
   use kcreep, only: patch_t, ellipse_patch, mask_patch, problem_t, collocation_aspect_limit, max_wheel_rail_shifts
   use kcreep_refine_estimate, only: default_target_error
   use kcreep_mask_file, only: read_mask_file, parse_mask_rows
@@ -90,7 +90,7 @@ contains
     end if
     if (present(1)) then
       rewind (unit)
-      call read_patch_group(unit, patch, ios, msg)
+      call read_patch_group(unit, index(lower(text), 'mask_rows') > 0, patch, ios, msg)
       call check_read(1)
     end if
     if (present(2)) then

@@ -31,8 +31,11 @@ module kcreep_nml_patch
 contains
 
   !> Read &patch from unit (positioned before it); ios, msg as from the read.
-  subroutine read_patch_group(unit, grp, ios, msg)
+  !> rows_given: the input's text names mask_rows; only then is the space for
+  !> max_inline_rows rows (4 MB) taken, not for every namelist.
+  subroutine read_patch_group(unit, rows_given, grp, ios, msg)
     integer, intent(in) :: unit
+    logical, intent(in) :: rows_given
     type(patch_group_t), intent(out) :: grp
     integer, intent(out) :: ios
     character(len=*), intent(inout) :: msg
@@ -43,7 +46,7 @@ contains
     character(len=max_row_length), allocatable :: mask_rows(:)
     namelist /patch/ shape, semi_a, semi_b, mx, my, mask_file, mask_rows, dx, dy, x0, y0, contact_file, contact_case
 
-    allocate (mask_rows(max_inline_rows))
+    allocate (mask_rows(merge(max_inline_rows, 1, rows_given)))
     mask_rows = ''
     shape = grp%shape
     semi_a = grp%semi_a

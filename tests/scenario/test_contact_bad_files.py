@@ -97,4 +97,27 @@ os.mkdir(folder)
 code, out, err, table = kc.run(nml(2), folder, "case", files={"c.out": circle})
 kc.check(code == 0 and "mask from the out map" in out and "agrees with CONTACT" in out,
          "Hertzian .out without .mat: mask from the printed map, still agrees")
+
+# Memory in proportion to the file, not to its lines times a fixed width: the
+# reader kept every line padded to 8192 characters, so a .mat of 17,424
+# elements (132 x 132) took 143 MB and reading cost more than the solve
+# (issue 45). The circle's .mat with 20,000 blank lines after its elements
+# (valid: blank lines are skipped): peak RSS measured 16 MB now, 179 MB with
+# the padded lines; 60 MB leaves room for another libc or libgfortran.
+folder = os.path.join(root, "blank_lines")
+os.mkdir(folder)
+for name, content in {"c.out": circle, "c.0001.mat": cmat[1] + "\n" * 20000}.items():
+    with open(os.path.join(folder, name), "w") as f:
+        f.write(content)
+with open(os.path.join(folder, "case.nml"), "w") as f:
+    f.write(nml(1))
+proc = subprocess.Popen([kc.KCREEP, "case.nml"], cwd=folder, stdout=subprocess.PIPE, stderr=subprocess.PIPE,
+                        text=True)
+out, err = proc.stdout.read(), proc.stderr.read()
+_, code, usage = os.wait4(proc.pid, 0)
+proc.returncode = os.waitstatus_to_exitcode(code)
+peak_mb = usage.ru_maxrss / 1024
+kc.check(proc.returncode == 0 and "agrees with CONTACT" in out, f"blank_lines: the padded .mat still reads and "
+         f"agrees ({err.strip()[:200]})")
+kc.check(peak_mb < 60, f"blank_lines: peak memory {peak_mb:.0f} MB < 60 MB for a 1 MB element file")
 kc.finish()
