@@ -4,8 +4,10 @@ processes (N = the CPUs of this machine), each with the default thread count
 and with OMP_NUM_THREADS=1, in turns (default, one thread, default, ...), the
 median wall time of each. Standard library only (any python3).
 
-    scripts/bench_load.py BUILD_DIR REPOSITORY_ROOT [--repeats R] [--no-docs]
+    scripts/bench_load.py BUILD_DIR REPOSITORY_ROOT [--repeats R] [--no-docs] [--only TEXT]
     scripts/bench_load.py --help
+
+--only TEXT runs the runs whose label contains TEXT, and writes no docs.
 """
 import os
 import shutil
@@ -22,7 +24,8 @@ if any(a in ("-h", "--help") for a in sys.argv[1:]) or len(sys.argv) < 3:
 build, root = sys.argv[1], sys.argv[2]
 args = sys.argv[3:]
 repeats = int(args[args.index("--repeats") + 1]) if "--repeats" in args else 5
-write_docs = "--no-docs" not in args
+only = args[args.index("--only") + 1] if "--only" in args else ""
+write_docs = "--no-docs" not in args and not only
 kcreep = os.path.join(build, "kcreep")
 cpus = os.cpu_count() or 1
 
@@ -35,6 +38,12 @@ for m in (128, 280):
     with open(os.path.join(work, f"circle_{m}.nml"), "w") as f:
         f.write(f"&patch shape = 'ellipse', semi_a = 1, semi_b = 1, mx = {m}, my = {m} /\n"
                 "&material nu = 0.25 /\n&solver method = 'iterative', target_error = 0 /\n")
+# the S1002 table of input/s1002_uic60.nml on 3 shifts with exact rolling on every patch
+profiles = os.path.abspath(os.path.join(root, "..", "shared", "profiles"))
+with open(os.path.join(work, "s1002_rolling.nml"), "w") as f:
+    f.write(f"&wheel_rail wheel_file = '{profiles}/MBench_S1002_v3.prw', rail_file = '{profiles}/MBench_UIC60_v3.prr',\n"
+            "  shift_from = 0, shift_to = 4, shift_step = 2, vertical_force = 80000 /\n"
+            "&material g = 82000, nu = 0.28 /\n&rolling mu = 0.3, creepages = 0 0 0, 2e-3 0 0 /\n")
 os.makedirs(os.path.join(work, "batch"))
 with open(os.path.join(work, "batch20.list"), "w") as listing:
     for k in range(20):   # ellipses a/b 0.3 to 3.2, nu 0 to 0.475, the default run (error control)
@@ -51,7 +60,10 @@ cases = [
     ("128 x 128 circle, iterative, target_error = 0", [kcreep, "circle_128.nml"]),
     ("280 x 280 circle, iterative, target_error = 0", [kcreep, "circle_280.nml"]),
     ("--batch of 20 ellipses", [kcreep, "--batch", "batch20.list"]),
+    ("input/wheel_rail_rolling.nml (&rolling, 30 points)", [kcreep, "input/wheel_rail_rolling.nml"]),
+    ("S1002/UIC60 table, 3 shifts, &rolling", [kcreep, "s1002_rolling.nml"]),
 ]
+cases = [c for c in cases if only in c[0]]
 
 
 def timed(command, one_thread):

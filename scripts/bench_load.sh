@@ -1,10 +1,10 @@
 #!/usr/bin/env bash
-# kcreep on a busy machine: the README example, input/crescent.nml, a
-# 128 x 128 iterative solve and a --batch of 20 ellipses, each alone and
-# beside N busy processes (N = CPUs), default threads against
-# OMP_NUM_THREADS=1. Prints the table and writes the "load" section of
-# docs/performance.md.
-#   scripts/bench_load.sh [--repeats R] [--no-docs]
+# kcreep on a busy machine: the README example, input/crescent.nml, 128 and
+# 280 x 280 iterative solves, a --batch of 20 ellipses, &rolling, a wheel/rail
+# table with &rolling, each alone and beside N busy processes (N = CPUs),
+# default threads against OMP_NUM_THREADS=1. Prints the table and writes the
+# "load" section of docs/performance.md (not with --only TEXT: those runs only).
+#   scripts/bench_load.sh [--repeats R] [--no-docs] [--only TEXT]
 #   scripts/bench_load.sh --help
 set -euo pipefail
 usage() { sed -n '2,8p' "${BASH_SOURCE[0]}" | sed 's/^# \{0,1\}//'; }
