@@ -149,7 +149,8 @@ int kcreep_rolling(kcreep_handle handle, double mu, int n, const double *creep, 
 /* Wheel and rail profiles to a contact table (docs/wheel_rail.md; the same
  * table as the program's &wheel_rail). Profiles are read by
  * kcreep_set_profiles (SIMPACK .prw/.prr, MiniProf .whl/.ban, else two
- * columns y z in mm; mirror flags 0 or 1; smoothing >= 0, mm^3). The track
+ * columns y z in mm; mirror flags 0 or 1; smoothing 0 to 1e12 mm^4, negative:
+ * automatic, docs/wheel_rail.md). The track
  * (side "right" or "left", then mm and rad as &wheel_rail) defaults to
  * "right", 1435, 14, 0, 1360, -70, 460 until kcreep_set_track. kcreep_wheel_rail
  * runs n_shifts lateral shifts (mm) at yaw (rad) with exactly one of

@@ -217,10 +217,11 @@ class Solver:
     def wheel_rail(self, wheel_file, rail_file, shifts, *, vertical_force=0.0, approach=0.0, yaw=0.0,
                    side="right", gauge_width=1435.0, gauge_height=14.0, rail_cant=0.0, flange_back_distance=1360.0,
                    flange_back_position=-70.0, nominal_radius=460.0, wheel_mirror=False, rail_mirror=False,
-                   smoothing=0.0):
+                   smoothing=-1.0):
         """The contact table of a wheel on a rail over the lateral shifts (mm), as
         the program's &wheel_rail (docs/wheel_rail.md): exactly one of
-        vertical_force (N) and approach (mm) > 0; this Solver's material,
+        vertical_force (N) and approach (mm) > 0; smoothing (mm^4) negative:
+        automatic, as the program's default; this Solver's material,
         solver settings and target_error (0: the program's default, 1e-3).
         Returns a dict of numpy arrays, one per column of WHEEL_RAIL_COLUMNS (one
         entry per shift and patch; 'patch' integers, 'verdict' the verdict bits)."""

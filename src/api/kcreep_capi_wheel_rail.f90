@@ -20,7 +20,7 @@ contains
   !> The handle behind a C pointer, with its last error cleared.
   !> Wheel and rail profiles for kcreep_wheel_rail, read now (as &wheel_rail
   !> wheel_file, rail_file: SIMPACK .prw/.prr, MiniProf .whl/.ban, else two
-  !> columns y z in mm); mirror flags 0 or 1; smoothing >= 0 (mm^3).
+  !> columns y z in mm); mirror flags 0 or 1; smoothing 0 to 1e12 (mm^4), negative: automatic.
   integer(c_int) function c_set_profiles(handle, wheel_file, rail_file, wheel_mirror, rail_mirror, smoothing) &
     bind(c, name='kcreep_set_profiles')
     type(c_ptr), value :: handle, wheel_file, rail_file
@@ -32,9 +32,9 @@ contains
     if (c_set_profiles /= status_ok) return
     if (.not. (c_associated(wheel_file) .and. c_associated(rail_file))) then
       call fail(h%last, exit_bad_input, 'kcreep_set_profiles: wheel_file or rail_file is NULL')
-    else if (.not. (smoothing >= 0 .and. smoothing <= 1e12_wp)) then
+    else if (.not. (smoothing <= 1e12_wp)) then
       call fail(h%last, exit_bad_input, 'kcreep_set_profiles: smoothing = '//rtoa(real(smoothing, wp))// &
-                ' (allowed: 0 to 1e12 mm^3)')
+                ' (allowed: 0 to 1e12 mm^4, or negative: automatic)')
     else if (any([wheel_mirror, rail_mirror] /= 0 .and. [wheel_mirror, rail_mirror] /= 1)) then
       call fail(h%last, exit_bad_input, 'kcreep_set_profiles: wheel_mirror, rail_mirror = '//itoa(int(wheel_mirror))// &
                 ', '//itoa(int(rail_mirror))//' (allowed: 0 or 1)')

@@ -1,11 +1,23 @@
 !> A wheel or rail profile: a lateral section (y, z), mm, z positive downwards.
 !>
 !> The points are joined by a natural cubic spline in their arc length (a
-!> parametric curve, so flanks and undercuts are kept), or by a smoothing
-!> spline of the same kind for measured profiles: each coordinate f minimises
+!> parametric curve), or by a smoothing spline of the same kind for measured
+!> profiles: each coordinate f minimises
 !>   sum_i w_i (f_i - g(s_i))^2 + lambda int g''(s)^2 ds,   w_i = (s_(i+1) - s_(i-1)) / 2,
-!> (Reinsch's algorithm; CONTACT's weighted spline, Vollebregt 2020), lambda the
-!> `smoothing` of &wheel_rail in mm^3 (0: the interpolating spline).
+!> (Reinsch's algorithm), lambda the `smoothing` of &wheel_rail in mm^4 (0:
+!> the interpolating spline). With the weights w_i the sum is a length
+!> integral and the spline a low-pass filter independent of the point
+!> spacing: a wave of length L keeps the part 1 / (1 + lambda (2 pi / L)^4)
+!> of its amplitude, half at L = 2 pi lambda^(1/4) (lambda = 1: 6.3 mm). This
+!> is CONTACT's weighted spline (ISMOOTH = 1) with lambda = (L_FILT / 2 pi)^4;
+!> CONTACT's default (ISMOOTH = 0) weighs every point by 1, so its lambda
+!> (mm^3) is about kcreep's divided by the point spacing.
+!>
+!> Automatic smoothing (smoothing < 0, the default of &wheel_rail): the noise
+!> of the points is measured (profile_noise); a profile with noise up to
+!> noise_floor keeps the interpolating spline, a noisier one (a measured,
+!> quantised profile) gets the lambda whose smoothed spline has a curvature
+!> noise of curvature_noise (auto_smoothing).
 !>
 !> What the contact search needs of a profile is its envelope as seen from the
 !> other body: the rail's top surface z_r(y) = min z over the section at y, the
@@ -28,6 +40,7 @@ module kcreep_profile
   private
   public :: profile_t, envelope_t, make_profile, sample_profile, make_envelope, envelope_at, envelope_slope
   public :: no_surface, sample_step, envelope_step, min_profile_length, max_profile_length
+  public :: profile_noise, profile_smoothing, auto_smoothing, noise_floor, curvature_noise, median_of
 
   !> Envelope value where the profile does not cover y.
   real(real64), parameter :: no_surface = huge(1.0_real64)
@@ -35,6 +48,27 @@ module kcreep_profile
   !> A profile's summed chord length must lie in this range (mm): outside it the
   !> units are wrong (CONTACT refuses the same range).
   real(real64), parameter :: min_profile_length = 5, max_profile_length = 500
+  !> Automatic smoothing: a profile whose points scatter by at most this (mm,
+  !> 1 sigma, profile_noise) about a smooth curve keeps the interpolating
+  !> spline. Measured: the design profiles MBench_S1002_v3.prw and
+  !> MBench_UIC60_v3.prr 5.6e-6 and 3.1e-6 mm, the measured MiniProf pair
+  !> avg_wheel.whl and avg_HR.BAN 3.3e-3 mm each (written to 0.01 mm: a
+  !> quantisation noise of 0.01 / sqrt(12) = 2.9e-3 mm); a file written to
+  !> 4 decimals has 2.9e-5 mm.
+  real(real64), parameter :: noise_floor = 1e-4_real64
+  !> Automatic smoothing of a noisier profile: lambda such that the smoothed
+  !> spline's curvature noise (1 sigma, 1/mm) is this. White noise sigma at
+  !> spacing h through the filter above leaves a curvature noise
+  !> sigma sqrt(h sqrt(2) / 16) lambda^(-5/8). Chosen on the measured worn
+  !> pair (avg_wheel.whl on avg_HR.BAN, 70 kN, shifts -10 to 10 mm by 1 mm,
+  !> docs/wheel_rail.md "Measured profiles"): with lambda 0 the tread rows'
+  !> C11 is 7.4-8.2 (the spline follows the 0.01 mm steps); lambda from 0.1
+  !> to 3 gives the same C11 within 0.3 % (4.880-4.901 on the tread), 0.01
+  !> up to 0.7 % higher, 30 and 100 0.9 % and 2.6 % higher (the worn shape
+  !> itself smoothed away). 5e-4 / mm puts this pair at lambda 1.0 (wheel,
+  !> h 0.25 mm) and 1.7 (rail, h 0.50 mm), inside that plateau by a factor
+  !> of 10 in lambda towards the noise and 2-3 towards the bias.
+  real(real64), parameter :: curvature_noise = 5e-4_real64
 
   type :: profile_t
     real(real64), allocatable :: s(:)            !< arc length (chord sum) at the knots
@@ -59,15 +93,8 @@ contains
     type(status_t), intent(inout) :: status
     real(real64), allocatable :: yk(:), zk(:), s(:)
     integer :: i, n
-    logical, allocatable :: keep(:)
-
-    allocate (keep(size(y)))
-    keep = .true.
-    do i = 2, size(y)
-      keep(i) = hypot(y(i) - y(i - 1), z(i) - z(i - 1)) > 1e-9_real64
-    end do
-    yk = pack(y, keep)
-    zk = pack(z, keep)
+    real(real64) :: lambda
+    call distinct_points(y, z, yk, zk)
     n = size(yk)
     if (n < 4) then
       call fail(status, exit_bad_input, source//': '//itoa(n)//' distinct profile points (at least 4 needed)')
@@ -83,14 +110,135 @@ contains
                 'allowed '//rtoa(min_profile_length)//' to '//rtoa(max_profile_length)//' mm: lengths in mm?)')
       return
     end if
-    if (.not. (smoothing >= 0 .and. smoothing < 1e12_real64)) then
-      call fail(status, exit_bad_input, source//': smoothing = '//rtoa(smoothing)//' (allowed 0 to 1e12 mm^3)')
+    if (.not. (smoothing <= 1e12_real64)) then
+      call fail(status, exit_bad_input, source//': smoothing = '//rtoa(smoothing)// &
+                ' (allowed 0 to 1e12 mm^4, or negative: automatic)')
       return
     end if
+    lambda = profile_smoothing(yk, zk, smoothing)
     prof%s = s
-    call smoothing_spline(s, yk, smoothing, prof%y, prof%ypp)
-    call smoothing_spline(s, zk, smoothing, prof%z, prof%zpp)
+    call smoothing_spline(s, yk, lambda, prof%y, prof%ypp)
+    call smoothing_spline(s, zk, lambda, prof%z, prof%zpp)
   end subroutine make_profile
+
+  !> The points without repeats (a point closer than 1e-9 mm to the one before).
+  pure subroutine distinct_points(y, z, yk, zk)
+    real(real64), intent(in) :: y(:), z(:)
+    real(real64), allocatable, intent(out) :: yk(:), zk(:)
+    logical :: keep(size(y))
+    integer :: i
+    keep = .true.
+    do i = 2, size(y)
+      keep(i) = hypot(y(i) - y(i - 1), z(i) - z(i - 1)) > 1e-9_real64
+    end do
+    yk = pack(y, keep)
+    zk = pack(z, keep)
+  end subroutine distinct_points
+
+  !> The lambda (mm^4) a profile is smoothed with: smoothing when >= 0, else
+  !> automatic (auto_smoothing of its measured noise).
+  pure real(real64) function profile_smoothing(y, z, smoothing) result(lambda)
+    real(real64), intent(in) :: y(:), z(:), smoothing
+    real(real64) :: sigma, h
+    lambda = smoothing
+    if (smoothing >= 0) return
+    call profile_noise(y, z, sigma, h)
+    lambda = auto_smoothing(sigma, h)
+  end function profile_smoothing
+
+  !> Automatic lambda for points with noise sigma at spacing h (both mm): 0 up
+  !> to noise_floor, else the lambda of a curvature noise of curvature_noise.
+  elemental real(real64) function auto_smoothing(sigma, h) result(lambda)
+    real(real64), intent(in) :: sigma, h
+    lambda = 0
+    if (.not. sigma > noise_floor) return
+    lambda = (sigma * sqrt(h * sqrt(2.0_real64) / 16) / curvature_noise)**1.6_real64
+  end function auto_smoothing
+
+  !> The noise of the points about a smooth curve (sigma, mm, 1 sigma) and
+  !> their median spacing h (mm). Each interior point's distance from the
+  !> chord of its neighbours, e_i, is the curve's kappa h^2 / 2 (slowly
+  !> varying) plus n_i - (n_(i-1) + n_(i+1)) / 2 of the noise n normal to the
+  !> curve; e_(i+1) - e_i removes the curve and leaves noise of variance
+  !> 5 sigma^2. sigma from the median absolute deviation of those
+  !> differences (1.4826 MAD: robust to kinks and a flange's few strongly
+  !> curved points). 0 with fewer than 6 points.
+  pure subroutine profile_noise(y, z, sigma, h)
+    real(real64), intent(in) :: y(:), z(:)
+    real(real64), intent(out) :: sigma, h
+    real(real64), allocatable :: yk(:), zk(:), e(:), d(:)
+    real(real64) :: cy, cz, c
+    integer :: n, i
+    call distinct_points(y, z, yk, zk)
+    n = size(yk)
+    sigma = 0
+    h = 0
+    if (n < 2) return
+    h = median_of(hypot(yk(2:n) - yk(1:n - 1), zk(2:n) - zk(1:n - 1)))
+    if (n < 6) return
+    allocate (e(n - 2))
+    do i = 2, n - 1
+      cy = yk(i + 1) - yk(i - 1)
+      cz = zk(i + 1) - zk(i - 1)
+      c = max(hypot(cy, cz), tiny(1.0_real64))
+      e(i - 1) = (cy * (zk(i) - zk(i - 1)) - cz * (yk(i) - yk(i - 1))) / c
+    end do
+    d = e(2:) - e(:size(e) - 1)
+    sigma = 1.4826_real64 * median_of(abs(d - median_of(d))) / sqrt(5.0_real64)
+  end subroutine profile_noise
+
+  !> The median of v (the mean of the two middle values for an even count; 0 if empty).
+  pure real(real64) function median_of(v) result(m)
+    real(real64), intent(in) :: v(:)
+    real(real64), allocatable :: w(:)
+    integer :: n
+    n = size(v)
+    m = 0
+    if (n == 0) return
+    w = v
+    call kth_smallest(w, (n + 1) / 2, m)
+    if (mod(n, 2) == 0) m = (m + minval(w((n + 1) / 2 + 1:))) / 2
+  end function median_of
+
+  !> v: the k-th smallest of w (Hoare's selection; w is reordered so that
+  !> w(1:k-1) <= w(k) <= w(k+1:)).
+  pure subroutine kth_smallest(w, k, v)
+    real(real64), intent(inout) :: w(:)
+    integer, intent(in) :: k
+    real(real64), intent(out) :: v
+    integer :: lo, hi, i, j
+    real(real64) :: pivot, t
+    lo = 1
+    hi = size(w)
+    do while (lo < hi)
+      pivot = w((lo + hi) / 2)
+      i = lo
+      j = hi
+      do while (i <= j)
+        do while (w(i) < pivot)
+          i = i + 1
+        end do
+        do while (w(j) > pivot)
+          j = j - 1
+        end do
+        if (i <= j) then
+          t = w(i)
+          w(i) = w(j)
+          w(j) = t
+          i = i + 1
+          j = j - 1
+        end if
+      end do
+      if (k <= j) then
+        hi = j
+      else if (k >= i) then
+        lo = i
+      else
+        exit
+      end if
+    end do
+    v = w(k)
+  end subroutine kth_smallest
 
   !> Reinsch's smoothing spline (lambda = 0: the natural interpolating spline):
   !> values g at the knots and second derivatives gpp (natural ends).

@@ -28,7 +28,7 @@ module kcreep_nml_wheel_rail
     character(len=1024) :: wheel_file = '', rail_file = ''
     character(len=16) :: side = 'right'
     logical :: wheel_mirror = .false., rail_mirror = .false.
-    real(real64) :: smoothing = 0, gauge_width = 1435, gauge_height = 14, rail_cant = 0, &
+    real(real64) :: smoothing = -1, gauge_width = 1435, gauge_height = 14, rail_cant = 0, &
                     flange_back_distance = 1360, flange_back_position = -70, nominal_radius = 460, &
                     shift_from = unset, shift_to = unset, shift_step = unset, yaw = 0, &
                     vertical_force = unset, approach = unset

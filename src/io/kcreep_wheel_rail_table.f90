@@ -8,6 +8,7 @@ module kcreep_wheel_rail_table
   use kcreep, only: wheel_rail_row_t, wheel_rail_setup_t, wheel_rail_columns, creep_request_t, creep_point_t, &
                     source_names, flexibility_rule_name, rolling_request_t, rolling_point_t
   use kcreep_strings, only: rtoa
+  use kcreep_profile, only: profile_smoothing
   use kcreep_rolling_table, only: rolling_columns, rolling_notes, rolling_row
   implicit none
   private
@@ -55,7 +56,7 @@ contains
     lines(3) = '# gauge_width '//rtoa(setup%gauge_width)//' at gauge_height '//rtoa(setup%gauge_height)// &
                ', rail_cant '//rtoa(setup%rail_cant)//', flange_back_distance '//rtoa(setup%flange_back_distance)// &
                ', flange_back_position '//rtoa(setup%flange_back_position)//', nominal_radius '// &
-               rtoa(setup%nominal_radius)//', smoothing '//rtoa(setup%smoothing)
+               rtoa(setup%nominal_radius)//', smoothing '//smoothing_text()
     if (setup%force_given) then
       lines(4) = '# load: vertical_force '//rtoa(setup%vertical_force)//' N (sum of fn cos(delta) over the patches)'
     else
@@ -69,6 +70,20 @@ contains
     do k = 1, size(rows)
       lines(k + 8) = wheel_rail_row(rows(k))
     end do
+
+  contains
+
+    !> The smoothing as given, or automatic with each profile's lambda (mm^4).
+    function smoothing_text() result(text)
+      character(len=:), allocatable :: text
+      if (setup%smoothing >= 0) then
+        text = rtoa(setup%smoothing)
+      else
+        text = 'automatic (wheel '//rtoa(profile_smoothing(setup%wheel_y, setup%wheel_z, setup%smoothing))// &
+               ', rail '//rtoa(profile_smoothing(setup%rail_y, setup%rail_z, setup%smoothing))//' mm^4)'
+      end if
+    end function smoothing_text
+
   end function wheel_rail_lines
 
   !> One row of the table (the columns wheel_rail_columns).

@@ -59,7 +59,7 @@ module kcreep_wheel_rail_run
     real(real64), allocatable :: wheel_y(:), wheel_z(:), rail_y(:), rail_z(:)   !< points as read (mm, z down)
     character(len=:), allocatable :: wheel_name, rail_name                      !< for messages
     logical :: wheel_mirror = .false., rail_mirror = .false.
-    real(real64) :: smoothing = 0
+    real(real64) :: smoothing = -1                                              !< mm^4; < 0: automatic (kcreep_profile)
     character(len=:), allocatable :: side                                       !< 'right' or 'left'
     real(real64) :: gauge_width = 1435, gauge_height = 14, rail_cant = 0
     real(real64) :: flange_back_distance = 1360, flange_back_position = -70, nominal_radius = 460
@@ -111,7 +111,8 @@ contains
     call check_range('flange_back_distance', setup%flange_back_distance, 100.0_real64, 5000.0_real64)
     call check_range('flange_back_position', setup%flange_back_position, -1000.0_real64, 1000.0_real64)
     call check_range('nominal_radius', setup%nominal_radius, 10.0_real64, 10000.0_real64)
-    call check_range('smoothing', setup%smoothing, 0.0_real64, 1e12_real64)
+    if (.not. status%failed() .and. .not. (setup%smoothing <= 1e12_real64)) call fail(status, exit_bad_input, &
+        where//'smoothing = '//rtoa(setup%smoothing)//' (allowed: 0 to 1e12 mm^4, or negative: automatic)')
     call check_range('yaw', setup%yaw, -0.1_real64, 0.1_real64)
     if (setup%force_given) then
       call check_range('vertical_force', setup%vertical_force, 1e-6_real64, 1e9_real64)
