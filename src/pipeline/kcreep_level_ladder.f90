@@ -90,9 +90,8 @@ contains
       ! to max_cell_aspect; collocation is not put on long cells
       if (problem%scheme%name == 'backward') &
         cell_shape = min(max([ref%semi_a / ref%semi_b, ref%semi_b / ref%semi_a], 1.0_real64), max_cell_aspect)
-      levels = max(min_base_cells, nint(base_levels * min(1.0_real64, sqrt(budget / region_cells(region, &
-                                                                              base_levels(size(base_levels)), &
-                                                                              cell_shape)))))
+      levels = distinct_levels(nint(base_levels * min(1.0_real64, sqrt(budget / region_cells(region, &
+                                                                    base_levels(size(base_levels)), cell_shape)))))
     else
       levels = ellipse_base_levels(problem%patch%semi_a, problem%patch%semi_b, budget, long_in_y)
     end if
@@ -222,8 +221,23 @@ contains
     logical, intent(in) :: long_in_y
     integer :: levels(size(base_levels)), mx, my
     call ellipse_level_grid(a, b, base_levels(size(base_levels)), mx, my, long_in_y)
-    levels = max(min_base_cells, nint(base_levels * min(1.0_real64, sqrt(budget / (ellipse_fill * mx * my)))))
+    levels = distinct_levels(nint(base_levels * min(1.0_real64, sqrt(budget / (ellipse_fill * mx * my)))))
   end function ellipse_base_levels
+
+  !> Scaled base levels, at least min_base_cells and each at least
+  !> min_level_step finer than the one before: the fit f0 + K h needs
+  !> distinct h. All clamped to 32 (a thin area of a noisy measured profile
+  !> whose box far exceeds the budget: avg_wheel.whl on avg_HR.BAN without
+  !> smoothing at shifts 7.5-10 mm) the fit divided by zero and the row's
+  !> C's were NaN.
+  pure function distinct_levels(scaled) result(levels)
+    integer, intent(in) :: scaled(:)
+    integer :: levels(size(scaled)), k
+    levels = max(min_base_cells, scaled)
+    do k = 2, size(levels)
+      levels(k) = max(levels(k), levels(k - 1) + min_level_step)
+    end do
+  end function distinct_levels
 
   !> One level: solve, keep its f and its warnings; the result is the
   !> level's. guess: tractions to start the iterative solver from.

@@ -145,6 +145,10 @@ module kcreep_refine_constants
   !> strips (levels 49 to 92 across) the estimates moved by up to 10 times
   !> with small changes of the contact area (docs/wheel_rail.md).
   integer, parameter :: min_base_cells = 32
+  !> Scaled-down levels are at least this many cells apart (32, 36, 40, 44,
+  !> 48 at the least: h from 1/48 to 1/32; the finest 2.25 times the cells
+  !> of the first).
+  integer, parameter :: min_level_step = 4
   !> The share of an ellipse's bounding grid inside it (pi/4), for its patch cells.
   real(real64), parameter :: ellipse_fill = 0.79_real64
   !> Patch cells of a single grid's auxiliary grid (every cell split in 2 x 2):
