@@ -41,6 +41,7 @@ module kcreep_profile
   public :: profile_t, envelope_t, make_profile, sample_profile, make_envelope, envelope_at, envelope_slope
   public :: no_surface, sample_step, envelope_step, min_profile_length, max_profile_length
   public :: profile_noise, profile_smoothing, auto_smoothing, noise_floor, curvature_noise, median_of
+  public :: check_flange_side
 
   !> Envelope value where the profile does not cover y.
   real(real64), parameter :: no_surface = huge(1.0_real64)
@@ -120,6 +121,28 @@ contains
     call smoothing_spline(s, yk, lambda, prof%y, prof%ypp)
     call smoothing_spline(s, zk, lambda, prof%z, prof%zpp)
   end subroutine make_profile
+
+  !> A wheel profile (y after wheel_mirror, z down) has its flange on the
+  !> gauge side, towards smaller y: refused when its lowest point (largest
+  !> z) stands more than 5 mm below the median height (a flange, not a
+  !> tread's curve) and lies in the field-side third of the profile's width
+  !> (S1002 and the MiniProf avg_wheel.whl: within the gauge-side eighth).
+  !> what: the wheel's name and its wheel_mirror, for the message.
+  subroutine check_flange_side(y, z, what, status)
+    real(real64), intent(in) :: y(:), z(:)
+    character(len=*), intent(in) :: what
+    type(status_t), intent(inout) :: status
+    integer :: tip
+    real(real64) :: lo, hi
+    if (status%failed() .or. size(y) < 2) return
+    tip = maxloc(z, 1)
+    lo = minval(y)
+    hi = maxval(y)
+    if (z(tip) - median_of(z) > 5 .and. y(tip) > lo + 2 * (hi - lo) / 3) &
+      call fail(status, exit_bad_input, what//': the flange (lowest point at y = '//rtoa(y(tip))// &
+                ' mm) is on the field side of the profile ('//rtoa(lo)//' to '//rtoa(hi)// &
+                ' mm); its y must grow away from the track centre: change wheel_mirror')
+  end subroutine check_flange_side
 
   !> The points without repeats (a point closer than 1e-9 mm to the one before).
   pure subroutine distinct_points(y, z, yk, zk)

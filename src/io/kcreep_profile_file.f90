@@ -22,12 +22,25 @@ module kcreep_profile_file
   use kcreep_status, only: status_t, fail, exit_bad_input
   use kcreep_strings, only: itoa, rtoa, lower
   use kcreep_file_checks, only: read_input_file
+  use kcreep_profile, only: median_of
   implicit none
   private
   public :: read_profile_file, profile_format
 
   !> At most this many points in a profile (measured profiles have a few hundred to a few thousand).
   integer, parameter :: max_points = 200000
+  !> A point whose y goes back by at most this (mm) is dropped, a larger step
+  !> back is refused: avg_HR.BAN (MiniProf, written to 0.01 mm) has one
+  !> point 0.01 mm back (29.27 then 29.26 at z -2.55, line 136), a
+  !> quantisation artefact that CONTACT drops too ("zig-zag").
+  real(real64), parameter :: back_step_tolerance = 0.02_real64
+  !> A vertical step: neighbouring points (not the first or last pair: side
+  !> faces) at least step_slope times as far apart in z as in y and further
+  !> than step_spacings median spacings and step_length mm. Measured: the
+  !> steepest long pairs of the four profiles in ../shared/profiles are
+  !> UIC60's gauge face (0.92 mm, 4 spacings, 40:1) and the MiniProf
+  !> wheel's flange back (0.25 mm, one spacing).
+  real(real64), parameter :: step_slope = 10, step_spacings = 10, step_length = 1
 
 contains
 
@@ -60,17 +73,26 @@ contains
     logical, intent(in) :: is_wheel
     real(real64), allocatable, intent(out) :: y(:), z(:)
     type(status_t), intent(inout) :: status
-    character(len=:), allocatable :: text, source
+    character(len=:), allocatable :: text, source, ext
+    integer, allocatable :: lines(:)
     source = variable//' '''//path//''''
     call read_input_file(path, source, text, status)
     if (status%failed()) return
     select case (profile_format(path))
     case ('simpack')
-      call parse_simpack(text, source, is_wheel, y, z, status)
+      call parse_simpack(text, source, is_wheel, y, z, lines, status)
     case ('miniprof')
-      call parse_miniprof(text, source, is_wheel, y, z, status)
+      ! a MiniProf file says by its extension which body it is
+      ext = lower(path(index(path, '.', back=.true.) + 1:))
+      if ((ext == 'ban') .eqv. is_wheel) then
+        call fail(status, exit_bad_input, source//': a MiniProf '//trim(merge('rail ', 'wheel', ext == 'ban'))// &
+                  ' profile (.'//ext//') given as the '//trim(merge('wheel', 'rail ', is_wheel))// &
+                  ' (MiniProf wheels are .whl, rails .ban: wheel_file and rail_file swapped?)')
+        return
+      end if
+      call parse_miniprof(text, source, is_wheel, y, z, lines, status)
     case default
-      call parse_table(text, source, y, z, status)
+      call parse_table(text, source, y, z, lines, status)
     end select
     if (status%failed()) return
     if (size(y) < 4) then
@@ -79,8 +101,91 @@ contains
     end if
     if (.not. all(abs(y) < 1e6_real64 .and. abs(z) < 1e6_real64)) then
       call fail(status, exit_bad_input, source//': a point is not finite or beyond 1e6 mm (allowed: |y|, |z| < 1e6 mm)')
+      return
     end if
+    call check_lateral_order(source, y, z, lines, status)
+    if (status%failed()) return
+    call check_vertical_steps(source, y, z, lines, status)
+    if (status%failed()) return
+    if (profile_format(path) == 'table') call check_z_downwards(source, is_wheel, z, status)
   end subroutine read_profile_file
+
+  !> The lateral coordinate runs one way (up or down the file): a point that
+  !> goes back by at most back_step_tolerance is dropped, further is refused.
+  !> Vertical pairs (the same y) are kept.
+  subroutine check_lateral_order(source, y, z, lines, status)
+    character(len=*), intent(in) :: source
+    real(real64), allocatable, intent(inout) :: y(:), z(:)
+    integer, allocatable, intent(inout) :: lines(:)
+    type(status_t), intent(inout) :: status
+    logical :: keep(size(y))
+    real(real64) :: sgn, back
+    integer :: i, last
+    sgn = sign(1.0_real64, y(size(y)) - y(1))
+    keep = .true.
+    last = 1
+    do i = 2, size(y)
+      back = sgn * (y(last) - y(i))
+      if (back <= 0) then
+        last = i
+      else if (back <= back_step_tolerance) then
+        keep(i) = .false.
+      else
+        call fail(status, exit_bad_input, source//' line '//itoa(lines(i))//': y = '//rtoa(y(i))// &
+                  ' goes back from y = '//rtoa(y(last))//' on line '//itoa(lines(last))// &
+                  ' (the lateral coordinate must run one way; a step back of at most '// &
+                  rtoa(back_step_tolerance)//' mm, a measuring artefact, is dropped)')
+        return
+      end if
+    end do
+    y = pack(y, keep)
+    z = pack(z, keep)
+    lines = pack(lines, keep)
+  end subroutine check_lateral_order
+
+  !> No vertical step between neighbouring points inside the profile (a gap
+  !> or a spike in a measurement; the first and last pair may be side faces).
+  subroutine check_vertical_steps(source, y, z, lines, status)
+    character(len=*), intent(in) :: source
+    real(real64), intent(in) :: y(:), z(:)
+    integer, intent(in) :: lines(:)
+    type(status_t), intent(inout) :: status
+    real(real64) :: h, dy, dz
+    integer :: i, n
+    n = size(y)
+    h = median_of(hypot(y(2:n) - y(1:n - 1), z(2:n) - z(1:n - 1)))
+    do i = 2, n - 2
+      dy = abs(y(i + 1) - y(i))
+      dz = abs(z(i + 1) - z(i))
+      if (dz >= step_slope * dy .and. dz > max(step_length, step_spacings * h)) then
+        call fail(status, exit_bad_input, source//' line '//itoa(lines(i + 1))//': z jumps by '//rtoa(dz)// &
+                  ' mm from line '//itoa(lines(i))//' at y = '//rtoa(y(i))//' (a vertical step: more than '// &
+                  rtoa(step_spacings)//' times the median point spacing of '//rtoa(h)// &
+                  ' mm, steeper than 10:1; a gap or a spike in the measurement?)')
+        return
+      end if
+    end do
+  end subroutine check_vertical_steps
+
+  !> A plain file's z points downwards: a rail's ends (its side faces) lie
+  !> below its mean height (larger z), a wheel's above (CONTACT's test,
+  !> which the MiniProf reader uses to choose the direction).
+  subroutine check_z_downwards(source, is_wheel, z, status)
+    character(len=*), intent(in) :: source
+    logical, intent(in) :: is_wheel
+    real(real64), intent(in) :: z(:)
+    type(status_t), intent(inout) :: status
+    real(real64) :: ends, mean
+    integer :: n
+    n = size(z)
+    ends = (z(1) + z(n)) / 2
+    mean = sum(z) / n
+    if ((ends > mean) .neqv. is_wheel) return
+    call fail(status, exit_bad_input, source//': z seems to point upwards: the ends (z = '//rtoa(z(1))//', '// &
+              rtoa(z(n))//') lie '//trim(merge('below', 'above', is_wheel))//' the mean '//rtoa(mean)// &
+              ' mm, a '//trim(merge('wheel''s rise', 'rail''s fall ', is_wheel))// &
+              ' (two-column files need z positive downwards: negate the z column)')
+  end subroutine check_z_downwards
 
   !> The next line of text from position pos (advanced past it); eof when none is left.
   subroutine next_line(text, pos, line, eof)
@@ -139,12 +244,16 @@ contains
     end do
   end subroutine numbers_of
 
-  !> A point to the growing lists.
-  subroutine push(ys, zs, n, yv, zv)
+  !> A point and its line number to the growing lists.
+  subroutine push(ys, zs, ls, n, yv, zv, lv)
     real(real64), allocatable, intent(inout) :: ys(:), zs(:)
+    integer, allocatable, intent(inout) :: ls(:)
     integer, intent(inout) :: n
     real(real64), intent(in) :: yv, zv
+    integer, intent(in) :: lv
     real(real64), allocatable :: grown(:)
+    integer, allocatable :: grown_l(:)
+    if (.not. allocated(ls)) allocate (ls(size(ys)))
     if (n == size(ys)) then
       allocate (grown(2 * n + 16))
       grown(1:n) = ys(1:n)
@@ -153,21 +262,28 @@ contains
       grown(1:n) = zs(1:n)
       call move_alloc(grown, zs)
     end if
+    if (n >= size(ls)) then
+      allocate (grown_l(size(ys)))
+      grown_l(1:n) = ls(1:n)
+      call move_alloc(grown_l, ls)
+    end if
     n = n + 1
     ys(n) = yv
     zs(n) = zv
+    ls(n) = lv
   end subroutine push
 
   !> Two columns y z per line.
-  subroutine parse_table(text, source, y, z, status)
+  subroutine parse_table(text, source, y, z, lines, status)
     character(len=*), intent(in) :: text, source
     real(real64), allocatable, intent(out) :: y(:), z(:)
+    integer, allocatable, intent(out) :: lines(:)
     type(status_t), intent(inout) :: status
     character(len=:), allocatable :: line
     real(real64) :: v(3)
     integer :: pos, n, lineno, k
     logical :: eof
-    allocate (y(64), z(64))
+    allocate (y(64), z(64), lines(64))
     n = 0
     pos = 1
     lineno = 0
@@ -189,25 +305,27 @@ contains
         call fail(status, exit_bad_input, source//': more than '//itoa(max_points)//' points')
         return
       end if
-      call push(y, z, n, v(1), v(2))
+      call push(y, z, lines, n, v(1), v(2), lineno)
     end do
     y = y(1:n)
     z = z(1:n)
+    lines = lines(1:n)
   end subroutine parse_table
 
   !> MiniProf: header up to the first blank line (its ColumnDef, XOffset, YOffset
   !> when given), then numeric rows; z = -(Y + YOffset), y = X + XOffset.
-  subroutine parse_miniprof(text, source, is_wheel, y, z, status)
+  subroutine parse_miniprof(text, source, is_wheel, y, z, lines, status)
     character(len=*), intent(in) :: text, source
     logical, intent(in) :: is_wheel
     real(real64), allocatable, intent(out) :: y(:), z(:)
+    integer, allocatable, intent(out) :: lines(:)
     type(status_t), intent(inout) :: status
     character(len=:), allocatable :: line, key, value
     real(real64) :: v(16), xoff, yoff
     integer :: pos, n, lineno, k, eq, ix, iy, col, ios
     logical :: eof, in_header
     character(len=:), allocatable :: rest
-    allocate (y(64), z(64))
+    allocate (y(64), z(64), lines(64))
     n = 0
     pos = 1
     lineno = 0
@@ -285,10 +403,11 @@ contains
         call fail(status, exit_bad_input, source//': more than '//itoa(max_points)//' points')
         return
       end if
-      call push(y, z, n, v(ix) + xoff, -(v(iy) + yoff))
+      call push(y, z, lines, n, v(ix) + xoff, -(v(iy) + yoff), lineno)
     end do
     y = y(1:n)
     z = z(1:n)
+    lines = lines(1:n)
     ! MiniProf's vertical axis points up on most files (hence z = -Y), but not on
     ! all (avg_wheel.whl): as CONTACT, decide by the side faces, which run from
     ! the running surface into the body: down (larger z) at a rail's ends, up
@@ -301,10 +420,11 @@ contains
   end subroutine parse_miniprof
 
   !> SIMPACK .prw/.prr: header type, processing keys, points.
-  subroutine parse_simpack(text, source, is_wheel, y, z, status)
+  subroutine parse_simpack(text, source, is_wheel, y, z, lines, status)
     character(len=*), intent(in) :: text, source
     logical, intent(in) :: is_wheel
     real(real64), allocatable, intent(out) :: y(:), z(:)
+    integer, allocatable, intent(out) :: lines(:)
     type(status_t), intent(inout) :: status
     character(len=:), allocatable :: line, key, value
     real(real64) :: v(3), dist_min, shift(2), rotate, bound(4), len_f, ang_f, c, s, t
@@ -312,7 +432,8 @@ contains
     logical :: eof, in_points, seen_begin, seen_end
     logical, allocatable :: inside(:)
     real(real64), allocatable :: yk(:), zk(:)
-    allocate (y(64), z(64))
+    integer, allocatable :: lk(:)
+    allocate (y(64), z(64), lines(64))
     n = 0
     pos = 1
     lineno = 0
@@ -357,7 +478,7 @@ contains
           call fail(status, exit_bad_input, source//': more than '//itoa(max_points)//' points')
           return
         end if
-        call push(y, z, n, v(1), v(2))
+        call push(y, z, lines, n, v(1), v(2), lineno)
         cycle
       end if
       eq = index(line, '=')
@@ -425,21 +546,25 @@ contains
     end if
     y = y(1:n)
     z = z(1:n)
+    lines = lines(1:n)
     ! 1: drop points closer than point.dist.min to the last one kept
     if (dist_min > 0 .and. n > 0) then
-      allocate (yk(n), zk(n))
+      allocate (yk(n), zk(n), lk(n))
       yk(1) = y(1)
       zk(1) = z(1)
+      lk(1) = lines(1)
       k = 1
       do eq = 2, n
         if (hypot(y(eq) - yk(k), z(eq) - zk(k)) >= dist_min) then
           k = k + 1
           yk(k) = y(eq)
           zk(k) = z(eq)
+          lk(k) = lines(eq)
         end if
       end do
       y = yk(1:k)
       z = zk(1:k)
+      lines = lk(1:k)
     end if
     ! 2: shift, 3: rotate about x
     y = y + shift(1)
@@ -459,6 +584,7 @@ contains
     if (bound(3) <= bound(4)) inside = inside .and. z >= bound(3) .and. z <= bound(4)
     y = pack(y, inside)
     z = pack(z, inside)
+    lines = pack(lines, inside)
     ! 5: mirroring, 7: units (to mm), 6: order
     if (mirror(1) == 1) y = -y
     if (mirror(2) == 1) z = -z
@@ -467,6 +593,7 @@ contains
     if (inversion == 1) then
       y = y(size(y):1:-1)
       z = z(size(z):1:-1)
+      lines = lines(size(lines):1:-1)
     end if
   end subroutine parse_simpack
 

@@ -22,7 +22,7 @@ module kcreep_wheel_rail_run
   use, intrinsic :: iso_fortran_env, only: real64, int64
   use kcreep_status, only: status_t, fail, exit_bad_input, exit_numerical
   use kcreep_strings, only: itoa, rtoa
-  use kcreep_profile, only: profile_t, make_profile, no_surface
+  use kcreep_profile, only: profile_t, make_profile, no_surface, check_flange_side, envelope_at
   use kcreep_wheel_rail_geometry, only: track_t, contact_t, plane_gap_t, place_track, clearance, find_contacts, &
                                         plane_of, plane_gap_value, plane_gap_grid, search_step
   use kcreep_gap, only: gap_t, outside_gap
@@ -147,6 +147,10 @@ contains
     type(track_t), intent(out) :: track
     type(status_t), intent(inout) :: status
     type(profile_t) :: wheel, rail
+    call check_flange_side(merge(-setup%wheel_y, setup%wheel_y, setup%wheel_mirror), setup%wheel_z, &
+                           setup%wheel_name//' with wheel_mirror = '//trim(merge('.true. ', '.false.', &
+                           setup%wheel_mirror)), status)
+    if (status%failed()) return
     call make_profile(merge(-setup%wheel_y, setup%wheel_y, setup%wheel_mirror), setup%wheel_z, setup%smoothing, &
                       setup%wheel_name, wheel, status)
     if (status%failed()) return
@@ -274,6 +278,8 @@ contains
       if (status%failed()) return
       allocate (forces(size(contacts)), source=0.0_real64)
     end if
+    call check_profile_ends(setup, track, ys, d, contacts, where, status)
+    if (status%failed()) return
     do k = 1, size(contacts)
       problem = base
       problem%normal%active = .true.
@@ -480,5 +486,39 @@ contains
     end subroutine fill_row
 
   end subroutine rows_at_shift
+
+  !> A contact whose interpenetration reaches the end of a profile (the last
+  !> point the file gives) is refused: the surface beyond is unknown.
+  subroutine check_profile_ends(setup, track, ys, d, contacts, where, status)
+    type(wheel_rail_setup_t), intent(in) :: setup
+    type(track_t), intent(in) :: track
+    real(real64), intent(in) :: ys(:), d(:)
+    type(contact_t), intent(in) :: contacts(:)
+    character(len=*), intent(in) :: where
+    type(status_t), intent(inout) :: status
+    integer :: j, k, side
+    real(real64) :: y_end
+    character(len=:), allocatable :: name
+    do j = 1, size(contacts)
+      do side = -1, 1, 2
+        if (side < 0) then
+          k = nint((contacts(j)%y_lo - ys(1)) / search_step)
+        else
+          k = nint((contacts(j)%y_hi - ys(1)) / search_step) + 2
+        end if
+        if (k >= 1 .and. k <= size(d)) then
+          if (d(k) < no_surface) cycle
+        end if
+        y_end = merge(contacts(j)%y_lo, contacts(j)%y_hi, side < 0)
+        name = setup%wheel_name
+        if (abs(envelope_at(track%rail, y_end + side * search_step)) >= no_surface) name = setup%rail_name
+        call fail(status, exit_bad_input, where//'the contact at y = '//rtoa(contacts(j)%y)// &
+                  ' mm (track) reaches the end of '//name//' at y = '//rtoa(y_end)// &
+                  ' mm (track): the surface beyond its last point is '// &
+                  'unknown (a profile measured too short, or a wrong rail_mirror, wheel_mirror or placement)')
+        return
+      end do
+    end do
+  end subroutine check_profile_ends
 
 end module kcreep_wheel_rail_run
