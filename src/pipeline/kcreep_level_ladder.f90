@@ -18,8 +18,8 @@
 !> levels, up to the budget or max_split.
 module kcreep_level_ladder
   use, intrinsic :: iso_fortran_env, only: real64
-  use, intrinsic :: ieee_arithmetic, only: ieee_value, ieee_quiet_nan, ieee_is_nan
-  use kcreep_status, only: status_t
+  use, intrinsic :: ieee_arithmetic, only: ieee_value, ieee_quiet_nan, ieee_is_nan, ieee_is_finite
+  use kcreep_status, only: status_t, fail, exit_numerical
   use kcreep_strings, only: itoa, rtoa
   use kcreep_patch, only: patch_t, ellipse_patch, place_like
   use kcreep_region, only: region_t, region_level_patch, contour_area
@@ -65,6 +65,7 @@ contains
     logical :: long_in_y
     real(real64) :: cell_shape(2)   !< a contact area's level cells: length in x and y, in units of the square cell
     logical :: split          !< a mask: every cell split k x k, the same staircase on every level
+    logical :: no_fit         !< the fit gave no number: the finest level's f, no estimate
 
     allocate (fnorm(3, 3, 0), warnings(0))
     cell_shape = 1
@@ -124,9 +125,25 @@ contains
       end if
       k = k + 1
     end do
+    ! a fit that gives no number (never seen since the levels are kept
+    ! distinct): the finest level's f without an estimate; no finite level:
+    ! a failure, never a row of NaN
+    no_fit = .not. all(ieee_is_finite(result%f))
+    if (no_fit) then
+      if (.not. all(ieee_is_finite(fnorm(:, :, size(fnorm, 3))))) then
+        call fail(status, exit_numerical, 'error control: the finest level ('//itoa(levels(size(levels)))// &
+                  ' cells across) gave no finite creep force; no coefficients')
+        return
+      end if
+      result%f = fnorm(:, :, size(fnorm, 3))
+      result%err = ieee_value(1.0_real64, ieee_quiet_nan)
+    end if
     if (present(region)) result%c = sqrt(contour_area(region) / pi)
     call finish_result(result, t)
     result%warnings = warnings
+    if (no_fit) call mark_uncertain(result, 'uncertain: no error estimate: the fit over the levels '// &
+                                    itoa(levels(1))//'-'//itoa(levels(size(levels)))//' gave no number; '// &
+                                    'the coefficients are the finest level''s')
     ! collocation's levels of a sampled shape tend to a limit 0.07-0.15 % off
     ! the continuum, beyond their estimates (solved ellipses a/b = 0.5 to 5
     ! against the refined table, docs/accuracy.md section 3): no `ok`
