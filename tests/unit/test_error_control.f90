@@ -10,9 +10,10 @@ program test_error_control
   use kcreep_status, only: status_t
   use kcreep_strings, only: itoa
   use unit_checks, only: checker_t
+  use kcreep_level_ladder, only: ellipse_base_levels
   implicit none
   type(checker_t) :: t
-  integer :: mx, my, trial, i, covered
+  integer :: mx, my, trial, i, covered, base(5)
   real(real64) :: limit, rel, h(4), f(4), nan
   real(real64) :: h8(8), f8(8), a_s, b_s, fn(3, 3), fm(3, 3), fc(3, 3), tm(3, 3), slopes(4)
   type(patch_t) :: patch, moved
@@ -40,6 +41,12 @@ program test_error_control
   call t%check(next_level(48) == 56 .and. next_level(64) == 72 .and. next_level(96) == 112, &
                'next levels of 48, 64, 96: 56, 72, 112')
   call t%check(next_level(8) == 12, 'next level grows by at least 4 cells')
+  ! a long ellipse far beyond a small budget: the scaled base levels stay
+  ! distinct (they were all clamped to 32 and the fit f0 + K h gave NaN)
+  base = ellipse_base_levels(50.0_real64, 1.0_real64, 2000.0_real64, .false.)
+  call t%check(base(1) == 32 .and. all(base(2:) - base(:4) >= 4), &
+               'base levels scaled below 32 across: 32 and then at least 4 apart ('//itoa(base(1))//'..'// &
+               itoa(base(5))//')')
   call t%check(abs(level_cell_budget(1e-2_real64) / level_cell_budget(1e-3_real64) - 10**(-0.25_real64)) < 1e-12, &
                'budget above the default target: as target**(-1/4)')
   call t%check(abs(level_cell_budget(1e-4_real64) - 1600000) < 1e-6 .and. &
