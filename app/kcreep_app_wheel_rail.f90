@@ -4,11 +4,12 @@ module kcreep_app_wheel_rail
   use, intrinsic :: iso_fortran_env, only: real64, int64, output_unit, error_unit
   use kcreep_status, only: status_t
   use kcreep_strings, only: rtoa, itoa
-  use kcreep, only: problem_t, patch_t, wheel_rail_row_t, kcreep_wheel_rail, creep_request_t, creep_point_t, &
+  use kcreep, only: problem_t, patch_t, wheel_rail_row_t, kcreep_wheel_rail, kcreep_wheelset, wheelset_row_t, &
+                    creep_request_t, creep_point_t, &
                     creep_map_t, creep_curve, result_t, rolling_request_t, rolling_point_t, rolling_curve
   use kcreep_namelist, only: config_t, problem_of
   use kcreep_wheel_rail_table, only: wheel_rail_lines, line_length, wheel_rail_creep_header, wheel_rail_creep_rows, &
-                                     wheel_rail_rolling_header, wheel_rail_rolling_rows
+                                     wheel_rail_rolling_header, wheel_rail_rolling_rows, wheelset_lines
   use kcreep_app_files, only: check_output_path, write_text_file
   use kcreep_app_memory, only: memory_limit_bytes
   implicit none
@@ -24,6 +25,7 @@ contains
     type(problem_t) :: base
     type(patch_t) :: none
     type(wheel_rail_row_t), allocatable :: rows(:)
+    type(wheelset_row_t), allocatable :: wheelset(:)
     type(rolling_point_t), allocatable :: rolled(:)
     character(len=line_length), allocatable :: creep(:), rolling(:)
     character(len=200) :: buf
@@ -36,12 +38,15 @@ contains
     if (cfg%fastsim_on .and. .not. status%failed()) call check_output_path(cfg%creep_file, 'creep_file', status)
     if (cfg%rolling%on .and. .not. status%failed()) &
       call check_output_path(cfg%rolling%rolling_file, 'rolling_file', status)
+    if (cfg%wheel_rail%wheelset .and. .not. status%failed()) &
+      call check_output_path(cfg%wheelset_file, 'wheelset_file', status)
     if (status%failed()) return
     base = problem_of(cfg, none)
     base%solve%memory_limit = memory_limit_bytes()
     call system_clock(clock0, clock_rate)
     call cpu_time(t0)
     call kcreep_wheel_rail(cfg%wheel_rail, base, rows, status, team)
+    if (cfg%wheel_rail%wheelset .and. .not. status%failed()) call kcreep_wheelset(cfg%wheel_rail, base, wheelset, status)
     call cpu_time(t1)
     call system_clock(clock1)
     if (status%failed()) return
@@ -54,6 +59,8 @@ contains
     if (cfg%fastsim_on .and. .not. status%failed()) call write_text_file(cfg%creep_file, creep, 'creep_file', status)
     if (cfg%rolling%on .and. .not. status%failed()) &
       call write_text_file(cfg%rolling%rolling_file, rolling, 'rolling_file', status)
+    if (cfg%wheel_rail%wheelset .and. .not. status%failed()) &
+      call write_text_file(cfg%wheelset_file, wheelset_lines(wheelset, cfg%wheel_rail), 'wheelset_file', status)
     if (status%failed()) return
     write (output_unit, '(a)') 'kcreep: '//input_path
     write (output_unit, '(2x, a)') 'wheel/rail: '//itoa(size(cfg%wheel_rail%shifts))//' shifts, '//itoa(size(rows))// &
@@ -82,6 +89,8 @@ contains
         maxval(rolled%info%residual)
       write (output_unit, '(2x, a)') trim(buf)//'; rolling table: '//cfg%rolling%rolling_file
     end if
+    if (cfg%wheel_rail%wheelset) write (output_unit, '(2x, a)') 'wheelset: '//itoa(size(wheelset))// &
+      ' shifts, both wheels; wheelset table: '//cfg%wheelset_file
     if (team > 1) then
       write (output_unit, '(2x, a)') 'threads: '//itoa(team)//' (one shift per thread)'
     else
