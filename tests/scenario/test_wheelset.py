@@ -16,7 +16,9 @@ Checks:
    integral of delta_r linear between the shifts) against a direct numerical
    integral of the first harmonic of delta_r(A sin t) over t;
  - the table's columns by name, and the table's own rows: r_right at each
-   shift is the table's r_wheel (one patch);
+   shift is the table's r_wheel (one patch); a hollow tread with two patches
+   (as tests/scenario/test_wheel_rail.py) gives the Fn-weighted radius and
+   angle of the table's two rows;
  - bad input: wheelset with approach, left files without wheelset, a missing
    left file: exit 2 and one line naming the variable.
 
@@ -140,6 +142,24 @@ for y in ys:
     b1 = sum(interp(y * math.sin(2 * math.pi * (k + 0.5) / n)) * math.sin(2 * math.pi * (k + 0.5) / n)
              for k in range(n)) * 2 / n
     kc.close(by[y]["lambda_eq"], b1 / (2 * y), 1e-6, f"S1002, A = {y}: lambda_eq against the numerical harmonic")
+
+# --- two patches: the Fn-weighted radius and angle of the table's rows
+with open(os.path.join(folder, "hollow.dat"), "w") as f:
+    f.write("".join(f"{-30 + 0.1 * k:.4f} {-min((-25 + 0.1 * k) ** 2 / 400, (-37 + 0.1 * k) ** 2 / 520):.12f}\n"
+                    for k in range(601)))
+run("two", "wheel_file = 'hollow.dat', rail_file = 'crown.dat', flange_back_position = -72.5, shifts = 0, "
+    "vertical_force = 20000, wheelset = .true.")
+rows = kc.read_table(os.path.join(folder, "two.wr"))
+ws = kc.read_table(os.path.join(folder, "two.ws"))
+kc.check(len(rows) == 2 and len(ws) == 1, f"hollow tread: two patches ({len(rows)}), one wheelset row")
+if len(rows) == 2 and len(ws) == 1:
+    fn = sum(r["fn"] for r in rows)
+    r_mean = sum(r["fn"] * r["r_wheel"] for r in rows) / fn
+    d_mean = sum(r["fn"] * r["delta"] for r in rows) / fn
+    # the table prints 9 digits (es16.8): 1e-8 relative
+    kc.close(ws[0]["r_right"], r_mean, 1e-8, "hollow tread: r_right is the Fn-weighted r_wheel of the two patches")
+    kc.small(ws[0]["delta_right"] - d_mean, 1, 1e-8, "hollow tread: delta_right is the Fn-weighted delta")
+    kc.check(ws[0]["delta_r"] == 0 and ws[0]["roll"] == 0, "hollow tread, shift 0: delta_r and roll 0")
 
 # --- bad input
 for name, group, word in [
