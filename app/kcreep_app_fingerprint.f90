@@ -8,7 +8,7 @@
 !> its path, a zero byte, its contents and '\0ok\0' (or '\0missing\0' when it
 !> cannot be read): mask_file, contact_file and the .mat of its contact_case
 !> beside it, gap_file, contact_inp, pressure_input_file, and &wheel_rail's
-!> wheel_file and rail_file. A namelist that cannot be read is fingerprinted
+!> wheel_file and rail_file (and left_wheel_file, left_rail_file). A namelist that cannot be read is fingerprinted
 !> by its contents and the reading's error message. Contents decide, not
 !> modification times: a file rewritten with an old time still counts as
 !> changed.
@@ -97,6 +97,8 @@ contains
     if (cfg%wheel_rail_on) then
       call add(quoted(cfg%wheel_rail%wheel_name))
       call add(quoted(cfg%wheel_rail%rail_name))
+      if (allocated(cfg%wheel_rail%left_wheel_name)) call add(quoted(cfg%wheel_rail%left_wheel_name))
+      if (allocated(cfg%wheel_rail%left_rail_name)) call add(quoted(cfg%wheel_rail%left_rail_name))
     end if
     allocate (character(len=max(1, maxval([1, len_trim(found(1:n))]))) :: files(n))
     files = found(1:n)

@@ -6,11 +6,12 @@ module kcreep_app_wheel_rail
   use, intrinsic :: iso_fortran_env, only: real64, int64, output_unit, error_unit
   use kcreep_status, only: status_t
   use kcreep_strings, only: rtoa, itoa
-  use kcreep, only: problem_t, patch_t, wheel_rail_row_t, kcreep_wheel_rail, creep_request_t, creep_point_t, &
+  use kcreep, only: problem_t, patch_t, wheel_rail_row_t, kcreep_wheel_rail, kcreep_wheelset, wheelset_row_t, &
+                    creep_request_t, creep_point_t, &
                     creep_map_t, creep_curve, result_t, rolling_request_t, rolling_point_t, rolling_curve
   use kcreep_namelist, only: config_t, problem_of
   use kcreep_wheel_rail_table, only: wheel_rail_lines, line_length, wheel_rail_creep_header, wheel_rail_creep_rows, &
-                                     wheel_rail_rolling_header, wheel_rail_rolling_rows
+                                     wheel_rail_rolling_header, wheel_rail_rolling_rows, wheelset_lines
   use kcreep_app_files, only: check_output_path, write_text_file
   use kcreep_app_memory, only: memory_limit_bytes
   implicit none
@@ -25,6 +26,7 @@ module kcreep_app_wheel_rail
     character(len=line_length), allocatable :: table(:)     !< wheel_rail_file
     character(len=line_length), allocatable :: creep(:)     !< creep_file (with &fastsim)
     character(len=line_length), allocatable :: rolling(:)   !< rolling_file (with &rolling)
+    character(len=line_length), allocatable :: wheelset(:)  !< wheelset_file (with wheelset = .true.)
     character(len=line_length), allocatable :: summary(:)   !< for standard output
     character(len=line_length), allocatable :: warnings(:)  !< 'shift S patch P: ...'
     real(real64) :: wall = 0, cpu = 0                       !< seconds, all the stages
@@ -62,6 +64,7 @@ contains
     type(problem_t) :: base
     type(patch_t) :: none
     type(rolling_point_t), allocatable :: rolled(:)
+    type(wheelset_row_t), allocatable :: wheelset(:)
     character(len=line_length) :: buf
     integer :: k, j, team
     real(real64) :: t0, t1
@@ -72,12 +75,18 @@ contains
     if (cfg%fastsim_on .and. .not. status%failed()) call check_output_path(cfg%creep_file, 'creep_file', status)
     if (cfg%rolling%on .and. .not. status%failed()) &
       call check_output_path(cfg%rolling%rolling_file, 'rolling_file', status)
+    if (cfg%wheel_rail%wheelset .and. .not. status%failed()) &
+      call check_output_path(cfg%wheelset_file, 'wheelset_file', status)
     if (status%failed()) return
     base = problem_of(cfg, none)
     base%solve%memory_limit = memory_limit_bytes()
     call system_clock(clock0, clock_rate)
     call cpu_time(t0)
     call kcreep_wheel_rail(cfg%wheel_rail, base, wr%rows, status, team)
+    if (cfg%wheel_rail%wheelset .and. .not. status%failed()) then
+      call kcreep_wheelset(cfg%wheel_rail, base, wheelset, status)
+      if (.not. status%failed()) wr%wheelset = wheelset_lines(wheelset, cfg%wheel_rail)
+    end if
     if (status%failed()) return
     ! the per-patch tables before any file is written: a failed rolling point leaves none
     if (cfg%fastsim_on) wr%creep = creep_lines_of(wr%rows)
@@ -114,6 +123,8 @@ contains
         maxval(rolled%info%residual)
       call add(trim(buf)//'; rolling table: '//cfg%rolling%rolling_file)
     end if
+    if (cfg%wheel_rail%wheelset) call add('wheelset: '//itoa(size(wheelset))// &
+                                          ' shifts, both wheels; wheelset table: '//cfg%wheelset_file)
     if (team > 1) then
       call add('threads: '//itoa(team)//' (one shift per thread)')
     else
@@ -198,6 +209,8 @@ contains
     if (cfg%fastsim_on .and. .not. status%failed()) call write_text_file(cfg%creep_file, wr%creep, 'creep_file', status)
     if (cfg%rolling%on .and. .not. status%failed()) &
       call write_text_file(cfg%rolling%rolling_file, wr%rolling, 'rolling_file', status)
+    if (cfg%wheel_rail%wheelset .and. .not. status%failed()) &
+      call write_text_file(cfg%wheelset_file, wr%wheelset, 'wheelset_file', status)
   end subroutine write_wheel_rail_case
 
   !> The summary's column names, each right-aligned over its column of summary_row.

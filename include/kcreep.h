@@ -170,6 +170,21 @@ int kcreep_wheel_rail(kcreep_handle handle, int n_shifts, const double *shifts, 
   "c11 c22 c23 c33 err11 err22 err23 verdict l1 l2 l3 spin"
 int kcreep_get_wheel_rail(kcreep_handle handle, int length, double *table);
 
+/* The wheelset (docs/wheel_rail.md, Wheelset; the program's &wheel_rail
+ * wheelset = .true.): both wheels of a rigid wheelset on the handle's profiles
+ * and track, each carrying vertical_force (N) > 0, the left wheel the right
+ * one mirrored, or on its own profiles from kcreep_set_left_profiles (read as
+ * kcreep_set_profiles with its mirror flags and smoothing; NULL or "" keeps
+ * the right one). kcreep_wheelset runs n_shifts lateral shifts (mm) at yaw
+ * (rad); *rows: one per shift, read with kcreep_get_wheelset:
+ * table[r * KCREEP_WHEELSET_COLUMNS + k], lengths mm, angles rad. */
+int kcreep_set_left_profiles(kcreep_handle handle, const char *left_wheel_file, const char *left_rail_file);
+int kcreep_wheelset(kcreep_handle handle, int n_shifts, const double *shifts, double yaw, double vertical_force,
+                    int *rows);
+#define KCREEP_WHEELSET_COLUMNS 9
+#define KCREEP_WHEELSET_COLUMN_NAMES "shift r_right r_left delta_r delta_right delta_left roll z lambda_eq"
+int kcreep_get_wheelset(kcreep_handle handle, int length, double *table);
+
 #ifdef __cplusplus
 }
 #endif

@@ -50,6 +50,7 @@ module kcreep
   use kcreep_wheel_rail_run, only: wheel_rail_base_cells => base_cells
   use kcreep_wheel_rail_run, only: wheel_rail_setup_t, wheel_rail_row_t, run_wheel_rail, wheel_rail_columns, &
                                    check_wheel_rail_setup, max_wheel_rail_shifts, most_shifts_at_once
+  use kcreep_wheelset, only: wheelset_row_t, wheelset_columns, run_wheelset
   implicit none
   private
   public :: kcreep_solve, kcreep_memory_need, kcreep_wheel_rail_memory_need
@@ -70,6 +71,7 @@ module kcreep
             verdict_ill_conditioned, verdict_inaccurate, verdict_uncertain, verdict_words
   public :: kcreep_wheel_rail, wheel_rail_setup_t, wheel_rail_row_t, wheel_rail_columns, check_wheel_rail_setup, &
             max_wheel_rail_shifts, default_target_error
+  public :: kcreep_wheelset, wheelset_row_t, wheelset_columns
 
   character(len=*), parameter :: kcreep_version = '0.2.0'
   !> The same as one number: 10000 major + 100 minor + patch.
@@ -174,6 +176,31 @@ contains
     end if
     call run_wheel_rail(setup, base, rows, status, team)
   end subroutine kcreep_wheel_rail
+
+  !> The wheelset table of setup (docs/wheel_rail.md, Wheelset): per shift
+  !> both wheels' rolling radii and contact angles, their difference, the
+  !> wheelset's roll and vertical position and the equivalent conicity at
+  !> amplitude |shift|; the left wheel mirrored, on setup's left profiles if
+  !> given. Needs vertical_force; setup checked as for kcreep_wheel_rail.
+  subroutine kcreep_wheelset(setup, base, table, status)
+    type(wheel_rail_setup_t), intent(in) :: setup
+    type(problem_t), intent(in) :: base
+    type(wheelset_row_t), allocatable, intent(out) :: table(:)
+    type(status_t), intent(inout) :: status
+    type(wheel_rail_setup_t) :: checked
+    checked = setup
+    checked%wheelset = .true.
+    if (.not. (allocated(setup%wheel_y) .and. allocated(setup%rail_y))) then
+      call fail(status, exit_bad_input, 'wheelset: no wheel or rail profile given')
+    else
+      call check_wheel_rail_setup(checked, 'wheelset: ', status)
+    end if
+    if (status%failed()) then
+      allocate (table(0))
+      return
+    end if
+    call run_wheelset(checked, base, table, status)
+  end subroutine kcreep_wheelset
 
   !> Bytes kcreep_solve(problem) needs at its peak and the solve path it takes
   !> there ('dense', 'iterative' or 'table'): the dense subsystem matrix or

@@ -16,13 +16,14 @@ values of CONTACT's input files; both need nothing but Python.
 """
 from . import table  # noqa: F401  (standard library only)
 
-__all__ = ["solve_ellipse", "solve_mask", "wheel_rail", "WHEEL_RAIL_COLUMNS", "Solver", "Result", "KcreepError",
+__all__ = ["solve_ellipse", "solve_mask", "wheel_rail", "WHEEL_RAIL_COLUMNS", "wheelset", "WHEELSET_COLUMNS", "Solver", "Result", "KcreepError",
            "version", "table"]
 
 
 def __getattr__(name):
     # the bindings load numpy and the shared library only when first used
-    if name in ("solve_ellipse", "solve_mask", "wheel_rail", "WHEEL_RAIL_COLUMNS", "Solver", "Result", "KcreepError",
+    if name in ("solve_ellipse", "solve_mask", "wheel_rail", "WHEEL_RAIL_COLUMNS", "wheelset", "WHEELSET_COLUMNS",
+                "Solver", "Result", "KcreepError",
                 "version"):
         from . import library
         return getattr(library, name)

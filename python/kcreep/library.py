@@ -87,10 +87,15 @@ _signatures = {
     "kcreep_set_track": ([_h, ctypes.c_char_p, _d, _d, _d, _d, _d, _d], _i),
     "kcreep_wheel_rail": ([_h, _i, _p, _d, _d, _d, ctypes.POINTER(_i)], _i),
     "kcreep_get_wheel_rail": ([_h, _i, _p], _i),
+    "kcreep_set_left_profiles": ([_h, ctypes.c_char_p, ctypes.c_char_p], _i),
+    "kcreep_wheelset": ([_h, _i, _p, _d, _d, ctypes.POINTER(_i)], _i),
+    "kcreep_get_wheelset": ([_h, _i, _p], _i),
 }
 #: the columns of the wheel-rail contact table (KCREEP_WHEEL_RAIL_COLUMN_NAMES of kcreep.h)
 WHEEL_RAIL_COLUMNS = ("shift yaw patch fn delta y_rail y_wheel r_wheel area length width c11 c22 c23 c33 "
                       "err11 err22 err23 verdict l1 l2 l3 spin").split()
+#: the columns of the wheelset table (KCREEP_WHEELSET_COLUMN_NAMES of kcreep.h)
+WHEELSET_COLUMNS = "shift r_right r_left delta_r delta_right delta_left roll z lambda_eq".split()
 for _name, (_args, _res) in _signatures.items():
     _f = getattr(_lib, _name)
     _f.argtypes = _args
@@ -242,6 +247,32 @@ class Solver:
         table["verdict"] = table["verdict"].astype(int)
         return table
 
+    def wheelset(self, wheel_file, rail_file, shifts, *, vertical_force, yaw=0.0, left_wheel_file=None,
+                 left_rail_file=None, gauge_width=1435.0, gauge_height=14.0, rail_cant=0.0,
+                 flange_back_distance=1360.0, flange_back_position=-70.0, nominal_radius=460.0, wheel_mirror=False,
+                 rail_mirror=False, smoothing=0.0):
+        """The wheelset table over the lateral shifts (mm), as the program's
+        &wheel_rail wheelset = .true. (docs/wheel_rail.md, Wheelset): each wheel
+        carrying vertical_force (N), the left wheel the right one mirrored or on
+        left_wheel_file / left_rail_file. Returns a dict of numpy arrays, one per
+        column of WHEELSET_COLUMNS (one entry per shift)."""
+        s = np.ascontiguousarray(np.atleast_1d(shifts), dtype=np.float64)
+        self._check(_lib.kcreep_set_profiles(self._handle, os.fsencode(wheel_file), os.fsencode(rail_file),
+                                             int(bool(wheel_mirror)), int(bool(rail_mirror)), float(smoothing)))
+        self._check(_lib.kcreep_set_track(self._handle, b"right", gauge_width, gauge_height, rail_cant,
+                                          flange_back_distance, flange_back_position, nominal_radius))
+        self._check(_lib.kcreep_set_left_profiles(self._handle, None if left_wheel_file is None else
+                                                  os.fsencode(left_wheel_file), None if left_rail_file is None else
+                                                  os.fsencode(left_rail_file)))
+        rows = _i()
+        self._check(_lib.kcreep_wheelset(self._handle, s.size, s.ctypes.data, yaw, vertical_force,
+                                         ctypes.byref(rows)))
+        n = len(WHEELSET_COLUMNS)
+        values = np.empty(rows.value * n)
+        self._check(_lib.kcreep_get_wheelset(self._handle, values.size, values.ctypes.data))
+        values = values.reshape(rows.value, n)
+        return {name: values[:, k].copy() for k, name in enumerate(WHEELSET_COLUMNS)}
+
     def rolling(self, mu, creepages, pressure=None):
         """Exact steady rolling with friction mu on the last solved patch
         (docs/rolling.md) for creepages (n x 3: xi, eta, phi); pressure on the
@@ -321,3 +352,11 @@ def wheel_rail(wheel_file, rail_file, shifts, *, g, nu, target_error=1e-3, threa
     Solver.wheel_rail (yaw, side, gauge_width, ...)."""
     return Solver(g=g, nu=nu, target_error=target_error, refine_grid=True, threads=threads).wheel_rail(
         wheel_file, rail_file, shifts, **placement)
+
+
+def wheelset(wheel_file, rail_file, shifts, *, g, nu, vertical_force, threads=0, **placement):
+    """The wheelset table (Solver.wheelset) with material g, nu: a dict of numpy
+    arrays by column (WHEELSET_COLUMNS). placement: yaw, left_wheel_file,
+    left_rail_file and the track keywords of Solver.wheelset."""
+    return Solver(g=g, nu=nu, refine_grid=True, threads=threads).wheelset(
+        wheel_file, rail_file, shifts, vertical_force=vertical_force, **placement)

@@ -9,7 +9,7 @@
 module kcreep_capi_handle
   use, intrinsic :: iso_c_binding, only: c_int, c_double, c_char, c_ptr, c_null_char, c_f_pointer, c_associated
   use kcreep_status, only: status_t, fail, exit_bad_input
-  use kcreep, only: problem_t, result_t, solve_cache_t, wheel_rail_setup_t, wheel_rail_row_t
+  use kcreep, only: problem_t, result_t, solve_cache_t, wheel_rail_setup_t, wheel_rail_row_t, wheelset_row_t
   implicit none
   private
   public :: handle_t, status_ok, status_no_result, begin, solved, finish, from_c, to_c, output_array
@@ -31,6 +31,9 @@ module kcreep_capi_handle
     type(wheel_rail_setup_t) :: wheel_rail
     type(wheel_rail_row_t), allocatable :: wheel_rail_rows(:)
     logical :: wheel_rail_done = .false.
+    ! kcreep_wheelset: the last wheelset table (the left profiles in wheel_rail, kcreep_set_left_profiles)
+    type(wheelset_row_t), allocatable :: wheelset_rows(:)
+    logical :: wheelset_done = .false.
   end type handle_t
 
 contains

@@ -1,12 +1,14 @@
 !> The C API's wheel-rail calls: kcreep_set_profiles, kcreep_set_track,
-!> kcreep_wheel_rail and kcreep_get_wheel_rail (include/kcreep.h).
+!> kcreep_wheel_rail and kcreep_get_wheel_rail; the wheelset's
+!> kcreep_set_left_profiles, kcreep_wheelset and kcreep_get_wheelset
+!> (include/kcreep.h).
 module kcreep_capi_wheel_rail
   use, intrinsic :: iso_c_binding, only: c_int, c_double, c_ptr, c_f_pointer, c_associated
   use kcreep_kinds, only: wp
   use kcreep_status, only: fail, exit_bad_input
   use kcreep_strings, only: itoa, rtoa
   use kcreep, only: problem_t, kcreep_wheel_rail, wheel_rail_setup_t, check_wheel_rail_setup, max_wheel_rail_shifts, &
-                    default_target_error
+                    default_target_error, kcreep_wheelset
   use kcreep_profile_file, only: read_profile_file
   use kcreep_capi_handle, only: handle_t, status_ok, status_no_result, begin, finish, from_c, output_array
   implicit none
@@ -14,6 +16,8 @@ module kcreep_capi_wheel_rail
 
   !> The wheel-rail table's columns (KCREEP_WHEEL_RAIL_COLUMNS in kcreep.h).
   integer, parameter :: wheel_rail_column_count = 23
+  !> The wheelset table's columns (KCREEP_WHEELSET_COLUMNS in kcreep.h).
+  integer, parameter :: wheelset_column_count = 9
 
 contains
 
@@ -184,5 +188,123 @@ contains
       end associate
     end do
   end function c_get_wheel_rail
+
+  !> The wheelset's left profiles (as kcreep_set_profiles, its mirror flags
+  !> and smoothing): NULL or "" for either keeps the right one mirrored.
+  integer(c_int) function c_set_left_profiles(handle, wheel_file, rail_file) bind(c, name='kcreep_set_left_profiles')
+    type(c_ptr), value :: handle, wheel_file, rail_file
+    type(handle_t), pointer :: h
+    character(len=:), allocatable :: path
+    real(wp), allocatable :: wy(:), wz(:), ry(:), rz(:)
+    character(len=:), allocatable :: wheel_name, rail_name
+    c_set_left_profiles = begin(handle, h)
+    if (c_set_left_profiles /= status_ok) return
+    path = ''
+    if (c_associated(wheel_file)) path = from_c(wheel_file, 4096)
+    if (len(path) > 0) then
+      wheel_name = 'left_wheel_file '''//path//''''
+      call read_profile_file(path, 'left_wheel_file', .true., wy, wz, h%last)
+    end if
+    path = ''
+    if (c_associated(rail_file)) path = from_c(rail_file, 4096)
+    if (len(path) > 0 .and. .not. h%last%failed()) then
+      rail_name = 'left_rail_file '''//path//''''
+      call read_profile_file(path, 'left_rail_file', .false., ry, rz, h%last)
+    end if
+    if (h%last%failed()) then
+      h%last%message = 'kcreep_set_left_profiles: '//h%last%message
+    else
+      associate (s => h%wheel_rail)
+        if (allocated(s%left_wheel_y)) deallocate (s%left_wheel_y, s%left_wheel_z, s%left_wheel_name)
+        if (allocated(s%left_rail_y)) deallocate (s%left_rail_y, s%left_rail_z, s%left_rail_name)
+        if (allocated(wy)) then
+          call move_alloc(wy, s%left_wheel_y)
+          call move_alloc(wz, s%left_wheel_z)
+          s%left_wheel_name = wheel_name
+        end if
+        if (allocated(ry)) then
+          call move_alloc(ry, s%left_rail_y)
+          call move_alloc(rz, s%left_rail_z)
+          s%left_rail_name = rail_name
+        end if
+      end associate
+    end if
+    c_set_left_profiles = finish(h)
+  end function c_set_left_profiles
+
+  !> The wheelset table of the handle's profiles and track (docs/wheel_rail.md,
+  !> Wheelset) for n_shifts lateral shifts (mm) at yaw (rad), each wheel
+  !> carrying vertical_force (N) > 0; rows: one per shift, read with
+  !> kcreep_get_wheelset.
+  integer(c_int) function c_wheelset(handle, n_shifts, shifts, yaw, vertical_force, rows) &
+    bind(c, name='kcreep_wheelset')
+    type(c_ptr), value :: handle, shifts, rows
+    integer(c_int), value :: n_shifts
+    real(c_double), value :: yaw, vertical_force
+    type(handle_t), pointer :: h
+    real(c_double), pointer :: values(:)
+    integer(c_int), pointer :: n_rows
+    type(problem_t) :: base
+    c_wheelset = begin(handle, h)
+    if (c_wheelset /= status_ok) return
+    h%wheelset_done = .false.
+    if (.not. (c_associated(shifts) .and. c_associated(rows))) then
+      call fail(h%last, exit_bad_input, 'kcreep_wheelset: shifts or rows is NULL')
+    else if (n_shifts < 1 .or. n_shifts > max_wheel_rail_shifts) then
+      call fail(h%last, exit_bad_input, 'kcreep_wheelset: n_shifts = '//itoa(int(n_shifts))//' (allowed: 1 to '// &
+                itoa(max_wheel_rail_shifts)//')')
+    else if (.not. (allocated(h%wheel_rail%wheel_y) .and. allocated(h%wheel_rail%rail_y))) then
+      call fail(h%last, exit_bad_input, 'kcreep_wheelset: no profiles (call kcreep_set_profiles first)')
+    else
+      call c_f_pointer(shifts, values, [n_shifts])
+      call c_f_pointer(rows, n_rows)
+      n_rows = 0
+      h%wheel_rail%shifts = values
+      h%wheel_rail%yaw = yaw
+      h%wheel_rail%force_given = .true.
+      h%wheel_rail%vertical_force = vertical_force
+      h%wheel_rail%approach = 0
+      base = h%problem
+      if (.not. (base%target_error > 0)) base%target_error = default_target_error
+      call kcreep_wheelset(h%wheel_rail, base, h%wheelset_rows, h%last)
+      h%wheelset_done = .not. h%last%failed()
+      if (h%wheelset_done) n_rows = size(h%wheelset_rows)
+      if (h%last%failed()) h%last%message = 'kcreep_wheelset: '//h%last%message
+    end if
+    c_wheelset = finish(h)
+  end function c_wheelset
+
+  !> The last kcreep_wheelset's table, row by row: table[r * KCREEP_WHEELSET_COLUMNS + k]
+  !> (length >= rows * KCREEP_WHEELSET_COLUMNS), the columns of KCREEP_WHEELSET_COLUMN_NAMES.
+  integer(c_int) function c_get_wheelset(handle, length, table) bind(c, name='kcreep_get_wheelset')
+    type(c_ptr), value :: handle, table
+    integer(c_int), value :: length
+    type(handle_t), pointer :: h
+    real(c_double), pointer :: values(:)
+    integer :: r, n
+    c_get_wheelset = begin(handle, h)
+    if (c_get_wheelset /= status_ok) return
+    if (.not. h%wheelset_done) then
+      call fail(h%last, int(status_no_result), 'kcreep_get_wheelset: no table: call kcreep_wheelset '// &
+                '(successfully) first')
+      c_get_wheelset = finish(h)
+      return
+    end if
+    n = size(h%wheelset_rows) * wheelset_column_count
+    if (length < n) then
+      call fail(h%last, exit_bad_input, 'kcreep_get_wheelset: length = '//itoa(int(length))//' (the table has '// &
+                itoa(n)//' values)')
+      c_get_wheelset = finish(h)
+      return
+    end if
+    c_get_wheelset = output_array(h, table, n, 'kcreep_get_wheelset: table', values)
+    if (c_get_wheelset /= status_ok) return
+    do r = 1, size(h%wheelset_rows)
+      associate (w => h%wheelset_rows(r))
+        values((r - 1) * wheelset_column_count + 1:r * wheelset_column_count) = &
+          [w%shift, w%r_right, w%r_left, w%delta_r, w%delta_right, w%delta_left, w%roll, w%z, w%lambda_eq]
+      end associate
+    end do
+  end function c_get_wheelset
 
 end module kcreep_capi_wheel_rail

@@ -85,6 +85,7 @@ module kcreep_nml_config
     logical :: wheel_rail_on = .false.
     type(wheel_rail_setup_t) :: wheel_rail
     character(len=:), allocatable :: wheel_rail_file   !< &output wheel_rail_file [<input name>.wr]
+    character(len=:), allocatable :: wheelset_file     !< &output wheelset_file [<input name>.ws]
   end type config_t
 
 contains

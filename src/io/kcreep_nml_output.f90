@@ -9,16 +9,17 @@ module kcreep_nml_output
 
   type :: output_group_t
     character(len=4096) :: table_file = '', traction_file = '', pressure_file = '', contact_mask_file = '', &
-                           creep_file = '', creep_map_file = '', wheel_rail_file = '', &
+                           creep_file = '', creep_map_file = '', wheel_rail_file = '', wheelset_file = '', &
                            rolling_file = '', rolling_map_file = ''
   end type output_group_t
 
   !> The group's variables and their types, as in its namelist statement
   !> (kcreep_namelist_scan diagnose_group explains a failed read with them).
-  character(len=*), parameter :: output_variables(9) = [character(len=27) :: &
+  character(len=*), parameter :: output_variables(10) = [character(len=27) :: &
     'table_file character', 'traction_file character', 'pressure_file character', &
     'contact_mask_file character', 'creep_file character', 'creep_map_file character', &
-    'wheel_rail_file character', 'rolling_file character', 'rolling_map_file character']
+    'wheel_rail_file character', 'wheelset_file character', 'rolling_file character', &
+    'rolling_map_file character']
 
 contains
 
@@ -28,9 +29,9 @@ contains
     integer, intent(out) :: ios
     character(len=*), intent(inout) :: msg
     character(len=4096) :: table_file, traction_file, pressure_file, contact_mask_file, creep_file, creep_map_file, &
-                           wheel_rail_file, rolling_file, rolling_map_file
+                           wheel_rail_file, wheelset_file, rolling_file, rolling_map_file
     namelist /output/ table_file, traction_file, pressure_file, contact_mask_file, creep_file, creep_map_file, &
-                      wheel_rail_file, rolling_file, rolling_map_file
+                      wheel_rail_file, wheelset_file, rolling_file, rolling_map_file
 
     table_file = grp%table_file
     traction_file = grp%traction_file
@@ -39,6 +40,7 @@ contains
     creep_file = grp%creep_file
     creep_map_file = grp%creep_map_file
     wheel_rail_file = grp%wheel_rail_file
+    wheelset_file = grp%wheelset_file
     rolling_file = grp%rolling_file
     rolling_map_file = grp%rolling_map_file
     read (unit, nml=output, iostat=ios, iomsg=msg)
@@ -49,6 +51,7 @@ contains
     grp%creep_file = creep_file
     grp%creep_map_file = creep_map_file
     grp%wheel_rail_file = wheel_rail_file
+    grp%wheelset_file = wheelset_file
     grp%rolling_file = rolling_file
     grp%rolling_map_file = rolling_map_file
   end subroutine read_output_group
@@ -73,6 +76,8 @@ contains
     cfg%creep_map_file = resolve_path(trim(grp%creep_map_file), folder)
     cfg%wheel_rail_file = resolve_path(trim(grp%wheel_rail_file), folder)
     if (len(cfg%wheel_rail_file) == 0) cfg%wheel_rail_file = default_output_name(cfg%input_path, '.wr')
+    cfg%wheelset_file = resolve_path(trim(grp%wheelset_file), folder)
+    if (len(cfg%wheelset_file) == 0) cfg%wheelset_file = default_output_name(cfg%input_path, '.ws')
     if (cfg%shape /= 'gap' .and. (len(cfg%pressure_file) > 0 .or. len(cfg%contact_mask_file) > 0)) &
       call fail(status, exit_bad_input, input_where(cfg)//'&output pressure_file and contact_mask_file need '// &
                 '&patch shape = ''gap''')

@@ -25,9 +25,9 @@ module kcreep_nml_wheel_rail
 
   !> The group as written (unset: not given).
   type :: wheel_rail_group_t
-    character(len=1024) :: wheel_file = '', rail_file = ''
+    character(len=1024) :: wheel_file = '', rail_file = '', left_wheel_file = '', left_rail_file = ''
     character(len=16) :: side = 'right'
-    logical :: wheel_mirror = .false., rail_mirror = .false.
+    logical :: wheel_mirror = .false., rail_mirror = .false., wheelset = .false.
     real(real64) :: smoothing = -1, gauge_width = 1435, gauge_height = 14, rail_cant = 0, &
                     flange_back_distance = 1360, flange_back_position = -70, nominal_radius = 460, &
                     shift_from = unset, shift_to = unset, shift_step = unset, yaw = 0, &
@@ -37,8 +37,9 @@ module kcreep_nml_wheel_rail
 
   !> The group's variables and their types, as in its namelist statement
   !> (kcreep_namelist_scan diagnose_group explains a failed read with them).
-  character(len=*), parameter :: wheel_rail_variables(19) = [character(len=30) :: &
+  character(len=*), parameter :: wheel_rail_variables(22) = [character(len=30) :: &
     'wheel_file character', 'rail_file character', 'wheel_mirror logical', 'rail_mirror logical', &
+    'wheelset logical', 'left_wheel_file character', 'left_rail_file character', &
     'smoothing real', 'side character', 'gauge_width real', 'gauge_height real', 'rail_cant real', &
     'flange_back_distance real', 'flange_back_position real', 'nominal_radius real', 'shifts real list', &
     'shift_from real', 'shift_to real', 'shift_step real', 'yaw real', 'vertical_force real', 'approach real']
@@ -50,15 +51,16 @@ contains
     type(wheel_rail_group_t), intent(out) :: grp
     integer, intent(out) :: ios
     character(len=*), intent(inout) :: msg
-    character(len=1024) :: wheel_file, rail_file
+    character(len=1024) :: wheel_file, rail_file, left_wheel_file, left_rail_file
     character(len=16) :: side
-    logical :: wheel_mirror, rail_mirror
+    logical :: wheel_mirror, rail_mirror, wheelset
     real(real64) :: smoothing, gauge_width, gauge_height, rail_cant, flange_back_distance, flange_back_position, &
                     nominal_radius, shift_from, shift_to, shift_step, yaw, vertical_force, approach
     real(real64), allocatable :: shifts(:)
     namelist /wheel_rail/ wheel_file, rail_file, wheel_mirror, rail_mirror, smoothing, side, gauge_width, &
                           gauge_height, rail_cant, flange_back_distance, flange_back_position, nominal_radius, &
-                          shifts, shift_from, shift_to, shift_step, yaw, vertical_force, approach
+                          shifts, shift_from, shift_to, shift_step, yaw, vertical_force, approach, &
+                          wheelset, left_wheel_file, left_rail_file
 
     allocate (shifts(max_wheel_rail_shifts))   ! more values: the read fails, diagnose_group counts them
     shifts = unset
@@ -80,6 +82,9 @@ contains
     yaw = grp%yaw
     vertical_force = grp%vertical_force
     approach = grp%approach
+    wheelset = grp%wheelset
+    left_wheel_file = grp%left_wheel_file
+    left_rail_file = grp%left_rail_file
     read (unit, nml=wheel_rail, iostat=ios, iomsg=msg)
     grp%wheel_file = wheel_file
     grp%rail_file = rail_file
@@ -99,6 +104,9 @@ contains
     grp%yaw = yaw
     grp%vertical_force = vertical_force
     grp%approach = approach
+    grp%wheelset = wheelset
+    grp%left_wheel_file = left_wheel_file
+    grp%left_rail_file = left_rail_file
     call move_alloc(shifts, grp%shifts)
   end subroutine read_wheel_rail_group
 
@@ -178,6 +186,11 @@ contains
       setup%flange_back_position = grp%flange_back_position
       setup%nominal_radius = grp%nominal_radius
       setup%yaw = grp%yaw
+      setup%wheelset = grp%wheelset
+      if (.not. grp%wheelset .and. len_trim(grp%left_wheel_file) + len_trim(grp%left_rail_file) > 0) then
+        call fail(status, exit_bad_input, where//'left_wheel_file and left_rail_file need wheelset = .true.')
+        return
+      end if
       call check_wheel_rail_setup(setup, where, status)
       if (status%failed()) return
 
@@ -188,6 +201,19 @@ contains
       call read_profile_file(wheel_path, 'wheel_file', .true., setup%wheel_y, setup%wheel_z, status)
       if (status%failed()) return
       call read_profile_file(rail_path, 'rail_file', .false., setup%rail_y, setup%rail_z, status)
+      if (status%failed()) return
+      ! the wheelset's left side: its own profiles where given (as the right ones: mirror flags alike)
+      if (len_trim(grp%left_wheel_file) > 0) then
+        wheel_path = resolve_path(trim(grp%left_wheel_file), folder_of(cfg%input_path))
+        setup%left_wheel_name = 'left_wheel_file '''//wheel_path//''''
+        call read_profile_file(wheel_path, 'left_wheel_file', .true., setup%left_wheel_y, setup%left_wheel_z, status)
+        if (status%failed()) return
+      end if
+      if (len_trim(grp%left_rail_file) > 0) then
+        rail_path = resolve_path(trim(grp%left_rail_file), folder_of(cfg%input_path))
+        setup%left_rail_name = 'left_rail_file '''//rail_path//''''
+        call read_profile_file(rail_path, 'left_rail_file', .false., setup%left_rail_y, setup%left_rail_z, status)
+      end if
     end associate
   end subroutine apply_wheel_rail_group
 

@@ -6,7 +6,8 @@
 module kcreep_wheel_rail_table
   use, intrinsic :: iso_fortran_env, only: real64
   use kcreep, only: wheel_rail_row_t, wheel_rail_setup_t, wheel_rail_columns, creep_request_t, creep_point_t, &
-                    source_names, flexibility_rule_name, rolling_request_t, rolling_point_t
+                    source_names, flexibility_rule_name, rolling_request_t, rolling_point_t, wheelset_row_t, &
+                    wheelset_columns
   use kcreep_strings, only: rtoa
   use kcreep_profile, only: profile_smoothing
   use kcreep_rolling_table, only: rolling_columns, rolling_notes, rolling_row
@@ -15,6 +16,7 @@ module kcreep_wheel_rail_table
   public :: wheel_rail_lines, line_length, wheel_rail_creep_header, wheel_rail_creep_rows, wheel_rail_creep_columns
   public :: wheel_rail_header_lines, wheel_rail_batch_head, wheel_rail_batch_columns, wheel_rail_row
   public :: wheel_rail_rolling_header, wheel_rail_rolling_rows, wheel_rail_rolling_columns
+  public :: wheelset_lines
 
   !> The columns that lead each row of the per-patch tables: which shift and patch, its geometric spin.
   character(len=*), parameter :: patch_columns = 'shift yaw patch spin'
@@ -108,6 +110,50 @@ contains
     lines(3) = coefficient_note
     lines(4) = '# '//wheel_rail_batch_columns
   end function wheel_rail_batch_head
+  !> The wheelset table (&output wheelset_file): one row per shift.
+  function wheelset_lines(table, setup) result(lines)
+    type(wheelset_row_t), intent(in) :: table(:)
+    type(wheel_rail_setup_t), intent(in) :: setup
+    character(len=line_length), allocatable :: lines(:)
+    integer :: k
+    allocate (lines(size(table) + 7))
+    lines(1) = '# kcreep: wheelset over the lateral shift (a rigid wheelset, each wheel carrying vertical_force '// &
+               rtoa(setup%vertical_force)//' N)'
+    lines(2) = '# right: '//setup%wheel_name//' on '//setup%rail_name
+    if (allocated(setup%left_wheel_name) .or. allocated(setup%left_rail_name)) then
+      lines(3) = '# left: '//left_name(setup%left_wheel_name, setup%wheel_name)//' on '// &
+                 left_name(setup%left_rail_name, setup%rail_name)
+    else
+      lines(3) = '# left: the right profiles mirrored (a symmetric wheelset)'
+    end if
+    lines(4) = '# r_right, r_left: rolling radii at the contact (load-weighted over two patches); '// &
+               'delta_r = r_right - r_left; delta_right, delta_left: contact angles, each positive towards its flange'
+    lines(5) = '# roll: wheelset roll (positive: right wheel down), z: its vertical position at the track centre '// &
+               '(z down, 0: nominal rolling circles in the track plane), from each wheel''s approach for the load'
+    lines(6) = '# lambda_eq: equivalent conicity at amplitude |shift| (first harmonic of delta_r(A sin t) over 2A); '// &
+               'lengths mm, angles rad'
+    lines(7) = '# '//wheelset_columns
+    do k = 1, size(table)
+      associate (t => table(k))
+        write (lines(k + 7), '(es15.7, 3(es17.9), 2(es16.8), 2(es16.8), es16.8)') t%shift, t%r_right, t%r_left, &
+          t%delta_r, t%delta_right, t%delta_left, t%roll, t%z, t%lambda_eq
+      end associate
+    end do
+
+  contains
+
+    function left_name(own, right) result(name)
+      character(len=:), allocatable, intent(in) :: own
+      character(len=*), intent(in) :: right
+      character(len=:), allocatable :: name
+      if (allocated(own)) then
+        name = own
+      else
+        name = 'the right '//right//' mirrored'
+      end if
+    end function left_name
+
+  end function wheelset_lines
 
   !> The creep table's comment lines and column names.
   function wheel_rail_creep_header(setup, request) result(lines)

@@ -37,6 +37,7 @@ module kcreep_wheel_rail_run
   public :: base_cells
   public :: wheel_rail_setup_t, wheel_rail_row_t, prepare_track, run_wheel_rail, wheel_rail_columns, &
             check_wheel_rail_setup, max_wheel_rail_shifts, most_shifts_at_once
+  public :: wheel_state_t, rows_at_shift
 
   !> The table's columns, in order (verdict a word).
   character(len=*), parameter :: wheel_rail_columns = 'shift yaw patch fn delta y_rail y_wheel r_wheel area '// &
@@ -67,7 +68,19 @@ module kcreep_wheel_rail_run
     real(real64) :: yaw = 0
     logical :: force_given = .true.
     real(real64) :: vertical_force = 0, approach = 0
+    logical :: wheelset = .false.                                               !< also the wheelset table (kcreep_wheelset)
+    real(real64), allocatable :: left_wheel_y(:), left_wheel_z(:), left_rail_y(:), left_rail_z(:)  !< the left side's own, if given
+    character(len=:), allocatable :: left_wheel_name, left_rail_name
   end type wheel_rail_setup_t
+
+  !> One wheel at one shift without the patches' solves (rows_at_shift with
+  !> wheel): the wheel's vertical position and each loaded patch's force
+  !> split, angle, rolling radius and lateral position (the side's own
+  !> right-side configuration, as the table's rows before the side's sign).
+  type :: wheel_state_t
+    real(real64) :: height = 0                   !< w0 + dz: the wheel's vertical position (mm, z down)
+    real(real64), allocatable :: fn(:), delta(:), r_wheel(:), y(:)
+  end type wheel_state_t
 
   !> One row of the table: one patch at one shift.
   type :: wheel_rail_row_t
@@ -120,6 +133,11 @@ contains
       call check_range('approach', setup%approach, 1e-9_real64, 10.0_real64)
     end if
     if (status%failed()) return
+    if (setup%wheelset .and. .not. setup%force_given) then
+      call fail(status, exit_bad_input, where//'wheelset = .true. needs vertical_force (each wheel carries it), '// &
+                'not approach')
+      return
+    end if
     if (.not. allocated(setup%shifts)) then
       call fail(status, exit_bad_input, where//'shifts: none given')
     else if (size(setup%shifts) < 1 .or. size(setup%shifts) > max_wheel_rail_shifts) then
@@ -239,7 +257,8 @@ contains
 
   !> The rows of shift i: its contacts, the approach (given, or found for the
   !> vertical force), then each patch under error control.
-  subroutine rows_at_shift(setup, base, track, sgn, i, rows, status)
+  !> With wheel: only the wheel's state after the approach (no solves, no rows).
+  subroutine rows_at_shift(setup, base, track, sgn, i, rows, status, wheel)
     type(wheel_rail_setup_t), intent(in) :: setup
     type(problem_t), intent(in) :: base
     type(track_t), intent(in) :: track
@@ -247,6 +266,7 @@ contains
     integer, intent(in) :: i
     type(wheel_rail_row_t), allocatable, intent(out) :: rows(:)
     type(status_t), intent(inout) :: status
+    type(wheel_state_t), intent(out), optional :: wheel
     real(real64), allocatable :: ys(:), d(:), xs(:)
     type(contact_t), allocatable :: contacts(:)
     type(gap_t), allocatable :: grids(:)
@@ -280,6 +300,14 @@ contains
     end if
     call check_profile_ends(setup, track, ys, d, contacts, where, status)
     if (status%failed()) return
+    if (present(wheel)) then
+      wheel%height = w0 + dz
+      wheel%fn = pack(forces, forces > 0)
+      wheel%delta = pack(contacts%delta, forces > 0)
+      wheel%r_wheel = pack(contacts%r_wheel, forces > 0)
+      wheel%y = pack(contacts%y, forces > 0)
+      return
+    end if
     do k = 1, size(contacts)
       problem = base
       problem%normal%active = .true.

@@ -1,7 +1,9 @@
 """The wheel-rail contact table from a call: the C API (tests/api/wheel_rail_api.c:
 kcreep_set_profiles, kcreep_set_track, kcreep_wheel_rail, kcreep_get_wheel_rail
 and their errors) and Python (kcreep.wheel_rail, Solver.wheel_rail) give the
-program's &wheel_rail table: the same columns, the same numbers.
+program's &wheel_rail table: the same columns, the same numbers. Likewise the
+wheelset table (kcreep_wheelset, kcreep_get_wheelset, kcreep_set_left_profiles;
+kcreep.wheelset) and the program's wheelset = .true. (.ws).
 
 usage: /usr/bin/python3 test_wheel_rail_api.py KCREEP SOURCE_DIR C_PROGRAM   (needs numpy)
 """
@@ -39,7 +41,8 @@ G, NU, FORCE, FBPOS, SHIFTS = 82000.0, 0.28, 80000.0, -72.5, [-4.0, 6.0]
 # the program
 code, out, err, _ = kc.run(
     f"&wheel_rail wheel_file = 'wheel.dat', rail_file = 'rail.dat', flange_back_position = {FBPOS},\n"
-    f"  shifts = {' '.join(map(str, SHIFTS))}, vertical_force = {FORCE} /\n&material g = {G}, nu = {NU} /\n",
+    f"  shifts = {' '.join(map(str, SHIFTS))}, vertical_force = {FORCE}, wheelset = .true. /\n"
+    f"&material g = {G}, nu = {NU} /\n",
     folder, "cli", expect_ok=False)
 kc.check(code == 0, "the program's table" + ("" if code == 0 else ": " + err.strip()))
 cli = kc.read_table(os.path.join(folder, "cli.wr")) if code == 0 else []
@@ -72,6 +75,26 @@ for r, (row, crow) in enumerate(zip(cli, c_rows)):
         scale = max(abs(row[name]), 1e-300)
         kc.check(abs(crow[name] - row[name]) <= tol * scale + (1e-12 if name == "yaw" else 0),
                  f"row {r}: {name} C {crow[name]:.9g} = program {row[name]:.9g} (printed digits)")
+
+# the wheelset: program, C, Python
+cli_ws = kc.read_table(os.path.join(folder, "cli.ws")) if code == 0 else []
+c_ws = kc.read_table(c_out + ".ws") if proc.returncode == 0 else []
+py_ws = kcreep.wheelset(wheel, rail, SHIFTS, g=G, nu=NU, vertical_force=FORCE, flange_back_position=FBPOS)
+ws_header = [l for l in open(os.path.join(folder, "cli.ws")) if l.startswith("#")][-1][1:].split() if code == 0 else []
+kc.check(list(py_ws) == kcreep.WHEELSET_COLUMNS == ws_header and c_ws and list(c_ws[0]) == ws_header,
+         f"the wheelset columns of Python, C and the program agree ({ws_header})")
+kc.check(len(cli_ws) == len(c_ws) == len(py_ws["shift"]) == 2, "2 wheelset rows each")
+for r, (row, crow) in enumerate(zip(cli_ws, c_ws)):
+    for name in ws_header:
+        kc.check(py_ws[name][r] == crow[name], f"wheelset row {r}: {name} Python {py_ws[name][r]!r} == C")
+        # the program prints 9 digits (es16.8) at least: 1e-7 relative, and roll 0 at no shift
+        kc.check(abs(crow[name] - row[name]) <= 1e-7 * abs(row[name]) + 1e-15,
+                 f"wheelset row {r}: {name} C {crow[name]:.10g} = program {row[name]:.10g}")
+try:
+    kcreep.wheelset(wheel, rail, [0.0], g=G, nu=NU, vertical_force=FORCE, left_wheel_file="no-such-left.dat")
+    kc.check(False, "a missing left_wheel_file refused")
+except kcreep.KcreepError as e:
+    kc.check(e.code == 2 and "no-such-left.dat" in str(e), f"a missing left_wheel_file refused: {e}")
 
 # errors become KcreepError with the library's message
 for kwargs, words in (({"side": "middle", "vertical_force": FORCE}, "side"),

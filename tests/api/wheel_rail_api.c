@@ -1,9 +1,11 @@
 /* The wheel-rail contact table through the C API: kcreep_set_profiles,
- * kcreep_set_track, kcreep_wheel_rail, kcreep_get_wheel_rail, and their errors.
+ * kcreep_set_track, kcreep_wheel_rail, kcreep_get_wheel_rail, the wheelset's
+ * kcreep_wheelset, kcreep_get_wheelset, and their errors.
  *
  * usage: kcreep_wheel_rail_api WHEEL RAIL OUT G NU FORCE FLANGE_BACK_POSITION SHIFT...
  * Writes the table to OUT ('# ' and the column names, then one row per shift
- * and patch, 17 digits); prints FAIL lines and exits 1 when a check fails. */
+ * and patch, 17 digits) and the wheelset table likewise to OUT.ws; prints FAIL
+ * lines and exits 1 when a check fails. */
 #include <kcreep.h>
 #include <math.h>
 #include <stdio.h>
@@ -35,6 +37,8 @@ int main(int argc, char **argv) {
 
   /* errors: each with status 2 (6: no table yet) and a message naming what is wrong */
   expect_error(h, kcreep_get_wheel_rail(h, KCREEP_WHEEL_RAIL_COLUMNS, t1), 6, "kcreep_wheel_rail", "table before a run");
+  expect_error(h, kcreep_get_wheelset(h, KCREEP_WHEEL_RAIL_COLUMNS, t1), 6, "kcreep_wheelset", "wheelset before a run");
+  expect_error(h, kcreep_wheelset(h, 1, shifts, 0, 80000, &rows), 2, "kcreep_set_profiles", "wheelset, no profiles");
   expect_error(h, kcreep_wheel_rail(h, 1, shifts, 0, 80000, 0, &rows), 2, "kcreep_set_profiles", "run without profiles");
   expect_error(h, kcreep_set_profiles(h, "no-such-wheel.prw", argv[2], 0, 0, 0), 2, "no-such-wheel.prw", "missing file");
   expect_error(h, kcreep_set_profiles(h, argv[1], NULL, 0, 0, 0), 2, "NULL", "NULL rail file");
@@ -71,6 +75,33 @@ int main(int argc, char **argv) {
       fprintf(out, "%.17g%s", table[r * KCREEP_WHEEL_RAIL_COLUMNS + k], k + 1 < KCREEP_WHEEL_RAIL_COLUMNS ? " " : "\n");
   }
   fclose(out);
+
+  /* the wheelset: its errors, then its table to OUT.ws */
+  int ws_rows = -1;
+  expect_error(h, kcreep_wheelset(h, n, shifts, 0, 0, &ws_rows), 2, "vertical_force", "wheelset without a load");
+  expect_error(h, kcreep_set_left_profiles(h, "no-such-left.prw", NULL), 2, "no-such-left.prw", "missing left file");
+  if (kcreep_set_left_profiles(h, NULL, "") != 0 || kcreep_wheelset(h, n, shifts, 0, atof(argv[6]), &ws_rows) != 0) {
+    char message[512];
+    kcreep_get_message(h, message, sizeof message);
+    printf("FAIL the wheelset: %s\n", message);
+    return 1;
+  }
+  double *ws = malloc((size_t)ws_rows * KCREEP_WHEELSET_COLUMNS * sizeof *ws);
+  expect_error(h, kcreep_get_wheelset(h, ws_rows * KCREEP_WHEELSET_COLUMNS - 1, ws), 2, "length", "short wheelset array");
+  if (ws_rows != n || kcreep_get_wheelset(h, ws_rows * KCREEP_WHEELSET_COLUMNS, ws) != 0) {
+    printf("FAIL kcreep_get_wheelset (%d rows for %d shifts)\n", ws_rows, n);
+    return 1;
+  }
+  char ws_path[4096];
+  snprintf(ws_path, sizeof ws_path, "%s.ws", argv[3]);
+  out = fopen(ws_path, "w");
+  fprintf(out, "# %s\n", KCREEP_WHEELSET_COLUMN_NAMES);
+  for (int r = 0; r < ws_rows; r++) {
+    for (int k = 0; k < KCREEP_WHEELSET_COLUMNS; k++)
+      fprintf(out, "%.17g%s", ws[r * KCREEP_WHEELSET_COLUMNS + k], k + 1 < KCREEP_WHEELSET_COLUMNS ? " " : "\n");
+  }
+  fclose(out);
+  free(ws);
   kcreep_delete(&h);
   free(table);
   free(shifts);

@@ -73,7 +73,7 @@ else:
         for rule, pattern in (("numbers run together", GLUED), ("a field of asterisks", STARS)):
             hit = pattern.search(line)
             kc.check(hit is None, f"s1002_roll: {rule} {hit.group(0) if hit else ''!r} in {line.strip()[:160]!r}")
-    rolling = re.search(r"mu = *\S+, *([\d.]+) s;", proc.stdout)
+    rolling = re.search(r"mu = *\S+, *([\d.]+) s(?: on \d+ thread\(s\))?;", proc.stdout)
     wall = re.search(r"time \[s\]: wall *([\d.]+)", proc.stdout)
     kc.check(rolling is not None and wall is not None, f"the rolling line and the time line: {proc.stdout[-400:]!r}")
     if rolling and wall:
