@@ -7,7 +7,7 @@
 
 Each point is the ellipse c = sqrt(ab) = 1 with only semi_a, semi_b and nu
 given (plus --solver settings): kcreep chooses the grids. The error is
-against the refined table (scripts/studies/refine_kalker_table.sh), whose own
+against the refined table (tools/maintenance/refine_kalker_table.sh), whose own
 uncertainty u is printed beside it; "bounded" counts the points where
 kcreep's estimate err covered the measured error |c - ref| (a point whose
 measured error is within the reference's u of the estimate counts as
@@ -27,10 +27,10 @@ import resource
 import statistics
 import sys
 
-sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+sys.path[:0] = [os.path.join(os.path.dirname(os.path.abspath(__file__)), d) for d in (".", "../tools/maintenance", "../scripts/convergence", "../tests/calibration")]
 import kcreep_levels as K  # noqa: E402
 
-ROOT = os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..")
+ROOT = os.path.join(os.path.dirname(os.path.abspath(__file__)), "..")
 
 
 def read_reference(path):

@@ -5,19 +5,19 @@ cells inside and the slope of C from Kalker's table (linear in ln a/b, nu), and
 compare the default estimator (levels 16-48) against a reference from levels
 56-128, with and without the correction. Needs numpy (/usr/bin/python3).
 
-    /usr/bin/python3 scripts/studies/aspect_correction_study.py
+    /usr/bin/python3 lab/aspect_correction_study.py
 """
 import sys as _sys
 
 if __name__ == "__main__" and any(a in ("-h", "--help") for a in _sys.argv[1:]):
-    print("usage: scripts/studies/aspect_correction_study.py\n" + __doc__)
+    print("usage: lab/aspect_correction_study.py\n" + __doc__)
     _sys.exit(0)
 import math
 import os
 import statistics
 import numpy as np
 
-ROOT = os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..")
+ROOT = os.path.join(os.path.dirname(os.path.abspath(__file__)), "..")
 T95 = {1: 12.706, 2: 4.303, 3: 3.182, 4: 2.776, 5: 2.571, 6: 2.447, 7: 2.365, 8: 2.306}
 data = {}
 def stair(r, mx, my):

@@ -20,9 +20,9 @@ into unknowns:
 
 Prints per series the straight line f0 + K h through the levels, the
 levels' rms scatter about it and f0 against the refined table; writes
-docs/data/boundary_blend_study.dat and docs/figures/boundary_blend_study.png.
+lab/data/boundary_blend_study.dat and lab/figures/boundary_blend_study.png.
 
-  /usr/bin/python3 scripts/studies/boundary_blend_study.py [--kcreep build/kcreep] [--no-write]
+  /usr/bin/python3 lab/boundary_blend_study.py [--kcreep build/kcreep] [--no-write]
 
 Needs numpy and matplotlib (Debian's python3-numpy, python3-matplotlib) and a
 built kcreep (the refined table's values); about 6 minutes on one core.
@@ -32,7 +32,7 @@ import math
 import os
 import sys
 
-ROOT = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
+ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 SEED = 1
 SAMPLES = 16
 # (semi-axis a with b = 1, cells across the shorter axis: first, last, step, kappas)
@@ -85,7 +85,7 @@ def level(np, study, semi_a, cells, offset, kappas, slopes):
 
 def main(args):
     import numpy as np
-    sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+    sys.path[:0] = [os.path.join(os.path.dirname(os.path.abspath(__file__)), d) for d in (".", "../tools/maintenance", "../scripts/convergence", "../tests/calibration")]
     import cut_cell_study as study
     study.NU = 0.25
     rng = np.random.default_rng(SEED)
@@ -119,7 +119,7 @@ def main(args):
     if args.no_write:
         return
     with open(os.path.join(ROOT, "docs", "data", "boundary_blend_study.dat"), "w") as f:
-        f.write("# scripts/studies/boundary_blend_study.py: nu = 0.25, backward scheme, random grid offsets\n")
+        f.write("# lab/boundary_blend_study.py: nu = 0.25, backward scheme, random grid offsets\n")
         f.write("# per shape: cells_across, then C11 C22 error % against the refined table per series\n")
         for semi_a, names, data in results:
             f.write(f"# a/b = {semi_a:g}: " + "; ".join(names) + "\n")

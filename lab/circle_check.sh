@@ -2,13 +2,13 @@
 # The unit circle at nu = 0.25 on 40 x 40, 60 x 60 and 80 x 80 grids with
 # both schemes: C11, C22, C23 against Kalker's table and the wall time
 # (median of --repeats runs, default 3) with the chosen solver method.
-#   scripts/studies/circle_check.sh [--repeats N] [--grids "40 60 80"] [--method auto|dense|iterative]
-#   scripts/studies/circle_check.sh --help    this text
+#   lab/circle_check.sh [--repeats N] [--grids "40 60 80"] [--method auto|dense|iterative]
+#   lab/circle_check.sh --help    this text
 # KCREEP: the binary (default build/kcreep of this repository).
 usage() { awk 'NR > 1 && /^#/ { sub(/^# ?/, ""); print; next } NR > 1 { exit }' "${BASH_SOURCE[0]}"; }
 for arg in "$@"; do case $arg in -h | --help) usage; exit 0 ;; --) break ;; esac; done
 set -euo pipefail
-here=$(cd "$(dirname "${BASH_SOURCE[0]}")/../.." && pwd)
+here=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
 kcreep=${KCREEP:-$here/build/kcreep}
 repeats=3
 grids="40 60 80"

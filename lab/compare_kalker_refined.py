@@ -10,13 +10,13 @@ and worst differences; --markdown prints the summary table for docs/accuracy.md.
 import sys as _sys
 
 if __name__ == "__main__" and any(a in ("-h", "--help") for a in _sys.argv[1:]):
-    print("usage: scripts/studies/compare_kalker_refined.py\n" + __doc__)
+    print("usage: lab/compare_kalker_refined.py\n" + __doc__)
     _sys.exit(0)
 import os
 import statistics
 import sys
 
-sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+sys.path[:0] = [os.path.join(os.path.dirname(os.path.abspath(__file__)), d) for d in (".", "../tools/maintenance", "../scripts/convergence", "../tests/calibration")]
 import refine_kalker_table as R  # noqa: E402
 import kcreep_levels as K  # noqa: E402
 

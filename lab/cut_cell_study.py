@@ -20,9 +20,9 @@ unknowns:
 
 Prints per series the fit f0 + K h through the levels, the levels' rms
 scatter about it and f0 against the circle's C11, C22 from the refined
-table; writes docs/data/cut_cell_study.dat and docs/figures/cut_cell_study.png.
+table; writes lab/data/cut_cell_study.dat and lab/figures/cut_cell_study.png.
 
-  /usr/bin/python3 scripts/studies/cut_cell_study.py [--kcreep build/kcreep] [--sub 8]
+  /usr/bin/python3 lab/cut_cell_study.py [--kcreep build/kcreep] [--sub 8]
 
 Needs numpy and matplotlib (Debian's python3-numpy, python3-matplotlib) and a
 built kcreep (the refined table's values); about 4 minutes on one core.
@@ -34,7 +34,7 @@ import subprocess
 import sys
 import tempfile
 
-ROOT = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
+ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 NU = 0.25
 SEED = 1
 
@@ -191,7 +191,7 @@ def main(args):
     if args.no_write:
         return
     with open(os.path.join(ROOT, "docs", "data", "cut_cell_study.dat"), "w") as f:
-        f.write("# scripts/studies/cut_cell_study.py: the unit circle, nu = 0.25, backward scheme, random grid offsets\n")
+        f.write("# lab/cut_cell_study.py: the unit circle, nu = 0.25, backward scheme, random grid offsets\n")
         f.write(f"# refined table C11 {c_circle[0]:.6f} C22 {c_circle[1]:.6f}; subcells {args.sub} per side\n")
         f.write("# cells_across C11 C22 (staircase) C11 C22 (staircase referred) C11 C22 (cut cells)\n")
         for row in rows:

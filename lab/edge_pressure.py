@@ -9,7 +9,7 @@ the cell (20 x 20 points), binned by the centre's distance from the edge
 in cells. The outermost cells hold about the cell's mean, not the centre
 value; the cells behind them are within about 1 % of the centre value.
 
-  /usr/bin/python3 scripts/studies/edge_pressure.py [--kcreep build/kcreep] [--cells 100]
+  /usr/bin/python3 lab/edge_pressure.py [--kcreep build/kcreep] [--cells 100]
 
 Needs numpy; under a second.
 """
@@ -18,7 +18,7 @@ import os
 import subprocess
 import tempfile
 
-ROOT = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
+ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 
 
 def main():

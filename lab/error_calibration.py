@@ -1,6 +1,6 @@
 #!/usr/bin/env python3
 """How often kcreep's error estimate bounds the true error (the calibration behind
-kcreep_refine_estimate), from the levels in docs/data/error_calibration_levels.dat.
+kcreep_refine_estimate), from the levels in lab/data/error_calibration_levels.dat.
 
     error_calibration.py [--reference-levels 56,64,96,128]
 
@@ -19,7 +19,7 @@ import math
 import os
 import statistics
 
-ROOT = os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..")
+ROOT = os.path.join(os.path.dirname(os.path.abspath(__file__)), "..")
 T95 = {1: 12.706, 2: 4.303, 3: 3.182, 4: 2.776, 5: 2.571, 6: 2.447, 7: 2.365, 8: 2.306}
 POW = {"c11": 2, "c22": 2, "c23": 3}
 

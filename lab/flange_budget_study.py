@@ -8,7 +8,7 @@ per run; writes the numbers to docs/data/flange_budget_study.dat and the
 figure docs/figures/flange_budget_study.png (C11 with its error bar against
 the budget, one panel per shift).
 
-  OMP_NUM_THREADS=1 flock /tmp/kcreep-bench.lock /usr/bin/python3 scripts/studies/flange_budget_study.py
+  OMP_NUM_THREADS=1 flock /tmp/kcreep-bench.lock /usr/bin/python3 lab/flange_budget_study.py
 
 Needs ../shared/profiles beside the repository and matplotlib (Debian's
 python3-matplotlib); about 3 minutes on one core.
@@ -20,7 +20,7 @@ import sys
 import tempfile
 import time
 
-ROOT = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
+ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 
 
 def arguments():
@@ -101,7 +101,7 @@ def main():
     if args.no_write:
         return
     with open(dat, "w") as f:
-        f.write("# scripts/studies/flange_budget_study.py: S1002 / UIC60 rows alone at the default target\n")
+        f.write("# lab/flange_budget_study.py: S1002 / UIC60 rows alone at the default target\n")
         f.write("# shift_mm cell_budget c11 c22 c23 err11 err22 err23 verdict wall_s\n")
         for shift, budget, row, wall in rows:
             f.write(f"{shift} {budget} {row['c11']:.6f} {row['c22']:.6f} {row['c23']:.6f} {row['err11']:.3e} "

@@ -15,7 +15,7 @@ sample (its gap per element, resampled bicubically as kcreep does): reference
 the first-order fit through levels of 96 to 192 cells across the contact
 area's equivalent diameter (each solved as given), u its 95 % interval.
 
-  /usr/bin/python3 scripts/studies/gap_error_calibration.py [--kcreep build/kcreep]
+  /usr/bin/python3 lab/gap_error_calibration.py [--kcreep build/kcreep]
       [--samples ../shared/contact-samples] [--out docs/data/gap_error_calibration.dat]
       [--quick]   (Rx/Ry = 1, 2 at nu = 0.25 and the wheel only: a smoke run)
 
@@ -31,7 +31,7 @@ sys.dont_write_bytecode = True   # importing the sibling script leaves no cache 
 import tempfile
 
 HERE = os.path.dirname(os.path.abspath(__file__))
-ROOT = os.path.dirname(os.path.dirname(HERE))
+ROOT = os.path.dirname(HERE)
 
 
 def arguments():
@@ -55,7 +55,7 @@ from scipy.special import ellipe, ellipk  # noqa: E402
 
 sys.path.insert(0, os.path.join(ROOT, "python"))
 from kcreep import contact_inp  # noqa: E402  (standard library only)
-sys.path.insert(0, HERE)
+sys.path[:0] = [HERE, os.path.join(ROOT, "tools", "maintenance")]
 sys.path.insert(0, os.path.join(ROOT, "scripts"))   # wheel_rail_gap.py, the profiles of input/wheel_rail.gap
 from kcreep_levels import student_t95  # noqa: E402  (standard library only)
 
@@ -262,7 +262,7 @@ def main(args):
         r["bounded_u"] = r["error"] <= r["estimate"] + abs(r["u"] / r["ref"])
     if args.out:
         with open(args.out, "w") as f:
-            f.write("# scripts/studies/gap_error_calibration.py: estimate against error of patches from a gap function\n")
+            f.write("# lab/gap_error_calibration.py: estimate against error of patches from a gap function\n")
             f.write("# case | estimator | coefficient value ref u_ref(abs) estimate(rel) error(rel) "
                     "area_error(rel, Hertz) verdict wall_s\n")
             for r in rows:

@@ -10,7 +10,7 @@ normal problem: its stated error is the reference's u). Prints per
 coefficient the run's value, estimate, true error and estimate / error, the
 verdict and the wall time.
 
-  OMP_NUM_THREADS=1 flock /tmp/kcreep-bench.lock /usr/bin/python3 scripts/studies/gap_hertz_check.py
+  OMP_NUM_THREADS=1 flock /tmp/kcreep-bench.lock /usr/bin/python3 lab/gap_hertz_check.py
   ... --ratios 2,5,10 --perturb 9     the spread under bit-level changes of rx
   ... --ratios 2,0.5,5 --target 1e-4  the accurate mode (20-60 s and up to 2 GB per gap)
   ... --check                          exit 1 unless every run ends `ok` with every
@@ -25,8 +25,8 @@ import sys
 import tempfile
 
 sys.dont_write_bytecode = True
-sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-ROOT = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
+sys.path[:0] = [os.path.join(os.path.dirname(os.path.abspath(__file__)), d) for d in (".", "../tools/maintenance", "../scripts/convergence", "../tests/calibration")]
+ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 
 
 def main():

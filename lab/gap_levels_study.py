@@ -7,7 +7,7 @@ cells across 2 sqrt(a b), N scaled by s = 0.96 ... 1.04 to vary the staircase.
 Reference: the ellipse with Hertz's semi-axes, kcreep's ellipse error control
 at target 1e-4 (its estimate is the reference's u).
 
-  /usr/bin/python3 scripts/studies/gap_levels_study.py [--kcreep build/kcreep]
+  /usr/bin/python3 lab/gap_levels_study.py [--kcreep build/kcreep]
 
 1. scatter about the first-order line through N = 16 ... 96 (circle) with the
    coefficients normalised by each grid's own contact area or by Hertz's area;
@@ -27,7 +27,7 @@ import tempfile
 
 def arguments():
     p = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
-    p.add_argument("--kcreep", default=os.path.join(os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__)))),
+    p.add_argument("--kcreep", default=os.path.join(os.path.dirname(os.path.dirname(os.path.abspath(__file__))),
                                                     "build", "kcreep"))
     return p
 
@@ -36,7 +36,7 @@ if __name__ == "__main__":
     ARGS = arguments().parse_args()   # --help answers before numpy and scipy load
 import numpy as np  # noqa: E402
 
-sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+sys.path[:0] = [os.path.join(os.path.dirname(os.path.abspath(__file__)), d) for d in (".", "../tools/maintenance", "../scripts/convergence", "../tests/calibration")]
 from gap_error_calibration import Runner, fit, hertz  # noqa: E402
 
 KEYS = ("c11", "c22", "c23")

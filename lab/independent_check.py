@@ -25,7 +25,7 @@ to the ellipse by the staircase's second moments (kcreep_levels.refer_to_ellipse
 and fitted by f0 + K h + B harmonic4; its uncertainty u is the larger of the
 fit's 95 % interval (Student's t) and the change of f0 when an h^2 term is
 added (as the refined table's u). The reference levels are kept in
-docs/data/independent_reference_levels.dat (--cache) and reused (delete it
+lab/data/independent_reference_levels.dat (--cache) and reused (delete it
 to recompute: about 25 minutes on one core). The accurate mode's check uses
 grids of 256 to 2048 cells across, kept in docs/data/fine_reference_levels.dat
 (about 90 minutes on one core):
@@ -42,11 +42,11 @@ import math
 import os
 import sys
 
-sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+sys.path[:0] = [os.path.join(os.path.dirname(os.path.abspath(__file__)), d) for d in (".", "../tools/maintenance", "../scripts/convergence", "../tests/calibration")]
 import kcreep_levels as K  # noqa: E402
 from refine_kalker_table import T95, lstsq_columns  # noqa: E402
 
-ROOT = os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..")
+ROOT = os.path.join(os.path.dirname(os.path.abspath(__file__)), "..")
 CACHE = os.path.join(ROOT, "docs", "data", "independent_reference_levels.dat")
 DEFAULT_CASES = ("1:0.25,1:0,1:0.5,0.5:0.25,2:0.25,0.667:0.25,1.5:0.25,0.7:0.25,1.43:0.5,0.25:0,4:0.5,"
                  "1:0.3,0.667:0.1,1.5:0.45,0.3:0.2")
@@ -57,7 +57,7 @@ def append_cache(cache, ratio, nu, n, level):
     new = not os.path.exists(cache)
     with open(cache, "a") as f:
         if new:
-            f.write("# reference levels of scripts/studies/independent_check.py: ellipse c = 1, backward scheme, N cells across\n"
+            f.write("# reference levels of lab/independent_check.py: ellipse c = 1, backward scheme, N cells across\n"
                     "# the shorter axis, coefficients normalised by the staircase area (as kcreep_levels.ellipse_level)\n"
                     "# " + " ".join(COLUMNS) + "\n")
         f.write(f"{ratio:g} {nu:g} {n} {level['mx']} {level['my']} {level['n']} " +
@@ -159,6 +159,6 @@ def main():
 
 if __name__ == "__main__":
     if any(a in ("-h", "--help") for a in sys.argv[1:]):
-        print("usage: scripts/studies/independent_check.py [options]\n" + __doc__)
+        print("usage: lab/independent_check.py [options]\n" + __doc__)
         sys.exit(0)
     main()

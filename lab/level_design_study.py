@@ -2,10 +2,10 @@
 """Could the accurate mode (target_error = 1e-4) reach its target with fewer
 or cheaper levels? (docs/accuracy.md section 6.3)
 
-    /usr/bin/python3 scripts/studies/level_design_study.py
+    /usr/bin/python3 lab/level_design_study.py
 
 Uses the stored levels of six ellipses (docs/data/*levels.dat, 56 to 1024
-cells across; see scripts/studies/level_noise_study.py) and asks two questions:
+cells across; see lab/level_noise_study.py) and asks two questions:
 
 1. Honesty of two estimators over every design "the base levels 56-296 plus
    one or two finer levels J" the data allow. The reference of a design is
@@ -43,7 +43,7 @@ if __name__ == "__main__" and any(a in ("-h", "--help") for a in sys.argv[1:]):
     sys.exit(0)
 import numpy as np  # noqa: E402
 
-sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+sys.path[:0] = [os.path.join(os.path.dirname(os.path.abspath(__file__)), d) for d in (".", "../tools/maintenance", "../scripts/convergence", "../tests/calibration")]
 import level_noise_study as study  # noqa: E402
 from kcreep_levels import student_t95  # noqa: E402
 from level_fit import fit_levels, kcreep_estimate  # noqa: E402

@@ -12,11 +12,11 @@ import os
 import sys
 
 if __name__ == "__main__" and any(a in ("-h", "--help") for a in sys.argv[1:]):
-    print("usage: scripts/studies/level_fit.py is imported by the level studies, not run\n" + __doc__)
+    print("usage: lab/level_fit.py is imported by the level studies, not run\n" + __doc__)
     sys.exit(0)
 import numpy as np  # noqa: E402
 
-sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+sys.path[:0] = [os.path.join(os.path.dirname(os.path.abspath(__file__)), d) for d in (".", "../tools/maintenance", "../scripts/convergence", "../tests/calibration")]
 from kcreep_levels import student_t95  # noqa: E402
 
 

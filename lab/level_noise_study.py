@@ -1,15 +1,15 @@
 #!/usr/bin/env python3
 """What limits the accurate mode (target_error = 1e-4): the ellipse levels
 against references from grids of up to 1024-2048 cells across
-(docs/accuracy.md section 6, the figure docs/figures/level_noise.png; --figure docs/figures/level_noise.png redraws it, default build/figures/).
+(docs/accuracy.md section 6, the figure lab/figures/level_noise.png; --figure lab/figures/level_noise.png redraws it, default build/figures/).
 
-    /usr/bin/python3 scripts/studies/level_noise_study.py [--no-figure | --figure FILE]
+    /usr/bin/python3 lab/level_noise_study.py [--no-figure | --figure FILE]
 
 Data (all stored normalised by the staircase area, as kcreep_levels.ellipse_level
 gives them): docs/data/kalker_refined_levels.dat (56 to 196-256 cells across),
-docs/data/independent_reference_levels.dat (136 to 384) and
+lab/data/independent_reference_levels.dat (136 to 384) and
 docs/data/fine_reference_levels.dat (256 to 1024, the unit circle to 2048;
-scripts/studies/independent_check.py --cache ... computes it). Every level is referred
+lab/independent_check.py --cache ... computes it). Every level is referred
 to the ellipse by the staircase's second moments (kcreep_levels.refer_to_ellipse).
 
 For each ellipse and coefficient the levels from 56 cells across are fitted by
@@ -27,19 +27,19 @@ import os
 import sys
 
 if __name__ == "__main__" and any(a in ("-h", "--help") for a in sys.argv[1:]):
-    print("usage: scripts/studies/level_noise_study.py [options]\n" + __doc__)
+    print("usage: lab/level_noise_study.py [options]\n" + __doc__)
     sys.exit(0)
 import numpy as np  # noqa: E402
 
-sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+sys.path[:0] = [os.path.join(os.path.dirname(os.path.abspath(__file__)), d) for d in (".", "../tools/maintenance", "../scripts/convergence", "../tests/calibration")]
 import kcreep_levels as K  # noqa: E402
 from level_fit import fit_levels  # noqa: E402
 
-ROOT = os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..")
+ROOT = os.path.join(os.path.dirname(os.path.abspath(__file__)), "..")
 DATA = os.path.join(ROOT, "docs", "data")
 FILES = [os.path.join(DATA, f) for f in ("kalker_refined_levels.dat", "independent_reference_levels.dat",
                                          "fine_reference_levels.dat")]
-FIGURE = os.path.join(ROOT, "build", "figures", "level_noise.png")  # --figure docs/figures/level_noise.png for the docs
+FIGURE = os.path.join(ROOT, "build", "figures", "level_noise.png")  # --figure lab/figures/level_noise.png for the docs
 CASES = [(1.0, 0.25), (1.0, 0.5), (2.0, 0.25), (0.5, 0.25), (4.0, 0.25), (0.25, 0.25)]
 BANDS = [(56, 100), (100, 200), (200, 400), (400, 2100)]
 #: the levels of an accurate-mode run of the unit circle (kcreep_error_run: the finest 8 of 56, 64, ... 296)

@@ -24,7 +24,7 @@ tenth of the extrapolation from the finest level, level_fit.kcreep_estimate;
 numpy). With --compute the
 ladder's plain grids missing from the caches are solved (&solver method =
 'iterative', tolerance = 1e-9, target_error = 0; under a minute at a/b = 10)
-and appended to docs/data/long_ellipse_ladder_levels.dat. Prints markdown tables
+and appended to lab/data/long_ellipse_ladder_levels.dat. Prints markdown tables
 (to --out as well); --figure draws N (f(N) / f0 - 1) of C11, C22, C23
 against N (matplotlib: /usr/bin/python3 with Debian's python3-matplotlib).
 Standard library otherwise; without --compute nothing is solved (seconds).
@@ -33,11 +33,11 @@ import argparse
 import os
 import sys
 
-sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+sys.path[:0] = [os.path.join(os.path.dirname(os.path.abspath(__file__)), d) for d in (".", "../tools/maintenance", "../scripts/convergence", "../tests/calibration")]
 import kcreep_levels as K  # noqa: E402
 from independent_check import append_cache, reference  # noqa: E402
 
-DATA = os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "docs", "data")
+DATA = os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "docs", "data")
 LADDER_CACHE = os.path.join(DATA, "long_ellipse_ladder_levels.dat")
 COEFFS = ("c11", "c22", "c23")
 #: kcreep's largest grid, mx x my (kcreep_limits max_grid_cells)
@@ -86,7 +86,7 @@ def draw(levels, ratio, nu, ref, window, path):
 
 def main():
     if any(a in ("-h", "--help") for a in sys.argv[1:]):
-        print("usage: scripts/studies/long_ellipse_reference.py\n" + __doc__)
+        print("usage: lab/long_ellipse_reference.py\n" + __doc__)
         return
     ap = argparse.ArgumentParser(add_help=False)
     ap.add_argument("--ratio", type=float, default=10.0)
@@ -106,7 +106,7 @@ def main():
     if args.compute and args.ladders:
         if not os.path.exists(LADDER_CACHE):
             with open(LADDER_CACHE, "w") as f:
-                f.write("# plain ladder levels of scripts/studies/long_ellipse_reference.py --compute: ellipse c = 1, backward\n"
+                f.write("# plain ladder levels of lab/long_ellipse_reference.py --compute: ellipse c = 1, backward\n"
                         "# scheme, near-square grids (no quiet-grid choice), N cells across the shorter axis,\n"
                         "# tolerance 1e-9, coefficients normalised by the staircase area (kcreep_levels.ellipse_level)\n"
                         "# a_over_b nu N mx my n c11 c22 c23 c33 c32\n")

@@ -5,7 +5,7 @@ default target) against the slope kcreep uses there (the table's slope at
 a/b = 10 continued linearly in ln(a/b), held from a/b = 20;
 kcreep_staircase_normalisation aspect_slopes). docs/accuracy.md section 3.
 
-  OMP_NUM_THREADS=1 flock /tmp/kcreep-bench.lock /usr/bin/python3 scripts/studies/long_ellipse_slopes.py
+  OMP_NUM_THREADS=1 flock /tmp/kcreep-bench.lock /usr/bin/python3 lab/long_ellipse_slopes.py
 
 Needs numpy and build/libkcreep; about 15 s on one core.
 """
@@ -22,7 +22,7 @@ def main():
     parser = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     parser.add_argument("--nu", type=float, default=0.28, help="Poisson's ratio (default 0.28)")
     args = parser.parse_args()
-    sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "python"))
+    sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "python"))
     import numpy as np
     import kcreep
 

@@ -13,7 +13,7 @@ with &solver target_error = --target and cell_budget = the patch cells kcreep
 counts for the wanted grid of W (ellipse_fill x mx x my, as
 kcreep_error_run.run_ellipse_levels): the run solves its ladder up to W and
 stops there, or earlier when it is `ok`. Its C11, C22, C23 and their estimates are compared
-with the reference of scripts/studies/independent_check.py (levels --levels from the
+with the reference of lab/independent_check.py (levels --levels from the
 --cache files, fitted by f0 + K h + B harmonic4; u the larger of the fit's
 95 % interval and the change when an h^2 term is added). With --compute the
 reference levels missing from every cache file are computed (near-square
@@ -31,11 +31,11 @@ import math
 import os
 import sys
 
-sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+sys.path[:0] = [os.path.join(os.path.dirname(os.path.abspath(__file__)), d) for d in (".", "../tools/maintenance", "../scripts/convergence", "../tests/calibration")]
 import kcreep_levels as K  # noqa: E402
 from independent_check import append_cache, reference  # noqa: E402
 
-ROOT = os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..")
+ROOT = os.path.join(os.path.dirname(os.path.abspath(__file__)), "..")
 DATA = os.path.join(ROOT, "docs", "data")
 #: kcreep_error_run ellipse_fill: the share of the bounding grid kcreep counts as patch cells
 ELLIPSE_FILL = 0.79
@@ -89,7 +89,7 @@ def main():
         have = {n: v for n, v in cached.get((ratio, nu), {}).items() if n in levels}
         if len(have) < 4:
             sys.exit(f"long_ellipse_stops.py: the cache has {len(have)} of the reference levels {args.levels} for "
-                     f"a/b = {ratio:g}, nu = {nu:g} (compute them with scripts/studies/independent_check.py --cache ...)")
+                     f"a/b = {ratio:g}, nu = {nu:g} (compute them with lab/independent_check.py --cache ...)")
         ref = reference(have, ratio, nu)
         for stop in stops:
             nml = (f"&patch shape = 'ellipse', semi_a = {a!r}, semi_b = {b!r} /\n&material nu = {nu!r} /\n"
@@ -149,6 +149,6 @@ def draw(points, nus, ratio, target, path):
 
 if __name__ == "__main__":
     if any(a in ("-h", "--help") for a in sys.argv[1:]):
-        print("usage: scripts/studies/long_ellipse_stops.py [options]\n" + __doc__)
+        print("usage: lab/long_ellipse_stops.py [options]\n" + __doc__)
         sys.exit(0)
     main()

@@ -3,18 +3,18 @@
 much finer splits: the calibration of split_level_estimate and the shipped
 mask examples' verdict, estimate, true error and time.
 
-    scripts/studies/mask_accuracy_check.py --calibrate [--levels FILE]
+    lab/mask_accuracy_check.py --calibrate [--levels FILE]
         the estimator (constants read from src/refine/kcreep_refine_constants.f90)
         on every window of levels coarser than the reference's; exit 1 unless
         every case is bounded (allowing the reference's u) and the median
         estimate / error is at most 3.5 (about 3) for the engine's own fit width
-    scripts/studies/mask_accuracy_check.py --run [--target T] [--kcreep PATH]
+    lab/mask_accuracy_check.py --run [--target T] [--kcreep PATH]
         the shipped mask examples (input/*.nml) run as given with target_error T
         (default 1e-3), one thread, wall time per run; their errors against the
         references (run it under flock /tmp/kcreep-bench.lock for timing)
 
 Levels: docs/data/mask_split_levels.dat ('name k cells C11 C22 C23 seconds',
-scripts/studies/mask_split_levels.py: every cell split k x k, GMRES to 1e-9). The
+lab/mask_split_levels.py: every cell split k x k, GMRES to 1e-9). The
 reference of a mask: the fit f0 + K h + L h^1.5 through its levels with
 k >= kmax / 2 (kmax 11-56, 120,000-330,000 cells), u = the change of f0 for
 p = 4/3 or 2 plus t95 x its standard error. Needs numpy.
@@ -30,7 +30,7 @@ if any(a in ("-h", "--help") for a in sys.argv[1:]) or len(sys.argv) < 2:
     sys.exit(0)
 import numpy as np  # noqa: E402
 
-REPO = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
+REPO = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 LEVELS = os.path.join(REPO, "docs", "data", "mask_split_levels.dat")
 CONSTANTS = os.path.join(REPO, "src", "refine", "kcreep_refine_constants.f90")
 T95 = (12.706, 4.303, 3.182, 2.776, 2.571, 2.447, 2.365, 2.306, 2.262, 2.228)

@@ -3,7 +3,7 @@
 patch on every level), for the refinement engine's calibration and the
 references of docs/accuracy.md.
 
-    scripts/studies/mask_split_levels.py [--max-cells N] [--splits 1,2,...] [--out FILE] [names...]
+    lab/mask_split_levels.py [--max-cells N] [--splits 1,2,...] [--out FILE] [names...]
 
 names: input/*.nml mask examples (default: all seven). Each level is solved
 exactly as given (target_error 0, no estimate), iterative path, GMRES to a
@@ -18,7 +18,7 @@ if any(a in ("-h", "--help") for a in sys.argv[1:]):
     sys.exit(0)
 import numpy as np  # noqa: E402
 
-REPO = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
+REPO = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 sys.path.insert(0, os.path.join(REPO, "python"))
 import kcreep  # noqa: E402
 

@@ -2,7 +2,7 @@
 """Two grids per level for ellipses long in x: does their mean carry less
 staircase noise? (docs/accuracy.md section 6.3)
 
-    /usr/bin/python3 scripts/studies/offset_pair_study.py [--ratio 5] [--nu 0.25] [--levels 112,128,...,296]
+    /usr/bin/python3 lab/offset_pair_study.py [--ratio 5] [--nu 0.25] [--levels 112,128,...,296]
 
 For each level N (cells across the shorter axis b, square cells) the
 ellipse a = sqrt(ratio), b = 1/sqrt(ratio) is solved on two grids that are
@@ -30,7 +30,7 @@ if __name__ == "__main__" and any(a in ("-h", "--help") for a in sys.argv[1:]):
     sys.exit(0)
 import numpy as np  # noqa: E402
 
-sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+sys.path[:0] = [os.path.join(os.path.dirname(os.path.abspath(__file__)), d) for d in (".", "../tools/maintenance", "../scripts/convergence", "../tests/calibration")]
 import kcreep_levels as K  # noqa: E402
 from kcreep_levels import student_t95  # noqa: E402
 

@@ -5,7 +5,7 @@ library's default call otherwise) against the refined table (method
 'table', its stated uncertainty u printed beside), with verdict, estimate,
 error against the table and wall time.
 
-  OMP_NUM_THREADS=1 flock /tmp/kcreep-bench.lock /usr/bin/python3 scripts/studies/solved_ellipse_check.py
+  OMP_NUM_THREADS=1 flock /tmp/kcreep-bench.lock /usr/bin/python3 lab/solved_ellipse_check.py
   ... --nus 0,0.25,0.5    each ratio at these Poisson's ratios, and how many estimates bound their errors
 
 Needs numpy and build/libkcreep; about 7 s on one core.
@@ -24,7 +24,7 @@ def main():
     parser.add_argument("--ratios", type=float, nargs="+", default=RATIOS, help="a/b values (default 0.1 to 10)")
     parser.add_argument("--nus", default="0.25", help="Poisson's ratios, comma-separated (default 0.25)")
     args = parser.parse_args()
-    sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "python"))
+    sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "python"))
     import numpy as np
     import kcreep
     print("| a/b | nu | verdict | estimate C11 / C22 / C23 % | error against the table % | table u % | wall s |")

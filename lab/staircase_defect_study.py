@@ -1,12 +1,12 @@
 #!/usr/bin/env python3
 """Where the staircase noise of ellipses long in x comes from, and whether
 fitting it away lets the accurate mode stop sooner (docs/accuracy.md 6.3,
-the figure docs/figures/staircase_defects.png; --figure docs/figures/staircase_defects.png redraws it, default build/figures/).
+the figure lab/figures/staircase_defects.png; --figure lab/figures/staircase_defects.png redraws it, default build/figures/).
 
-    /usr/bin/python3 scripts/studies/staircase_defect_study.py [--compute] [--no-figure | --figure FILE]
+    /usr/bin/python3 lab/staircase_defect_study.py [--compute] [--no-figure | --figure FILE]
 
 Each level (N cells across the shorter axis, near-square cells; data in
-docs/data/staircase_defect_levels.dat, a/b = 5 from 296 also from
+lab/data/staircase_defect_levels.dat, a/b = 5 from 296 also from
 docs/data/fine_reference_levels_long.dat) is referred to the ellipse by its
 staircase's second moments (kcreep_levels.refer_to_ellipse), as kcreep's
 levels are. Its staircase is then described by the defects of its ends:
@@ -40,14 +40,14 @@ if __name__ == "__main__" and any(a in ("-h", "--help") for a in sys.argv[1:]):
     sys.exit(0)
 import numpy as np  # noqa: E402
 
-sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+sys.path[:0] = [os.path.join(os.path.dirname(os.path.abspath(__file__)), d) for d in (".", "../tools/maintenance", "../scripts/convergence", "../tests/calibration")]
 import kcreep_levels as K  # noqa: E402
 from level_fit import fit_levels, kcreep_estimate  # noqa: E402
 
-ROOT = os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..")
+ROOT = os.path.join(os.path.dirname(os.path.abspath(__file__)), "..")
 DATA = os.path.join(ROOT, "docs", "data", "staircase_defect_levels.dat")
 LONG = os.path.join(ROOT, "docs", "data", "fine_reference_levels_long.dat")
-FIGURE = os.path.join(ROOT, "build", "figures", "staircase_defects.png")  # --figure docs/figures/staircase_defects.png for the docs
+FIGURE = os.path.join(ROOT, "build", "figures", "staircase_defects.png")  # --figure lab/figures/staircase_defects.png for the docs
 NU = 0.25
 RATIOS = (0.5, 1.0, 2.0, 5.0, 10.0)
 DENSE = list(range(40, 121))

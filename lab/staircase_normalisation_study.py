@@ -1,9 +1,9 @@
 #!/usr/bin/env python3
 """How far the ellipse levels scatter about a straight line in the cell size,
 normalised three ways (docs/accuracy.md section 1, the figure
-docs/figures/staircase_normalisation.png; --figure docs/figures/staircase_normalisation.png redraws it, default build/figures/).
+lab/figures/staircase_normalisation.png; --figure lab/figures/staircase_normalisation.png redraws it, default build/figures/).
 
-    /usr/bin/python3 scripts/studies/staircase_normalisation_study.py [--from 32] [--to 148] [--kalker] [--levels-file F]
+    /usr/bin/python3 lab/staircase_normalisation_study.py [--from 32] [--to 148] [--kalker] [--levels-file F]
                                                               [--no-figure | --figure FILE]
 
 Data: docs/data/kalker_refined_levels.dat (the refined table's levels, stored
@@ -28,16 +28,16 @@ import os
 import sys
 
 if __name__ == "__main__" and any(a in ("-h", "--help") for a in sys.argv[1:]):
-    print("usage: scripts/studies/staircase_normalisation_study.py [options]\n" + __doc__)
+    print("usage: lab/staircase_normalisation_study.py [options]\n" + __doc__)
     sys.exit(0)
 import numpy as np  # noqa: E402
 
-sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+sys.path[:0] = [os.path.join(os.path.dirname(os.path.abspath(__file__)), d) for d in (".", "../tools/maintenance", "../scripts/convergence", "../tests/calibration")]
 import kcreep_levels as K  # noqa: E402
 
-ROOT = os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..")
+ROOT = os.path.join(os.path.dirname(os.path.abspath(__file__)), "..")
 LEVELS = os.path.join(ROOT, "docs", "data", "kalker_refined_levels.dat")
-FIGURE = os.path.join(ROOT, "build", "figures", "staircase_normalisation.png")  # --figure docs/figures/staircase_normalisation.png for the docs
+FIGURE = os.path.join(ROOT, "build", "figures", "staircase_normalisation.png")  # --figure lab/figures/staircase_normalisation.png for the docs
 SHOWN = [(1.0, 0.25), (0.7, 0.25), (2.5, 0.5)]
 NAMES = ("c11", "c22", "c23")
 

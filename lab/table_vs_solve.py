@@ -17,10 +17,10 @@ import subprocess
 import sys
 import tempfile
 
-sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "python"))
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "python"))
 from kcreep import table  # noqa: E402
 
-KCREEP = os.environ.get("KCREEP", os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "build", "kcreep"))
+KCREEP = os.environ.get("KCREEP", os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "build", "kcreep"))
 POINTS = [(0.15, 0.1), (0.25, 0.4), (0.45, 0.2), (0.75, 0.35), (1.2, 0.05), (1.8, 0.45), (2.9, 0.3),
           (4.2, 0.15), (7.0, 0.4)]
 COEFFS = (("c11", "err11"), ("c22", "err22"), ("c23", "err23"))

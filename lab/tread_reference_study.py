@@ -10,7 +10,7 @@ Prints, per shift and coefficient, the default run's error against the
 reference, its estimate and u; writes docs/data/tread_reference_study.dat and
 the figure docs/figures/tread_reference_study.png.
 
-  OMP_NUM_THREADS=1 flock /tmp/kcreep-bench.lock /usr/bin/python3 scripts/studies/tread_reference_study.py
+  OMP_NUM_THREADS=1 flock /tmp/kcreep-bench.lock /usr/bin/python3 lab/tread_reference_study.py
   ... --stored    the references kept in docs/data/tread_reference_study.dat (made
                   on staircase levels before kcreep's levels had a blended edge:
                   an independent discretisation), the default runs only
@@ -24,7 +24,7 @@ import sys
 import tempfile
 
 HERE = os.path.dirname(os.path.abspath(__file__))
-ROOT = os.path.dirname(os.path.dirname(HERE))
+ROOT = os.path.dirname(HERE)
 DEFAULT_BUDGET = 160000
 REFERENCE_BUDGET, REFERENCE_TARGET = 2000000, 1e-5
 
@@ -114,7 +114,7 @@ def main():
     if args.no_write:
         return
     with open(dat, "w") as f:
-        f.write("# scripts/studies/tread_reference_study.py: S1002 / UIC60 rows alone, default target, against\n"
+        f.write("# lab/tread_reference_study.py: S1002 / UIC60 rows alone, default target, against\n"
                 f"# references at target_error {REFERENCE_TARGET:g}, cell_budget {REFERENCE_BUDGET} "
                 "(on staircase levels: kcreep before its levels' blended edge)\n"
                 "# shift_mm then per C11 C22 C23: error(rel) estimate(rel) u_ref(rel) ref_value; "

@@ -9,7 +9,7 @@ the contact angle, the rolling radius, Hertz's patch (from the curvatures at the
 contact point, normal force 80 kN / cos(delta), G = 82000, nu = 0.28) and, when a
 kcreep table is given, kcreep's values beside them.
 
-  scripts/studies/wheel_rail_independent.py [--wr TABLE.wr] [--profiles FOLDER]
+  lab/wheel_rail_independent.py [--wr TABLE.wr] [--profiles FOLDER]
       --profiles  the folder with MBench_S1002_v3.prw and MBench_UIC60_v3.prr
                   (default: ../shared/profiles beside the repository)
       --wr        kcreep's table of input/s1002_uic60.nml to compare with
@@ -30,7 +30,7 @@ if any(a in ("-h", "--help") for a in sys.argv[1:]):
 
 import numpy as np  # noqa: E402
 
-here = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
+here = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 args = sys.argv[1:]
 profiles = os.path.join(here, "..", "shared", "profiles")
 wr = None

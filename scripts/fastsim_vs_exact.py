@@ -1,7 +1,7 @@
 #!/usr/bin/env python3
 """FASTSIM against the exact steady-rolling solver on generated patches (issue 30).
 
-  scripts/studies/fastsim_vs_exact.py [--kcreep build/kcreep] [--doc docs/fastsim.md | --no-doc]
+  scripts/fastsim_vs_exact.py [--kcreep build/kcreep] [--doc docs/fastsim.md | --no-doc]
                               [--csv FILE] [--work DIR [--reuse]] [--patches N] [--lock FILE]
 
 Generates 110 patches (seeded: the same every run):
@@ -47,7 +47,7 @@ import sys
 import tempfile
 import time
 
-HERE = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
+HERE = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 MU = 0.3
 LEVELS = (0.1, 0.25, 0.5, 0.8, 1.2, 2.0, 4.0)
 # creepage directions (a, b, d), normalised: xi = a s mu Fn / f11, eta = b s mu Fn / f22,
@@ -664,7 +664,7 @@ def tables(np, results, records, check, seconds):
                 out.append(f'| {fam} | {kind} | {n} | ' + ' | '.join(cells) + ' |')
         return out
 
-    lines = [f'Measured by `scripts/studies/fastsim_vs_exact.py`: {len(results)} patches ({count["ellipse"]} ellipses, '
+    lines = [f'Measured by `scripts/fastsim_vs_exact.py`: {len(results)} patches ({count["ellipse"]} ellipses, '
              f'{count["mask"]} masks, {count["gap"]} gaps; {min(r["n"] for r in results)}-'
              f'{max(r["n"] for r in results)} cells) x {npts} creepages = {len(results) * npts} points per rule and '
              f'L source; kcreep ran {seconds:.0f} s of CPU. Error of a point: |F - F_exact| / (mu Fn), F = (Fx, Fy), '

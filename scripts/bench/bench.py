@@ -1,11 +1,11 @@
 #!/usr/bin/env python3
-"""Driver of scripts/bench.sh (standard-library Python): runs kcreep on a
+"""Driver of scripts/bench/bench.sh (standard-library Python): runs kcreep on a
 ladder of unit-circle grids per solution path under /usr/bin/time -v, takes
 medians of repeats, measures dgemm/dgetrf with kcreep_blas_bench, compares the
 paths and writes docs/performance.md with a gnuplot figure.
 
-    scripts/bench.py BUILD_DIR REPOSITORY_ROOT   (scripts/bench.sh builds first, then calls this)
-    scripts/bench.py --help                      this text
+    scripts/bench/bench.py BUILD_DIR REPOSITORY_ROOT   (scripts/bench/bench.sh builds first, then calls this)
+    scripts/bench/bench.py --help                      this text
 Environment: REPEATS (runs per point, default 3), QUICK=1 (small sizes only).
 """
 import math
@@ -18,7 +18,7 @@ import subprocess
 import sys
 import tempfile
 import time
-sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "python"))
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "python"))
 from kcreep import table, docsection  # noqa: E402  (standard library only)
 
 if any(a in ("-h", "--help") for a in sys.argv[1:]):
@@ -179,7 +179,7 @@ if shutil.which("gnuplot"):
 
 # report
 lines = ["# kcreep performance", "",
-         "Written by `scripts/bench.sh` (do not edit by hand). Unit circle, nu = 0.25,",
+         "Written by `scripts/bench/bench.sh` (do not edit by hand). Unit circle, nu = 0.25,",
          "collocation at alpha = 0.5 unless said, all three load cases; times are medians of",
          f"{REPEATS} runs, in seconds, as kcreep reports them (`t_total` covers the operator",
          "table, assembly, factorisation or GMRES and the coefficients; `wall` is the whole",
@@ -232,5 +232,5 @@ text = "\n".join(lines) + "\n"
 docsection.replace_section(os.path.join(root, "docs", "performance.md"), "solvers", text)
 print(text)
 # the FASTSIM section (creep curves) after the solver table
-subprocess.run([sys.executable, os.path.join(root, "scripts", "bench_fastsim.py"), build, root], check=True)
+subprocess.run([sys.executable, os.path.join(root, "scripts", "bench", "bench_fastsim.py"), build, root], check=True)
 shutil.rmtree(work, ignore_errors=True)

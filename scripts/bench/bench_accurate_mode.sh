@@ -8,12 +8,12 @@
 # finest grid and the verdict of each. Both builds get the same cell budget
 # when CELL_BUDGET is set (to compare the speed of the levels); otherwise
 # each runs its own default.
-#   scripts/bench_accurate_mode.sh OLD_KCREEP [NEW_KCREEP]   (NEW: build/kcreep)
+#   scripts/bench/bench_accurate_mode.sh OLD_KCREEP [NEW_KCREEP]   (NEW: build/kcreep)
 #   REPEATS=3 RATIOS=0.1,0.25,0.5,1,2,4,10 NU=0.25 METHOD=iterative CELL_BUDGET=1.6e5  the defaults but for CELL_BUDGET (unset)
 # Every timing runs under flock /tmp/kcreep-bench.lock (one benchmark at a time).
-#   scripts/bench_accurate_mode.sh --help     this text (nothing is run)
+#   scripts/bench/bench_accurate_mode.sh --help     this text (nothing is run)
 #   KCREEP_BUILD_DIR=dir                       NEW_KCREEP's default folder (default build/)
-source "$(dirname "${BASH_SOURCE[0]}")/prebuild_lib.sh"   # --help, set -euo pipefail, build_dir, median
+source "$(dirname "${BASH_SOURCE[0]}")/../prebuild_lib.sh"   # --help, set -euo pipefail, build_dir, median
 if (($# < 1)); then
   echo "bench_accurate_mode.sh: error: give the kcreep binary to compare with (OLD_KCREEP)" >&2
   exit 2

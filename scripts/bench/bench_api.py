@@ -1,8 +1,8 @@
 #!/usr/bin/env python3
-"""Body of scripts/bench_api.sh (needs numpy: /usr/bin/python3).
+"""Body of scripts/bench/bench_api.sh (needs numpy: /usr/bin/python3).
 
-    scripts/bench_api.py BUILD_DIR REPOSITORY_ROOT [ARGS]   (scripts/bench_api.sh calls it)
-    scripts/bench_api.py --help                            this text
+    scripts/bench/bench_api.py BUILD_DIR REPOSITORY_ROOT [ARGS]   (scripts/bench/bench_api.sh calls it)
+    scripts/bench/bench_api.py --help                            this text
 """
 import os
 import statistics
@@ -87,7 +87,7 @@ for shape in ("ellipse", "mask", "moving"):
     rows.append((shape, c_first, c_rep, c_rep_estimate, p_first, p_rep, cli_med))
 load_end = os.getloadavg()[0]
 
-lines = ["## Library calls: the in-loop cost (scripts/bench_api.sh)", "",
+lines = ["## Library calls: the in-loop cost (scripts/bench/bench_api.sh)", "",
          f"A {m} x {m} unit circle (ellipse shape, and the same cells as a mask), nu = 0.25, the library's "
          f"defaults (backward scheme, method auto, the grid as given) with the per-call error estimate off "
          f"(kcreep_set_error_control(h, 0, 0, 0): the grid is judged once, outside the loop; the column "

@@ -4,8 +4,8 @@
 # all rows), and the median over the examples. CONTACT's sample
 # (contact_circle) needs ../shared beside the repository and is left out
 # without it.
-#   scripts/bench_examples.sh [--repeats R] [NAME ...]   (NAME: input/NAME.nml)
-#   scripts/bench_examples.sh --help
+#   scripts/bench/bench_examples.sh [--repeats R] [NAME ...]   (NAME: input/NAME.nml)
+#   scripts/bench/bench_examples.sh --help
 set -euo pipefail
 usage() { sed -n '2,8p' "${BASH_SOURCE[0]}" | sed 's/^# \{0,1\}//'; }
 repeats=3
@@ -19,7 +19,7 @@ while (($#)); do
   esac
 done
 [[ $repeats =~ ^[1-9][0-9]*$ ]] || { echo "bench_examples.sh: --repeats '$repeats' (allowed: a whole number >= 1)" >&2; exit 2; }
-here=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
+here=$(cd "$(dirname "${BASH_SOURCE[0]}")/../.." && pwd)
 build_dir=${KCREEP_BUILD_DIR:-$here/build}
 cmake -S "$here" -B "$build_dir" -DCMAKE_BUILD_TYPE=Release >/dev/null
 cmake --build "$build_dir" -j "$(nproc)" >/dev/null

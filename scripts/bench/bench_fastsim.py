@@ -4,9 +4,9 @@ Runs kcreep_fastsim_bench (the creep curve alone: 100 creepage points, unit circ
 pressure, best and median of 21 repetitions) on 100 x 100 and 200 x 200 grids, and kcreep end to
 end on a 100 x 100 circle with a 100-point &fastsim sweep (the exact coefficients solved once),
 then replaces the section between the fastsim-bench markers of docs/performance.md (appends it when
-missing). scripts/bench.sh calls it at its end; alone:
-  flock /tmp/kcreep-bench.lock python3 scripts/bench_fastsim.py build .
-  scripts/bench_fastsim.py --help    this text
+missing). scripts/bench/bench.sh calls it at its end; alone:
+  flock /tmp/kcreep-bench.lock python3 scripts/bench/bench_fastsim.py build .
+  scripts/bench/bench_fastsim.py --help    this text
 """
 import os
 import re
@@ -21,7 +21,7 @@ build, root = os.path.abspath(sys.argv[1]), os.path.abspath(sys.argv[2])
 bench = os.path.join(build, 'kcreep_fastsim_bench')
 kcreep = os.path.join(build, 'kcreep')
 lines = ['## FASTSIM creep curves', '',
-         'Written by `scripts/bench_fastsim.py` (also run by `scripts/bench.sh`). The curve alone '
+         'Written by `scripts/bench/bench_fastsim.py` (also run by `scripts/bench/bench.sh`). The curve alone '
          '(`kcreep_fastsim_bench N POINTS`: unit circle, Hertz pressure, Kalker\'s L, combined creepages '
          '(0.3, 0.2, 0.1) s for s from 1e-3 to 1 (full adhesion to full slip), best and median of 21 runs):', '',
          '| grid | cells | points | rule | best [s] | median [s] | per cell and point [s] |', '|---|---|---|---|---|---|---|']

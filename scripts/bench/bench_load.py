@@ -1,11 +1,11 @@
 #!/usr/bin/env python3
-"""Body of scripts/bench_load.sh: kcreep's runs alone and beside N busy
+"""Body of scripts/bench/bench_load.sh: kcreep's runs alone and beside N busy
 processes (N = the CPUs of this machine), each with the default thread count
 and with OMP_NUM_THREADS=1, in turns (default, one thread, default, ...), the
 median wall time of each. Standard library only (any python3).
 
-    scripts/bench_load.py BUILD_DIR REPOSITORY_ROOT [--repeats R] [--no-docs]
-    scripts/bench_load.py --help
+    scripts/bench/bench_load.py BUILD_DIR REPOSITORY_ROOT [--repeats R] [--no-docs]
+    scripts/bench/bench_load.py --help
 """
 import os
 import shutil
@@ -89,7 +89,7 @@ finally:
         h.wait()
 shutil.rmtree(work, ignore_errors=True)
 
-lines = ["## Threads on a busy machine (scripts/bench_load.sh)", "",
+lines = ["## Threads on a busy machine (scripts/bench/bench_load.sh)", "",
          f"Each run alone and beside {cpus} busy processes (one per CPU of this {cpus}-CPU machine), with "
          f"the default thread count (automatic) and with OMP_NUM_THREADS=1, in turns; wall time of the whole "
          f"process, median of {repeats} pairs, in seconds; 'ratio' is the median over the pairs of "

@@ -3,12 +3,12 @@
 # sphere on n x n grids, force prescribed, tolerance 1e-10. Prints the table
 # and writes it into the "Normal contact solve" section of docs/performance.md
 # (between the normal-bench markers; the rest of the file is left alone).
-#   scripts/bench_normal.sh              sizes 50 .. 1000 (about 1 min on 2 cores)
-#   QUICK=1 scripts/bench_normal.sh      sizes up to 200 (checks the script, not the targets)
+#   scripts/bench/bench_normal.sh              sizes 50 .. 1000 (about 1 min on 2 cores)
+#   QUICK=1 scripts/bench/bench_normal.sh      sizes up to 200 (checks the script, not the targets)
 #   KCREEP_BUILD_DIR=dir                 build somewhere else (default build/)
 # Every timing runs under flock /tmp/kcreep-bench.lock (one benchmark at a time).
-#   scripts/bench_normal.sh --help       this text (nothing is built or run)
-source "$(dirname "${BASH_SOURCE[0]}")/prebuild_lib.sh"
+#   scripts/bench/bench_normal.sh --help       this text (nothing is built or run)
+source "$(dirname "${BASH_SOURCE[0]}")/../prebuild_lib.sh"
 build_kcreep -j 2 --target kcreep_normal_bench
 bench=$build_dir/kcreep_normal_bench
 if [[ -n "${QUICK:-}" ]]; then sizes="50 100 200"; else sizes="50 100 200 400 700 1000"; fi
@@ -29,7 +29,7 @@ section=$(cat <<MD
 <!-- normal-bench:begin -->
 ## Normal contact solve
 
-\`scripts/bench_normal.sh\` ($(date -u +%Y-%m-%d), $(nproc) cores, FFTW threads: $threads, load average at the end $load (the machine is shared); best of 3 runs below 700 x 700, one run above).
+\`scripts/bench/bench_normal.sh\` ($(date -u +%Y-%m-%d), $(nproc) cores, FFTW threads: $threads, load average at the end $load (the machine is shared); best of 3 runs below 700 x 700, one run above).
 Hertz's sphere, the contact circle across 80 % of the grid, total force prescribed, constrained
 conjugate gradient (Polonsky and Keer) with the circulant inverse of the kernel as preconditioner
 (Vollebregt 2014) to a complementarity residual of 1e-10. Per iteration one FFT product (zero-padded

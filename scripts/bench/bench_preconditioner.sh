@@ -7,12 +7,12 @@
 # nu = 0.25, three load cases. Median wall time of the kcreep process over
 # the repeats; iterations and the solve phase from kcreep's summary. Writes
 # the table into the "precond" section of docs/performance.md.
-#   scripts/bench_preconditioner.sh            all cases, 3 repeats (about 3 min on 2 cores)
-#   QUICK=1 scripts/bench_preconditioner.sh    the small cases, 1 repeat (checks the script)
+#   scripts/bench/bench_preconditioner.sh            all cases, 3 repeats (about 3 min on 2 cores)
+#   QUICK=1 scripts/bench/bench_preconditioner.sh    the small cases, 1 repeat (checks the script)
 #   KCREEP_BUILD_DIR=dir                       build somewhere else (default build/)
 # Every timing runs under flock /tmp/kcreep-bench.lock (one benchmark at a time).
-#   scripts/bench_preconditioner.sh --help     this text (nothing is built or run)
-source "$(dirname "${BASH_SOURCE[0]}")/prebuild_lib.sh"
+#   scripts/bench/bench_preconditioner.sh --help     this text (nothing is built or run)
+source "$(dirname "${BASH_SOURCE[0]}")/../prebuild_lib.sh"
 build_kcreep -j 2 --target kcreep
 kcreep=$build_dir/kcreep
 work=$(mktemp -d)
@@ -71,7 +71,7 @@ section=$(cat <<MD
 <!-- precond:begin -->
 ## GMRES preconditioners
 
-\`scripts/bench_preconditioner.sh\` ($(date -u +%Y-%m-%d), $(nproc) cores, load average at the end $load; median of $repeats runs).
+\`scripts/bench/bench_preconditioner.sh\` ($(date -u +%Y-%m-%d), $(nproc) cores, load average at the end $load; median of $repeats runs).
 One grid as given (\`target_error = 0\`), \`method = 'iterative'\`, backward scheme, nu = 0.25, the three
 load cases in lockstep, tolerance 1e-11. *strip*: the exact inverse of each grid row's own block
 (the preconditioner before); *circulant*: the running sum along each row from the leading edge (the

@@ -1,7 +1,7 @@
 #!/usr/bin/env python3
 """Benchmark of the exact rolling solver (&rolling), one thread.
 
-  scripts/bench_rolling.py [--kcreep build/kcreep] [--shared ../shared] [--repeat 3] [--doc docs/rolling.md]
+  scripts/bench/bench_rolling.py [--kcreep build/kcreep] [--shared ../shared] [--repeat 3] [--doc docs/rolling.md]
 
 Runs, with OMP_NUM_THREADS=1 and holding /tmp/kcreep-bench.lock (so that no
 other benchmark runs at the same time on the shared machine):
@@ -26,7 +26,7 @@ import tempfile
 
 
 def main():
-    here = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
+    here = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
     ap = argparse.ArgumentParser(description=__doc__.split('\n')[0], formatter_class=argparse.RawDescriptionHelpFormatter,
                                  epilog=__doc__)
     ap.add_argument('--kcreep', default=os.path.join(here, 'build', 'kcreep'))
@@ -81,7 +81,7 @@ def main():
                     f"&rolling mu = 0.3, fn = 82000, creepages = {creep} /\n")
                 rows.append(f'| circle R = 5, {m} x {m}, one point ({creep}) | {cells} | {t:.3f} | {float(newton):.0f} | '
                             f'{float(products):.0f} | {res} | - |')
-    table = ('Measured by `scripts/bench_rolling.py` (one thread, best of '
+    table = ('Measured by `scripts/bench/bench_rolling.py` (one thread, best of '
              f'{args.repeat}; rolling stage only):\n\n'
              '| case | cells | seconds | Newton steps per point | operator products per point | largest residual | '
              'CONTACT (GDsteady) seconds (ratio) |\n|---|---|---|---|---|---|---|\n' + '\n'.join(rows) + '\n')

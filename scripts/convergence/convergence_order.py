@@ -1,13 +1,13 @@
 #!/usr/bin/env python3
 """Order of convergence of the mesh study, measured against the refined table.
 
-    scripts/studies/convergence_order.py SWEEP_TABLE [--nu 0.25]   (sweep_n.sh calls it)
-    scripts/studies/convergence_order.py --help                    this text
+    scripts/convergence/convergence_order.py SWEEP_TABLE [--nu 0.25]   (sweep_n.sh calls it)
+    scripts/convergence/convergence_order.py --help                    this text
 
-SWEEP_TABLE: the merged table of scripts/studies/sweep_n.sh (cases
+SWEEP_TABLE: the merged table of scripts/convergence/sweep_n.sh (cases
 r<ratio>_<grid>_<scheme>_m<M>). For each series and coefficient C11, C22,
 C23, the relative error e(M) = C(M)/C_ref - 1 against the refined Kalker
-table (scripts/studies/refined_reference.py: nodes only), with each mesh's
+table (scripts/convergence/refined_reference.py: nodes only), with each mesh's
 coefficients normalised by the area of its staircase (c^2 = area/pi, as
 kcreep's error control does), which removes the staircase's irregular area
 error and leaves the method's own error. Printed per series:

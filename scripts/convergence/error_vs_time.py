@@ -1,9 +1,9 @@
 #!/usr/bin/env python3
 """Errors and run times of the error_vs_time study.
 
-    scripts/studies/error_vs_time.py RUNS_TABLE [--ratio 1] [--nu 0.25]
-                                          (scripts/studies/error_vs_time.sh calls it)
-    scripts/studies/error_vs_time.py --help       this text
+    scripts/convergence/error_vs_time.py RUNS_TABLE [--ratio 1] [--nu 0.25]
+                                          (scripts/convergence/error_vs_time.sh calls it)
+    scripts/convergence/error_vs_time.py --help       this text
 
 Case names are <scheme>_rep<k>_m<M> (M x M grid, or about M*M near-square
 cells) and default_rep<k>_m0, accurate_rep<k>_m0: kcreep's own choice of
@@ -15,7 +15,7 @@ the other runs measure the other work as well) and the coefficients
 (identical in every repeat).
 
 Reference: the refined Kalker table (docs/data/kalker_refined.dat, through
-scripts/studies/refined_reference.py: a/b and nu must be one of its nodes) with its
+scripts/convergence/refined_reference.py: a/b and nu must be one of its nodes) with its
 95 % uncertainty u, printed in the header ('# reference' lines). Errors are
 relative, err = |C/C_ref - 1|; u/C_ref is the level below which an error
 cannot be told from the reference's own uncertainty. Rows

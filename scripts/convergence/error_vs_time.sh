@@ -7,9 +7,9 @@
 # = 1e-4); a table
 # and log-log plots (one curve per scheme and coefficient).
 #
-#   scripts/studies/error_vs_time.sh [options]
+#   scripts/convergence/error_vs_time.sh [options]
 #     --ratio 1             ellipse ratio a/b (c = 1); a node of the refined
-#                           table (scripts/studies/refined_reference.py)
+#                           table (scripts/convergence/refined_reference.py)
 #     --meshes "10 ... 160" grid sizes M (M x M cells; near-square cells when
 #                           a/b != 1, about M*M cells)
 #     --alpha 0.5           collocation point

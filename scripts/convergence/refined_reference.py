@@ -1,19 +1,19 @@
 #!/usr/bin/env python3
 """The refined Kalker table as the reference of the convergence studies.
 
-    scripts/studies/refined_reference.py RATIO NU [--table FILE]
+    scripts/convergence/refined_reference.py RATIO NU [--table FILE]
         print 'c11 u11 c22 u22 c23 u23' of the node a/b = RATIO, nu = NU
-    scripts/studies/refined_reference.py --help
+    scripts/convergence/refined_reference.py --help
         this text
 
-The table is docs/data/kalker_refined.dat (scripts/studies/refine_kalker_table.sh;
+The table is docs/data/kalker_refined.dat (tools/maintenance/refine_kalker_table.sh;
 docs/accuracy.md section 5): kcreep's backward scheme on levels of 56 to 196
 cells across (at the fine rows of section 5.2, 296 to 632-1024), fitted
 f0 + K h + B harmonic4, with u the absolute 95 % uncertainty of each value. Only nodes of the table are served: a study at an a/b or nu that is
 not a node gets an error naming the nodes (interpolating in a/b would add
 an error of its own that the reference's u does not cover).
 The study scripts (sweep_alpha.sh, sweep_n.sh, error_vs_time.sh) and
-scripts/studies/make_report.py use it; importable as a module (node, load).
+tools/maintenance/make_report.py use it; importable as a module (node, load).
 """
 import os
 import sys

@@ -17,7 +17,7 @@ coefficients normalised by the staircase patch's own area (c^2 = area/pi),
 which removes the irregular change of the staircase area with the mesh.
 
 Output: one line per series, triple and coefficient (whitespace columns,
-'#' header), read by the study scripts and scripts/studies/make_report.py.
+'#' header), read by the study scripts and tools/maintenance/make_report.py.
 """
 import argparse
 import math

@@ -2,7 +2,7 @@
 # Shared pieces of the study scripts sweep_alpha.sh, sweep_n.sh and
 # error_vs_time.sh; they source it, it is not run on its own.
 #   in a study script:  source "$(dirname "$0")/study_lib.sh"
-#   scripts/studies/study_lib.sh --help                this text
+#   scripts/convergence/study_lib.sh --help                this text
 # Provides study_usage, study_die, study_option, study_refs, study_refs_awk,
 # study_out_dir, study_grids, study_to_docs, ellipse_nml, square_grid, columns
 # and have_gnuplot, and exports KCREEP (default: build/kcreep of this repository).

@@ -2,9 +2,9 @@
 # The paper's figure 2: f11, f22, f23 of the collocation scheme against the
 # collocation point alpha, for three ellipse ratios, as ratios to the refined
 # Kalker table (docs/data/kalker_refined.dat; the ratios and nu must be its
-# nodes, see scripts/studies/refined_reference.py).
+# nodes, see scripts/convergence/refined_reference.py).
 #
-#   scripts/studies/sweep_alpha.sh [options]
+#   scripts/convergence/sweep_alpha.sh [options]
 #     --ratios "0.2 1 5"   ellipse ratios a/b (c = sqrt(a b) = 1)
 #     --alphas "..."       collocation points, in (-1, 1)
 #     --grid 80            the paper's grid: mx = my = 80 (its N = 6400)

@@ -3,10 +3,10 @@
 # the collocation scheme (alpha = 0.5) and the backward scheme, three ellipse
 # ratios, the paper's mx = my grids and near-square-cell grids, against the
 # refined Kalker table (docs/data/kalker_refined.dat; the ratios and nu must
-# be its nodes, see scripts/studies/refined_reference.py); then the order of
-# convergence measured against that reference (scripts/studies/convergence_order.py).
+# be its nodes, see scripts/convergence/refined_reference.py); then the order of
+# convergence measured against that reference (scripts/convergence/convergence_order.py).
 #
-#   scripts/studies/sweep_n.sh [options]
+#   scripts/convergence/sweep_n.sh [options]
 #     --ratios "0.2 1 5"     ellipse ratios a/b (c = sqrt(a b) = 1)
 #     --meshes "10 ... 80"   grid sizes M: the paper's grid is M x M; the
 #                            near-square grid has about M*M cells, dx ~ dy

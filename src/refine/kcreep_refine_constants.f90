@@ -91,7 +91,7 @@ module kcreep_refine_constants
   !> (docs/data/mask_split_levels.dat, every window of splits coarser than
   !> the reference's): 4 levels bound 111 of 111 coefficient cases (median
   !> estimate / error 3.8), 5 levels 88 of 90 (90 allowing the reference's
-  !> u; median 3.1). scripts/studies/mask_accuracy_check.py --calibrate.
+  !> u; median 3.1). lab/mask_accuracy_check.py --calibrate.
   integer, parameter :: split_min_levels = 4, split_fit_width = 5
   !> The finest split the ladder tries, whatever the budget: the shipped
   !> masks meet 1e-3 by k = 5 and 1e-4 within the budget's k; a mask that
@@ -191,7 +191,7 @@ module kcreep_refine_constants
   !> from the coarse grid to the fine one, the part a finer grid still
   !> removes: it falls faster than first order (orders 1.2 to 3.7 observed
   !> on grids of 4, 2 and 1 times the cell size over Hertzian gaps).
-  !> (calibration) 15 Hertzian gaps (scripts/studies/gap_error_calibration.py
+  !> (calibration) 15 Hertzian gaps (lab/gap_error_calibration.py
   !> --check, docs/accuracy.md section 5): 45 of 45 bounded, median estimate
   !> / error 3.9 (the whole coarse change alone: 44 of 45, one only within
   !> the reference's u: C11 at Rx/Ry = 5, nu = 0.5, error 0.027 % against

@@ -86,7 +86,7 @@ kc.check("uncertain" not in t[0]["verdict"], f"10 x 10 grid, target_error = 0: n
 
 # --- 4. the solved run on an ellipse (kcreep chooses the levels) against the refined table
 # (method = 'iterative': the default 'auto' answers such an ellipse from the table itself).
-# Measured (scripts/studies/accuracy_table.sh --solver "method = 'iterative'"): a/b = 0.2, nu = 0.25
+# Measured (lab/accuracy_table.sh --solver "method = 'iterative'"): a/b = 0.2, nu = 0.25
 # ends ok with estimates of 0.03-0.09 % against errors below 0.02 % (reference u 0.02-0.05 %)
 ref_rows = [r for r in kc.read_table(os.path.join(repo, "docs", "data", "kalker_refined.dat"))
             if abs(r["a_over_b"] - 0.2) < 1e-9 and abs(r["nu"] - 0.25) < 1e-9]

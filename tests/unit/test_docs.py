@@ -2,7 +2,7 @@
   - each namelist group's variables (src/io/kcreep_nml_<group>.f90: its namelist
     statement and its <group>_variables list, which explains failed reads) agree;
   - `kcreep --help` names every group, docs/input.md every group and variable;
-  - docs/architecture.md's module graph is scripts/module_graph.py's;
+  - docs/architecture.md's module graph is tools/maintenance/module_graph.py's;
   - docs/output.md's summary sample is what `build/kcreep input/ellipse.nml`
     prints (the run times aside);
   - README.md has at most 150 lines; no table cell in README.md or docs/*.md
@@ -54,11 +54,11 @@ for path in [os.path.join(root, "README.md")] + sorted(glob.glob(os.path.join(ro
                     longest, where = len(cell.strip()), f"line {number}"
     kc.check(longest <= 400, f"{os.path.relpath(path, root)}: longest table cell {longest} characters ({where})")
 # docs/architecture.md's module graph is the one the sources draw
-graph = subprocess.run([sys.executable, os.path.join(root, "scripts", "module_graph.py")], capture_output=True,
+graph = subprocess.run([sys.executable, os.path.join(root, "tools", "maintenance", "module_graph.py")], capture_output=True,
                        text=True).stdout
 architecture = open(os.path.join(root, "docs", "architecture.md")).read()
 kc.check(len(graph) > 1000 and graph in architecture,
-         "docs/architecture.md holds scripts/module_graph.py's graph (rerun it after changing a use statement)")
+         "docs/architecture.md holds tools/maintenance/module_graph.py's graph (rerun it after changing a use statement)")
 # docs/output.md's sample summary is the default example's, run as the README says
 scratch = os.path.join(kc.SCRATCH, "summary")
 os.makedirs(os.path.join(scratch, "input"))

@@ -1,7 +1,7 @@
 #!/usr/bin/env python3
 """Run kcreep on an ellipse at given resolutions and extrapolate (standard library only).
 
-Shared by scripts/studies/refine_kalker_table.py, scripts/studies/accuracy_table.py and the
+Shared by tools/maintenance/refine_kalker_table.py, lab/accuracy_table.py and the
 error-control tests. An ellipse with semi-axes a = sqrt(r), b = 1/sqrt(r)
 (c = sqrt(ab) = 1, r = a/b) is put on a grid of near-square cells with
 `cells` cells across its shorter axis. The coefficients are normalised by the
@@ -13,7 +13,7 @@ kcreep's own levels do (src/coefficients/kcreep_staircase_normalisation.f90).
 import sys as _sys
 
 if __name__ == "__main__" and any(a in ("-h", "--help") for a in _sys.argv[1:]):
-    print("usage: scripts/studies/kcreep_levels.py\n" + __doc__)
+    print("usage: tools/maintenance/kcreep_levels.py\n" + __doc__)
     _sys.exit(0)
 import math
 import os

@@ -3,7 +3,7 @@
 src/ and app/: one line per module, 'stage/module: modules it uses' (kcreep
 modules only), stages in pipeline order. docs/architecture.md holds its output.
 
-usage: scripts/module_graph.py [--dot]   (--dot: Graphviz, modules clustered by stage)
+usage: tools/maintenance/module_graph.py [--dot]   (--dot: Graphviz, modules clustered by stage)
 """
 import os
 import re
@@ -36,7 +36,7 @@ def main():
     if any(a in ("-h", "--help") for a in sys.argv[1:]):
         print(__doc__.strip())
         return
-    root = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
+    root = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
     g = graph(root)
     ordered = sorted(g, key=lambda m: (ORDER.index(g[m][0]), m))
     if "--dot" in sys.argv[1:]:

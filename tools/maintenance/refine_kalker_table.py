@@ -113,7 +113,7 @@ def append_level(r, nu, N, d):
     new = not os.path.exists(LEVELS_FILE)
     with open(LEVELS_FILE, "a") as f:
         if new:
-            f.write("# kcreep levels for the refined Kalker table (scripts/studies/refine_kalker_table.py): ellipse c = 1,\n"
+            f.write("# kcreep levels for the refined Kalker table (tools/maintenance/refine_kalker_table.py): ellipse c = 1,\n"
                     "# backward scheme, N cells across the shorter axis, coefficients normalised by the staircase area\n")
             f.write("# " + " ".join(LEVEL_COLUMNS) + "\n")
         f.write(f"{r:.6g} {nu:.6g} {N} {d['mx']} {d['my']} {d['n']} {d['c11']:.12e} {d['c22']:.12e} "
@@ -197,11 +197,11 @@ def write_table(data, points, fit_from, fine=None, fine_from=296, out=TABLE_FILE
         rows.append((r, nu, min(lv), max(lv), len(lv), vals))
     tmp = out + ".tmp"
     with open(tmp, "w") as f:
-        f.write("# Kalker's creep coefficients recomputed by kcreep (scripts/studies/refine_kalker_table.py):\n"
+        f.write("# Kalker's creep coefficients recomputed by kcreep (tools/maintenance/refine_kalker_table.py):\n"
                 "# ellipse with c = sqrt(ab) = 1, backward scheme on near-square cells, levels from Nmin to Nmax\n"
                 f"# cells across the shorter axis (rows with Nmin >= {fine_from}: the fine rows of docs/accuracy.md 5.2,\n"
                 "# from the reference levels of 6.1 and 6.7), each referred to the ellipse by the staircase's second moments\n"
-                "# (scripts/studies/kcreep_levels.py refer_to_ellipse), least-squares fit f0 + K h + B harmonic4;\n"
+                "# (tools/maintenance/kcreep_levels.py refer_to_ellipse), least-squares fit f0 + K h + B harmonic4;\n"
                 "# u = absolute uncertainty: max(95 % interval of the fit, change when an h^2 term is added)\n"
                 "# + 0.1 x the extrapolation from the finest level (the order is 1 to within 0.06).\n"
                 "# c32 = f32/(G c^3) (= -c23 by reciprocity, kept as a check), c33 = f33/(G c^4).\n")

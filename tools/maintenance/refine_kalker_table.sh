@@ -1,10 +1,10 @@
 #!/bin/bash
 # The refined Kalker table (docs/data/kalker_refined.dat), in chunks of at most
-# about 5 minutes each (scripts/studies/refine_kalker_table.py resumes where it stopped).
+# about 5 minutes each (tools/maintenance/refine_kalker_table.py resumes where it stopped).
 # Heavy: about an hour on 2 cores for all 57 points; runs under nice.
-#   scripts/studies/refine_kalker_table.sh [extra options of refine_kalker_table.py]
+#   tools/maintenance/refine_kalker_table.sh [extra options of refine_kalker_table.py]
 set -euo pipefail
-usage() { echo "usage: scripts/studies/refine_kalker_table.sh [options]"; sed -n '2,5p' "${BASH_SOURCE[0]}" | sed 's/^# \{0,1\}//'; }
+usage() { echo "usage: tools/maintenance/refine_kalker_table.sh [options]"; sed -n '2,5p' "${BASH_SOURCE[0]}" | sed 's/^# \{0,1\}//'; }
 for a in "$@"; do [[ $a == -h || $a == --help ]] && { usage; exit 0; }; done
 here=$(cd "$(dirname "$0")" && pwd)
 export KCREEP=${KCREEP:-$here/../../build/kcreep}
