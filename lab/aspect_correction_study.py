@@ -45,7 +45,7 @@ def C(r,nu,k):  # k 0,1,2 -> C11,C22,C23; linear interp in ln r and nu
         v=tab[rs[j]][3*k:3*k+3]; return np.interp(nu,nus,v)
     w=(lr-L[i])/(L[i+1]-L[i])
     return math.exp((1-w)*math.log(at(i))+w*math.log(at(i+1)))
-for line in open(os.path.join(ROOT, 'docs', 'data', 'error_calibration_levels.dat')):
+for line in open(os.path.join(ROOT, 'lab', 'data', 'error_calibration_levels.dat')):
     if line.startswith('#'): continue
     p=line.split(); r,nu,N=float(p[0]),float(p[1]),int(p[2])
     data.setdefault((r,nu),{})[N]=dict(mx=int(p[3]),my=int(p[4]),c11=float(p[6]),c22=float(p[7]),c23=float(p[8]))

@@ -118,7 +118,7 @@ def main(args):
         results.append((semi_a, names, data))
     if args.no_write:
         return
-    with open(os.path.join(ROOT, "docs", "data", "boundary_blend_study.dat"), "w") as f:
+    with open(os.path.join(ROOT, "lab", "data", "boundary_blend_study.dat"), "w") as f:
         f.write("# lab/boundary_blend_study.py: nu = 0.25, backward scheme, random grid offsets\n")
         f.write("# per shape: cells_across, then C11 C22 error % against the refined table per series\n")
         for semi_a, names, data in results:
@@ -141,7 +141,7 @@ def main(args):
         ax.set_title(f"ellipse a/b = {semi_a:g}" if semi_a != 1 else "circle")
         ax.legend(fontsize=7)
     fig.tight_layout()
-    path = os.path.join(ROOT, "docs", "figures", "boundary_blend_study.png")
+    path = os.path.join(ROOT, "lab", "figures", "boundary_blend_study.png")
     fig.savefig(path, dpi=110)
     print("wrote", path)
 

@@ -190,7 +190,7 @@ def main(args):
                   f"{100 * scatter:.3f} % |")
     if args.no_write:
         return
-    with open(os.path.join(ROOT, "docs", "data", "cut_cell_study.dat"), "w") as f:
+    with open(os.path.join(ROOT, "lab", "data", "cut_cell_study.dat"), "w") as f:
         f.write("# lab/cut_cell_study.py: the unit circle, nu = 0.25, backward scheme, random grid offsets\n")
         f.write(f"# refined table C11 {c_circle[0]:.6f} C22 {c_circle[1]:.6f}; subcells {args.sub} per side\n")
         f.write("# cells_across C11 C22 (staircase) C11 C22 (staircase referred) C11 C22 (cut cells)\n")
@@ -210,7 +210,7 @@ def main(args):
     axes[0].legend(fontsize=8)
     fig.suptitle("Unit circle, levels on randomly placed grids: staircase, referred staircase, cut cells")
     fig.tight_layout()
-    fig.savefig(os.path.join(ROOT, "docs", "figures", "cut_cell_study.png"), dpi=110)
+    fig.savefig(os.path.join(ROOT, "lab", "figures", "cut_cell_study.png"), dpi=110)
 
 
 if __name__ == "__main__":

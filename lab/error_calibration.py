@@ -42,7 +42,7 @@ def main():
     ap.add_argument("--reference-levels", default="56,64,96,128")
     args = ap.parse_args()
     data = {}
-    with open(os.path.join(ROOT, "docs", "data", "error_calibration_levels.dat")) as f:
+    with open(os.path.join(ROOT, "lab", "data", "error_calibration_levels.dat")) as f:
         for line in f:
             if line.startswith("#"):
                 continue

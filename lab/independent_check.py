@@ -47,7 +47,7 @@ import kcreep_levels as K  # noqa: E402
 from refine_kalker_table import T95, lstsq_columns  # noqa: E402
 
 ROOT = os.path.join(os.path.dirname(os.path.abspath(__file__)), "..")
-CACHE = os.path.join(ROOT, "docs", "data", "independent_reference_levels.dat")
+CACHE = os.path.join(ROOT, "lab", "data", "independent_reference_levels.dat")
 DEFAULT_CASES = ("1:0.25,1:0,1:0.5,0.5:0.25,2:0.25,0.667:0.25,1.5:0.25,0.7:0.25,1.43:0.5,0.25:0,4:0.5,"
                  "1:0.3,0.667:0.1,1.5:0.45,0.3:0.2")
 COLUMNS = ["a_over_b", "nu", "N", "mx", "my", "n"] + list(K.COEFFS)

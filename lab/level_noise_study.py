@@ -37,7 +37,11 @@ from level_fit import fit_levels  # noqa: E402
 
 ROOT = os.path.join(os.path.dirname(os.path.abspath(__file__)), "..")
 DATA = os.path.join(ROOT, "docs", "data")
-FILES = [os.path.join(DATA, f) for f in ("kalker_refined_levels.dat", "independent_reference_levels.dat",
+def data_file(name):
+    """The study's own data in lab/data, the shipped references in docs/data."""
+    own = os.path.join(os.path.dirname(os.path.abspath(__file__)), "data", name)
+    return own if os.path.exists(own) else os.path.join(DATA, name)
+FILES = [data_file(f) for f in ("kalker_refined_levels.dat", "independent_reference_levels.dat",
                                          "fine_reference_levels.dat")]
 FIGURE = os.path.join(ROOT, "build", "figures", "level_noise.png")  # --figure lab/figures/level_noise.png for the docs
 CASES = [(1.0, 0.25), (1.0, 0.5), (2.0, 0.25), (0.5, 0.25), (4.0, 0.25), (0.25, 0.25)]

@@ -38,7 +38,11 @@ import kcreep_levels as K  # noqa: E402
 from independent_check import append_cache, reference  # noqa: E402
 
 DATA = os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "docs", "data")
-LADDER_CACHE = os.path.join(DATA, "long_ellipse_ladder_levels.dat")
+def data_file(name):
+    """The study's own data in lab/data, the shipped references in docs/data."""
+    own = os.path.join(os.path.dirname(os.path.abspath(__file__)), "data", name)
+    return own if os.path.exists(own) else os.path.join(DATA, name)
+LADDER_CACHE = os.path.join(os.path.dirname(os.path.abspath(__file__)), "data", "long_ellipse_ladder_levels.dat")
 COEFFS = ("c11", "c22", "c23")
 #: kcreep's largest grid, mx x my (kcreep_limits max_grid_cells)
 GRID_LIMIT = 4.0e6
@@ -93,7 +97,7 @@ def main():
     ap.add_argument("--nu", type=float, default=0.5)
     ap.add_argument("--windows", default="296-632,448-1024,600-1024,296-1024")
     ap.add_argument("--ladders", default="")
-    ap.add_argument("--cache", default=",".join(os.path.join(DATA, f) for f in
+    ap.add_argument("--cache", default=",".join(data_file(f) for f in
                                                 ("fine_reference_levels_long.dat", "staircase_defect_levels.dat",
                                                  "long_ellipse_ladder_levels.dat")))
     ap.add_argument("--compute", action="store_true")

@@ -37,6 +37,10 @@ from independent_check import append_cache, reference  # noqa: E402
 
 ROOT = os.path.join(os.path.dirname(os.path.abspath(__file__)), "..")
 DATA = os.path.join(ROOT, "docs", "data")
+def data_file(name):
+    """The study's own data in lab/data, the shipped references in docs/data."""
+    own = os.path.join(os.path.dirname(os.path.abspath(__file__)), "data", name)
+    return own if os.path.exists(own) else os.path.join(DATA, name)
 #: kcreep_error_run ellipse_fill: the share of the bounding grid kcreep counts as patch cells
 ELLIPSE_FILL = 0.79
 COEFFS = (("c11", "err11"), ("c22", "err22"), ("c23", "err23"))
@@ -54,7 +58,7 @@ def main():
     ap.add_argument("--nu", default="0,0.25,0.5")
     ap.add_argument("--stops", default="96,112,128,148,172,196,224")
     ap.add_argument("--target", type=float, default=1e-4)
-    ap.add_argument("--cache", default=",".join(os.path.join(DATA, f) for f in
+    ap.add_argument("--cache", default=",".join(data_file(f) for f in
                                                 ("fine_reference_levels_long.dat", "staircase_defect_levels.dat")))
     ap.add_argument("--levels", default="296,340,384,448,512")
     ap.add_argument("--compute", action="store_true")

@@ -45,7 +45,7 @@ import kcreep_levels as K  # noqa: E402
 from level_fit import fit_levels, kcreep_estimate  # noqa: E402
 
 ROOT = os.path.join(os.path.dirname(os.path.abspath(__file__)), "..")
-DATA = os.path.join(ROOT, "docs", "data", "staircase_defect_levels.dat")
+DATA = os.path.join(ROOT, "lab", "data", "staircase_defect_levels.dat")
 LONG = os.path.join(ROOT, "docs", "data", "fine_reference_levels_long.dat")
 FIGURE = os.path.join(ROOT, "build", "figures", "staircase_defects.png")  # --figure lab/figures/staircase_defects.png for the docs
 NU = 0.25
