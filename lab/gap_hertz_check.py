@@ -44,7 +44,7 @@ def main():
                         "estimate and the verdict under bit-level changes of the input")
     args = p.parse_args()
     from scipy.optimize import brentq
-    from gap_error_calibration import Runner, hertz
+    from hertz_gaps import Runner, hertz
     solver = "" if args.target is None else f"&solver target_error = {args.target!r} /\n"
     target = 1e-3 if args.target is None else args.target
     targets = {"c11": target, "c22": target, "c23": 3 * target}
