@@ -4,8 +4,8 @@
 the default target with &solver cell_budget = 160,000 (the default, where the
 budget scales a flange strip's base levels below 56 cells across), 320,000 and
 640,000. Prints C11, C22, C23, their estimates, the verdict and the wall time
-per run; writes the numbers to docs/data/flange_budget_study.dat and the
-figure docs/figures/flange_budget_study.png (C11 with its error bar against
+per run; writes the numbers to lab/data/flange_budget_study.dat and the
+figure lab/figures/flange_budget_study.png (C11 with its error bar against
 the budget, one panel per shift).
 
   OMP_NUM_THREADS=1 flock /tmp/kcreep-bench.lock /usr/bin/python3 lab/flange_budget_study.py
@@ -29,7 +29,7 @@ def arguments():
     p.add_argument("--shifts", default="7,8,10", help="lateral shifts in mm (comma-separated)")
     p.add_argument("--budgets", default="160000,320000,640000", help="&solver cell_budget values")
     p.add_argument("--no-write", action="store_true", help="print only; leave docs/ alone")
-    p.add_argument("--plot-only", action="store_true", help="redraw the figure from docs/data/flange_budget_study.dat")
+    p.add_argument("--plot-only", action="store_true", help="redraw the figure from lab/data/flange_budget_study.dat")
     return p.parse_args()
 
 
@@ -76,14 +76,14 @@ def plot(dat):
     fig.suptitle("S1002 / UIC60 flange rows: at the default budget (160k) the levels are scaled below 56 across",
                  fontsize=9)
     fig.tight_layout()
-    png = os.path.join(ROOT, "docs", "figures", "flange_budget_study.png")
+    png = os.path.join(ROOT, "lab", "figures", "flange_budget_study.png")
     fig.savefig(png, dpi=110)
     return png
 
 
 def main():
     args = arguments()
-    dat = os.path.join(ROOT, "docs", "data", "flange_budget_study.dat")
+    dat = os.path.join(ROOT, "lab", "data", "flange_budget_study.dat")
     if args.plot_only:
         print(f"wrote {os.path.relpath(plot(dat), ROOT)}")
         return
