@@ -27,7 +27,7 @@ lateral creepage c phi), from small creepage to saturation. The error of a
 point is |F - F_exact| / (mu Fn), F = (Fx, Fy), as the summary of a run with
 both groups prints it. A numpy copy of kcreep's FASTSIM (checked against
 kcreep's creep tables on every patch) adds variants: the -phi y term with L1
-or L4 (fastsim.md section 3), the aligned rule's ingredients one at a time,
+or L4 (fastsim.md, "Against CONTACT"), the aligned rule's ingredients one at a time,
 and other slip steps.
 
 Every kcreep run holds --lock (default /tmp/kcreep-bench.lock; 'none': no
@@ -551,7 +551,7 @@ def variants(np, res):
     out['weighted'] = fastsim_np(np, cells, MU, xi / lw, eta / lw, phi / lw, phi / lw)[:3]
     out['aligned'] = fastsim_np(np, cells, MU, xi / l1, eta / l2, phi / wx, phi / l3, creep=(xi, eta, phi),
                                 slip_metric=per_point(wx, wy))[:3]
-    # fastsim.md section 3: the L of the -phi y term
+    # fastsim.md, "Against CONTACT": the L of the -phi y term
     out['separate, -phi y with L1'] = fastsim_np(np, cells, MU, xi / l1, eta / l2, phi / l1, phi / l3)[:3]
     l4 = spin_x_flexibility(np, g, l3, res['tab']['f33'])
     if math.isfinite(l4) and l4 > 0:

@@ -7,7 +7,7 @@
         this text
 
 The table is docs/data/kalker_refined.dat (tools/maintenance/refine_kalker_table.sh;
-docs/accuracy.md section 5): kcreep's backward scheme on levels of 56 to 196
+docs/accuracy.md, "The refined table of ellipses"): kcreep's backward scheme on levels of 56 to 196
 cells across (at the fine rows of section 5.2, 296 to 632-1024), fitted
 f0 + K h + B harmonic4, with u the absolute 95 % uncertainty of each value. Only nodes of the table are served: a study at an a/b or nu that is
 not a node gets an error naming the nodes (interpolating in a/b would add

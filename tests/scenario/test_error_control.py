@@ -109,7 +109,7 @@ if ref_rows:
     kc.check(r["n"] > 0, f"a/b = 0.2, target 1e-4: solved, not the table ({r['n']} cells)")
     # tighter than the default: N x N cells over the bounding box, long in y
     # (kcreep_refine_estimate.ellipse_cells_long_in_y); measured: ok at 452 x 452 in about 3.5 s,
-    # errors against independent references of 0.001-0.007 % (docs/accuracy.md section 6.4)
+    # errors against independent references of 0.001-0.007 % (docs/accuracy.md, "Ellipses")
     kc.check(r["mx"] == r["my"] and r["verdict"] == "ok",
              f"a/b = 0.2, target 1e-4: cells long in y, ok ({r['mx']} x {r['my']}, {r['verdict']})")
     for c, e, u in zip(COEFFS, ("err11", "err22", "err23"), ("u11", "u22", "u23")):

@@ -266,7 +266,7 @@ def texts(values):
     evt = {(r["scheme"], r["m"]): r for r in rows}
     ctl = {r["scheme"]: r for r in rows if r["scheme"] in ("default", "accurate")}
     ref1 = ref_of(1.0)
-    # a fine row of the table (docs/accuracy.md 5.2) is fitted through reference levels from 296 across up
+    # a fine row of the table (docs/accuracy.md, "The refined table of ellipses") is fitted through reference levels from 296 across up
     node1 = node(1.0, NU)
     nmin1, nmax1 = int(node1["Nmin"]), int(node1["Nmax"])
     fine1 = nmin1 >= 296
@@ -331,7 +331,7 @@ def texts(values):
                  "(dx/dy = 5) collocation is `degenerate`; on near-square cells the backward scheme's fitted "
                  f"'order' is {ptext(r5[0])} with ranges up to "
                  f"{max(orders[r5[0]][c]['p_hi'] for c in COEF):.1f}: its first-order term almost vanishes there "
-                 "and the staircase noise dominates (docs/accuracy.md section 1); collocation shows "
+                 "and the staircase noise dominates (docs/accuracy.md, \"The engine\"); collocation shows "
                  f"p = {ptext(r5[1])}. Use near-square cells, and kcreep's error control, which measures the "
                  "noise instead of assuming an order.")
     v["CONVERGENCE_TEXT"] = "\n".join(lines)
@@ -368,7 +368,7 @@ def texts(values):
                         "estimate that " + ("bounds it." if all(e <= x for e, x in zip(d["err"], d["est"]))
                                             else "does not bound it everywhere.")))
         if fine1:
-            lines.append(f"- The reference here is one of the table's fine rows (docs/accuracy.md section 5.2): a fit "
+            lines.append(f"- The reference here is one of the table's fine rows (docs/accuracy.md, \"The refined table of ellipses\"): a fit "
                          f"through levels of {nmin1} to {nmax1} cells across, none of which the solved run (up to "
                          f"{d['m']} across) or the fixed grids above use, so these errors are measured against an "
                          "independent reference.")
@@ -377,7 +377,7 @@ def texts(values):
                          "56 to 196 cells across of the same scheme and normalisation, and the solved run's levels "
                          + ("are among them" if d["m"] <= 96 else f"(up to {d['m']} across) overlap them in part")
                          + ", so the two agreeing says partly that the fits agree. The independent check of its "
-                         "estimate and of the table's: docs/accuracy.md section 3.1 "
+                         "estimate and of the table's: docs/accuracy.md, \"Ellipses\" "
                          "(`lab/independent_check.py`, grids of 136-384 cells across); the fixed grids above do "
                          "not share any level with the reference.")
     a = ctl.get("accurate")
@@ -392,11 +392,11 @@ def texts(values):
                         + ", ".join(apct(e, 3) for e in a["est"])
                         + (": at this level the reference's u, not kcreep, limits what can be shown"
                            if all(e <= ref1[c][1] / ref1[c][0] for e, c in zip(a["err"], COEF)) else "") + "."))
-        lines.append("- Its default cell budget then, 320,000 cells (1.6 million since, docs/accuracy.md section 2), "
+        lines.append("- Its default cell budget then, 320,000 cells (1.6 million since, docs/accuracy.md, \"The engine\"), "
                      "reaches 600 cells across on the circle; solved, "
                      "ellipses long in x (a/b = 5, 10) stop `uncertain` at the budget, and the default "
                      "`method = 'auto'` answers them, and the circle, from the table's fine rows instead "
-                     "(docs/accuracy.md sections 5.2 and 6).")
+                     "(docs/accuracy.md, \"The refined table of ellipses\").")
     ext = [r for r in rows if r["scheme"].endswith("+extrapolate")]
     if ext:
         best = min(ext, key=lambda r: max(r["err"]))
@@ -404,7 +404,7 @@ def texts(values):
                      f"study is {describe_row(best)}, {best['t']:.2f} s, errors "
                      + ", ".join(apct(e, 3) for e in best["err"]) + "; it does not improve steadily with the "
                      "levels (the order it estimates from three levels is led by the staircase noise, "
-                     "docs/accuracy.md section 1).")
+                     "docs/accuracy.md, \"The engine\").")
     for target in (0.01, 0.005):
         for scheme in ("collocation", "backward"):
             ok = [r for r in rows if r["scheme"] == scheme and max(r["err"]) <= target]
@@ -423,7 +423,7 @@ def texts(values):
     ks = kalker_stats()
     klt1 = kalker_values()[(1.0, NU)]
     v["KLT_TEXT"] = (
-        "Against kcreep's refined table (docs/accuracy.md section 5; per point in "
+        "Against kcreep's refined table (docs/accuracy.md, \"The refined table of ellipses\"; per point in "
         "`docs/data/kalker_comparison.dat`) Kalker's three digits are a median "
         + ", ".join(f"{apct(ks[c]['median'])} (C{c})" for c in COEF)
         + " off, at worst " + ", ".join(f"{pct(ks[c]['worst'][0])} (C{c}, a/b = {ks[c]['worst'][1][0]:g}, "
@@ -436,7 +436,7 @@ def texts(values):
           "a percent (1 % at a/b = 10), and an error below that must be judged against the refined table, not "
           "KLT. (An earlier version of this page put a three-level Richardson limit 0.24-0.57 % below Kalker on "
           "the circle; that limit was pulled down by the staircase noise through its observed order, "
-          "docs/accuracy.md section 1, and is not used any more.)")
+          "docs/accuracy.md, \"The engine\", and is not used any more.)")
 
     # claims
     def klt_dev(case, c):
@@ -509,7 +509,7 @@ def recommendation(v, rows, ctl):
                    + ", ".join(apct(e, 3) for e in d["err"]) + " from the refined values (C11, C22, C23) and "
                    "reports its own error estimate (" + ", ".join(apct(e) for e in d["est"])
                    + f") and verdict (`{d['verdict']}`; `ok` means every estimate within its target). "
-                     "Over Kalker's 57 ellipses see docs/accuracy.md section 4.")
+                     "Over Kalker's 57 ellipses see docs/accuracy.md, \"The refined table of ellipses\".")
     singles = [r for r in rows if r["scheme"] in ("collocation", "backward")]
     for target in (0.005, 0.01):
         ok = [r for r in singles if max(r["err"]) <= target]

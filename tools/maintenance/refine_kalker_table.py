@@ -28,14 +28,13 @@ carry more staircase noise). Cases with fewer than 5 such levels are left
 out of the table.
 
 Fine rows: where the --fine-levels files (default: the references of
-docs/accuracy.md 6.1 and 6.7, fine_reference_levels.dat and
+docs/accuracy.md, "The refined table of ellipses", fine_reference_levels.dat and
 fine_reference_levels_long.dat; near-square cells, as written by
 independent_check.py) hold at least 6 levels from --fine-from cells across
 up for a point of the table, its row is fitted through those levels alone,
 the same way (Nmin Nmax levels say which). Their u is a tenth to a third of
-the coarse rows', small enough for target_error = 1e-4 (docs/accuracy.md
-5.2). Levels beyond kcreep's 4,000,000 grid cells in those files came from a
-build with a larger limit (docs/accuracy.md 6.7).
+the coarse rows', small enough for target_error = 1e-4 (docs/accuracy.md, "The refined table of ellipses"). Levels beyond kcreep's 4,000,000 grid cells in those files came from a
+build with a larger limit (docs/accuracy.md, "The refined table of ellipses").
 
 Each level is referred to the ellipse with slopes d ln C / d ln(a/b) taken
 from the table itself, so the table is rebuilt until it no longer changes
@@ -45,7 +44,7 @@ refined_table_module rebuilds it (--table-only --out) and compares.
 --fine-check N (nothing solved, nothing written): for every fine row, the
 coarse row (the table's own levels) against it, and where the row has levels
 beyond N cells across, the row fitted through its levels up to N against
-the row through all of them; markdown on standard output (docs/accuracy.md 5.2).
+the row through all of them; markdown on standard output (docs/accuracy.md, "The refined table of ellipses").
 """
 import argparse
 import math
@@ -199,7 +198,7 @@ def write_table(data, points, fit_from, fine=None, fine_from=296, out=TABLE_FILE
     with open(tmp, "w") as f:
         f.write("# Kalker's creep coefficients recomputed by kcreep (tools/maintenance/refine_kalker_table.py):\n"
                 "# ellipse with c = sqrt(ab) = 1, backward scheme on near-square cells, levels from Nmin to Nmax\n"
-                f"# cells across the shorter axis (rows with Nmin >= {fine_from}: the fine rows of docs/accuracy.md 5.2,\n"
+                f"# cells across the shorter axis (rows with Nmin >= {fine_from}: the fine rows of docs/accuracy.md, \"The refined table of ellipses\",\n"
                 "# from the reference levels of 6.1 and 6.7), each referred to the ellipse by the staircase's second moments\n"
                 "# (tools/maintenance/kcreep_levels.py refer_to_ellipse), least-squares fit f0 + K h + B harmonic4;\n"
                 "# u = absolute uncertainty: max(95 % interval of the fit, change when an h^2 term is added)\n"
