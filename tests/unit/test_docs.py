@@ -15,7 +15,8 @@
   - every path of the repository they name (src/, app/, tests/, scripts/,
     tools/, docs/, python/, lab/, with a file name) exists;
   - every file in docs/data and docs/figures is used by a page, a test, a
-    source, a script or a tool (lab/ does not count).
+    source, a script or a tool (lab/ does not count);
+  - docs/architecture.md names every folder of the repository.
 
 usage: test_docs.py KCREEP SOURCE_DIR
 """
@@ -178,6 +179,12 @@ for folder in ("data", "figures"):
     for name in sorted(os.listdir(os.path.join(root, "docs", folder))):
         used = name in corpus or any(fnmatch.fnmatch(name, g) for g in globs)
         kc.check(used, f"docs/{folder}/{name}: used by a page, a test, a source or a tool (else: lab/ or delete)")
+
+# docs/architecture.md is the layout page: it names every folder of the repository (lab/'s own aside)
+architecture_text = open(os.path.join(root, "docs", "architecture.md")).read()
+folders = sorted({os.path.dirname(f) for f in tracked if "/" in f and not f.startswith("lab/")})
+unnamed = [d for d in folders if f"`{d}/`" not in architecture_text and f"`{d}/" not in architecture_text]
+kc.check(len(folders) > 15 and not unnamed, f"docs/architecture.md names every folder ({len(folders)}; missing: {unnamed})")
 
 # docs/architecture.md's module graph is the one the sources draw
 graph = subprocess.run([sys.executable, os.path.join(root, "tools", "maintenance", "module_graph.py")], capture_output=True,
