@@ -45,8 +45,8 @@ contains
   !> C11, C22, C23 the levels cannot reduce (a contact area's normal grid),
   !> combined with the ladder's own in quadrature (two independent 95 %
   !> bounds; their plain sum bounded the 15 Hertzian gaps at a median
-  !> estimate / error of 4.2 on staircase levels, the quadrature on blended
-  !> levels at 3.2, 45 of 45 bounded; docs/accuracy.md, "Gaps").
+  !> estimate / error of 4.2 on staircase levels; the quadrature on blended
+  !> levels bounds 45 of 45, docs/accuracy.md, "Gaps").
   subroutine run_shape_levels(problem, result, status, region, other_error)
     type(problem_t), intent(in) :: problem
     type(result_t), intent(out) :: result

@@ -1,8 +1,8 @@
 !> Every constant of kcreep's refinement engine (error control), with the
 !> measurement behind it: targets, budgets, level ladders, fit widths and
-!> the estimator's margins. docs/accuracy.md gives the evidence in full;
-!> `ctest -L calibration` re-measures the ones marked (calibration) against
-!> the reference levels kept in docs/data/ (tests/calibration/).
+!> the estimator's margins. docs/accuracy.md gives the evidence;
+!> `ctest -L calibration` (tests/calibration/) re-measures the ones marked
+!> (calibration) through the library's own estimator.
 module kcreep_refine_constants
   use, intrinsic :: iso_fortran_env, only: real64
   implicit none
@@ -91,7 +91,8 @@ module kcreep_refine_constants
   !> (docs/data/mask_split_levels.dat, every window of splits coarser than
   !> the reference's): 4 levels bound 111 of 111 coefficient cases (median
   !> estimate / error 3.8), 5 levels 88 of 90 (90 allowing the reference's
-  !> u; median 3.1). lab/mask_accuracy_check.py --calibrate.
+  !> u; median 3.1): ctest -R calibration_split_levels
+  !> (tests/calibration/test_split_levels.f90).
   integer, parameter :: split_min_levels = 4, split_fit_width = 5
   !> The finest split the ladder tries, whatever the budget: the shipped
   !> masks meet 1e-3 by k = 5 and 1e-4 within the budget's k; a mask that
@@ -160,8 +161,8 @@ module kcreep_refine_constants
   !> blended levels (the S1002 table, one core, medians of three): 112
   !> across 18.2 s, 128 across 20.0 s, every row `ok` (at 96 across, in a
   !> run with cells at most 5 times as long, one row stayed `uncertain`);
-  !> the 15 Hertzian gaps at 112 bounded 45 of 45 at a median estimate /
-  !> error of 3.2 (3.1 at 128), every run `ok` (docs/accuracy.md, "Gaps").
+  !> the 15 Hertzian gaps bounded 45 of 45 at 112 as at 128, their median
+  !> estimate / error the same to 0.1, every run `ok`.
   real(real64), parameter :: gap_normal_cells_at_default = 112
   !> The same below the default target. At 1e-4 on the Hertzian gap a/b =
   !> 2 the normal grid's estimate was 0.0055 / 0.0071 / 0.019 % at 256
@@ -191,9 +192,9 @@ module kcreep_refine_constants
   !> from the coarse grid to the fine one, the part a finer grid still
   !> removes: it falls faster than first order (orders 1.2 to 3.7 observed
   !> on grids of 4, 2 and 1 times the cell size over Hertzian gaps).
-  !> (calibration) 15 Hertzian gaps (lab/gap_error_calibration.py
-  !> --check, docs/accuracy.md, "Gaps"): 45 of 45 bounded, median estimate
-  !> / error 3.9 (the whole coarse change alone: 44 of 45, one only within
+  !> (calibration) 15 Hertzian gaps (ctest -R calibration_gap_levels;
+  !> docs/accuracy.md, "Gaps", quotes the median estimate / error): 45 of
+  !> 45 bounded (the whole coarse change alone: 44 of 45, one only within
   !> the reference's u: C11 at Rx/Ry = 5, nu = 0.5, error 0.027 % against
   !> 0.021 %, whose placement noise is 0.019 %). On the S1002 +5 and +6 mm
   !> tread patches the coarse grid (64 cells across) is far from the
