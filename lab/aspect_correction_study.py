@@ -18,7 +18,9 @@ import statistics
 import numpy as np
 
 ROOT = os.path.join(os.path.dirname(os.path.abspath(__file__)), "..")
-T95 = {1: 12.706, 2: 4.303, 3: 3.182, 4: 2.776, 5: 2.571, 6: 2.447, 7: 2.365, 8: 2.306}
+import sys  # noqa: E402
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "tools", "maintenance"))
+from kcreep_levels import student_t95  # noqa: E402  (the library's table)
 data = {}
 def stair(r, mx, my):
     a, b = math.sqrt(r), 1/math.sqrt(r)
@@ -65,7 +67,7 @@ for corr in (False,True):
             rn=[N for N in R if N in lv]
             if len(rn)<3 or not all(N in lv for N in S): continue
             val=(lambda N: corrected(r,nu,lv[N],k,j)) if corr else (lambda N: lv[N][k])
-            ref,se,d=fit(rn,[val(N) for N in rn]); u=T95[d]*se/abs(ref)
-            f0,s,d=fit(S,[val(N) for N in S]); est=T95[d]*s/abs(f0); err=abs(f0-ref)/abs(ref)
+            ref,se,d=fit(rn,[val(N) for N in rn]); u=student_t95(d)*se/abs(ref)
+            f0,s,d=fit(S,[val(N) for N in S]); est=student_t95(d)*s/abs(f0); err=abs(f0-ref)/abs(ref)
             n+=1; b+=est>=err; bu+=est+u>=err; errs.append(err); ests.append(est)
         print(f'  {k}: bounded {b}/{n} (+u {bu}) median err {100*statistics.median(errs):.3f}% worst {100*max(errs):.3f}% median est {100*statistics.median(ests):.3f}% max est {100*max(ests):.3f}%')

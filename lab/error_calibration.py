@@ -20,7 +20,9 @@ import os
 import statistics
 
 ROOT = os.path.join(os.path.dirname(os.path.abspath(__file__)), "..")
-T95 = {1: 12.706, 2: 4.303, 3: 3.182, 4: 2.776, 5: 2.571, 6: 2.447, 7: 2.365, 8: 2.306}
+import sys  # noqa: E402
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "tools", "maintenance"))
+from kcreep_levels import student_t95  # noqa: E402  (the library's table)
 POW = {"c11": 2, "c22": 2, "c23": 3}
 
 
@@ -64,12 +66,12 @@ def main():
                 if len(rn) < 3:
                     continue
                 ref, se, dof = fit(rn, [lv[N][c] for N in rn])
-                u = T95[dof] * se / abs(ref)
+                u = student_t95(dof) * se / abs(ref)
                 if isinstance(S, list):
                     if not all(N in lv for N in S):
                         continue
                     f0, s, d = fit(S, [lv[N][c] for N in S])
-                    err, est = abs(f0 - ref) / abs(ref), T95[d] * s / abs(f0)
+                    err, est = abs(f0 - ref) / abs(ref), student_t95(d) * s / abs(f0)
                 else:
                     N = S
                     if N not in lv or N // 2 not in lv:

@@ -21,6 +21,9 @@
 !> and at least 2 (the errors of single windows scatter by a factor 2-3 about
 !> their median: a median nearer 1 leaves some unbounded).
 !>
+!> Prints each mask's reference ('reference NAME C11 f0 u'; lab/mask_accuracy_check.py
+!> --run reads them).
+!>
 !> usage: test_split_levels LEVELS_FILE
 program test_split_levels
   use, intrinsic :: iso_fortran_env, only: real64
@@ -93,6 +96,7 @@ contains
         call split_level_estimate(1 / real(pack(ks(1:n_rows), sel(1:n_rows)), real64), &
                                   pack(c(j, 1:n_rows), sel(1:n_rows)), ref(j, m), rel)
         u(j, m) = rel * abs(ref(j, m))
+        print '(a, 1x, a, 1x, a, es23.15, es12.4)', 'reference', trim(masks(m)), coefficient(j), ref(j, m), u(j, m)
       end do
     end do
   end subroutine references

@@ -17,6 +17,7 @@ if __name__ == "__main__" and any(a in ("-h", "--help") for a in _sys.argv[1:]):
     _sys.exit(0)
 import math
 import os
+import re
 import subprocess
 import tempfile
 
@@ -32,10 +33,25 @@ COEFFS = ("c11", "c22", "c23", "c33", "c32")
 POWERS = {"c11": 2, "c22": 2, "c23": 3, "c33": 4, "c32": 3}
 
 
+def _t95_of_the_library():
+    """Student's table and its tail as kcreep_refine_estimate.student_t95 has
+    them, read from that source: the one place they are written."""
+    path = os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "src", "refine",
+                        "kcreep_refine_estimate.f90")
+    text = open(path).read()
+    body = text[text.index("function student_t95"):text.index("end function student_t95")]
+    table = tuple(float(x) for x in re.findall(r"([\d.]+)_real64", body[body.index("table(") :body.index("]")]))
+    tail = re.search(r"t = ([\d.]+)_real64 \+ ([\d.]+)_real64 / dof", body)
+    return table, float(tail.group(1)), float(tail.group(2))
+
+
 def student_t95(dof):
-    """Two-sided 95 % Student factor, as kcreep_refine_estimate.student_t95 (dof >= 1)."""
-    table = (12.706, 4.303, 3.182, 2.776, 2.571, 2.447, 2.365, 2.306, 2.262, 2.228)
-    return table[dof - 1] if dof <= len(table) else 1.96 + 2.5 / dof
+    """Two-sided 95 % Student factor of kcreep_refine_estimate.student_t95 (dof >= 1)."""
+    table, base, slope = _T95
+    return table[dof - 1] if dof <= len(table) else base + slope / dof
+
+
+_T95 = _t95_of_the_library()
 
 
 def square_grid(ratio, cells, grid="near-square"):

@@ -64,7 +64,7 @@ FINE_LEVELS = ",".join(os.path.join(ROOT, "docs", "data", name)
                        for name in ("fine_reference_levels.dat", "fine_reference_levels_long.dat"))
 #: the fewest fine levels a fine row is fitted through
 FINE_MIN_LEVELS = 6
-T95 = {1: 12.706, 2: 4.303, 3: 3.182, 4: 2.776, 5: 2.571, 6: 2.447, 7: 2.365, 8: 2.306}
+
 LEVEL_COLUMNS = ["a_over_b", "nu", "N", "mx", "my", "n", "c11", "c22", "c23", "c33", "c32", "iterations", "seconds"]
 
 
@@ -154,7 +154,7 @@ def refined_value(levels, coeff):
     ones = [1.0] * len(Ns)
     f1, se1, dof1 = lstsq_columns([ones, hs, h4], fs)
     f2, _, _ = lstsq_columns([ones, hs, [h * h for h in hs], h4], fs)
-    u = max(T95.get(dof1, 2.0) * se1, abs(f1 - f2)) + ORDER_MARGIN * abs(f1 - fs[-1])
+    u = max(K.student_t95(dof1) * se1, abs(f1 - f2)) + ORDER_MARGIN * abs(f1 - fs[-1])
     return f1, u
 
 
