@@ -11,7 +11,7 @@ method = 'table'.
 
 Checks: every run `ok`; every error within its estimate allowing u (24 of
 24 measured); the median estimate / error within [3, 10]: measured 6.8 here
-(7.3 over nu = 0, 0.25 and 0.5, docs/accuracy.md, "Ellipses"); half the
+(7.1 over nu = 0, 0.25 and 0.5, docs/accuracy.md, "Ellipses"); half the
 estimate leaves a/b = 2's C11 unbounded (error 0.0097 % against an estimate
 of 0.016 %) and the median at 3.4, twice the estimate puts it at 13.6.
 About 15 s on one core.
