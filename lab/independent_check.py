@@ -27,10 +27,10 @@ fit's 95 % interval (Student's t) and the change of f0 when an h^2 term is
 added (as the refined table's u). The reference levels are kept in
 lab/data/independent_reference_levels.dat (--cache) and reused (delete it
 to recompute: about 25 minutes on one core). The accurate mode's check uses
-grids of 256 to 2048 cells across, kept in docs/data/fine_reference_levels.dat
+grids of 256 to 2048 cells across, kept in tools/maintenance/data/fine_reference_levels.dat
 (about 90 minutes on one core):
 
-    independent_check.py --cache docs/data/fine_reference_levels.dat --target 1e-4 \
+    independent_check.py --cache tools/maintenance/data/fine_reference_levels.dat --target 1e-4 \
         --cases 1:0.25,1:0.5,2:0.25,0.5:0.25,4:0.25,0.25:0.25 \
         --levels 256,296,340,384,448,512,576,640,768,896,1024 --max-cells 1.1e6
 Printed

@@ -6,9 +6,9 @@ against references from grids of up to 1024-2048 cells across
     /usr/bin/python3 lab/level_noise_study.py [--no-figure | --figure FILE]
 
 Data (all stored normalised by the staircase area, as kcreep_levels.ellipse_level
-gives them): docs/data/kalker_refined_levels.dat (56 to 196-256 cells across),
+gives them): tools/maintenance/data/kalker_refined_levels.dat (56 to 196-256 cells across),
 lab/data/independent_reference_levels.dat (136 to 384) and
-docs/data/fine_reference_levels.dat (256 to 1024, the unit circle to 2048;
+tools/maintenance/data/fine_reference_levels.dat (256 to 1024, the unit circle to 2048;
 lab/independent_check.py --cache ... computes it). Every level is referred
 to the ellipse by the staircase's second moments (kcreep_levels.refer_to_ellipse).
 
@@ -38,9 +38,12 @@ from level_fit import fit_levels  # noqa: E402
 ROOT = os.path.join(os.path.dirname(os.path.abspath(__file__)), "..")
 DATA = os.path.join(ROOT, "docs", "data")
 def data_file(name):
-    """The study's own data in lab/data, the shipped references in docs/data."""
+    """The study's own data in lab/data, the refined table's levels in tools/maintenance/data."""
     own = os.path.join(os.path.dirname(os.path.abspath(__file__)), "data", name)
-    return own if os.path.exists(own) else os.path.join(DATA, name)
+    if os.path.exists(own):
+        return own
+    tool = os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "tools", "maintenance", "data", name)
+    return tool if os.path.exists(tool) else os.path.join(DATA, name)
 FILES = [data_file(f) for f in ("kalker_refined_levels.dat", "independent_reference_levels.dat",
                                          "fine_reference_levels.dat")]
 FIGURE = os.path.join(ROOT, "build", "figures", "level_noise.png")  # --figure lab/figures/level_noise.png for the docs

@@ -39,9 +39,12 @@ from independent_check import append_cache, reference  # noqa: E402
 
 DATA = os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "docs", "data")
 def data_file(name):
-    """The study's own data in lab/data, the shipped references in docs/data."""
+    """The study's own data in lab/data, the refined table's levels in tools/maintenance/data."""
     own = os.path.join(os.path.dirname(os.path.abspath(__file__)), "data", name)
-    return own if os.path.exists(own) else os.path.join(DATA, name)
+    if os.path.exists(own):
+        return own
+    tool = os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "tools", "maintenance", "data", name)
+    return tool if os.path.exists(tool) else os.path.join(DATA, name)
 LADDER_CACHE = os.path.join(os.path.dirname(os.path.abspath(__file__)), "data", "long_ellipse_ladder_levels.dat")
 COEFFS = ("c11", "c22", "c23")
 #: kcreep's largest grid, mx x my (kcreep_limits max_grid_cells)

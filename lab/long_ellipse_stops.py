@@ -38,9 +38,12 @@ from independent_check import append_cache, reference  # noqa: E402
 ROOT = os.path.join(os.path.dirname(os.path.abspath(__file__)), "..")
 DATA = os.path.join(ROOT, "docs", "data")
 def data_file(name):
-    """The study's own data in lab/data, the shipped references in docs/data."""
+    """The study's own data in lab/data, the refined table's levels in tools/maintenance/data."""
     own = os.path.join(os.path.dirname(os.path.abspath(__file__)), "data", name)
-    return own if os.path.exists(own) else os.path.join(DATA, name)
+    if os.path.exists(own):
+        return own
+    tool = os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "tools", "maintenance", "data", name)
+    return tool if os.path.exists(tool) else os.path.join(DATA, name)
 #: kcreep_error_run ellipse_fill: the share of the bounding grid kcreep counts as patch cells
 ELLIPSE_FILL = 0.79
 COEFFS = (("c11", "err11"), ("c22", "err22"), ("c23", "err23"))

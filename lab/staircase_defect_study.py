@@ -7,7 +7,7 @@ the figure lab/figures/staircase_defects.png; --figure lab/figures/staircase_def
 
 Each level (N cells across the shorter axis, near-square cells; data in
 lab/data/staircase_defect_levels.dat, a/b = 5 from 296 also from
-docs/data/fine_reference_levels_long.dat) is referred to the ellipse by its
+tools/maintenance/data/fine_reference_levels_long.dat) is referred to the ellipse by its
 staircase's second moments (kcreep_levels.refer_to_ellipse), as kcreep's
 levels are. Its staircase is then described by the defects of its ends:
     row j:    d_j = (cells in row j) dx / (2a) - s_j,     s_j = sqrt(1 - Y_j^2)
@@ -46,7 +46,7 @@ from level_fit import fit_levels, kcreep_estimate  # noqa: E402
 
 ROOT = os.path.join(os.path.dirname(os.path.abspath(__file__)), "..")
 DATA = os.path.join(ROOT, "lab", "data", "staircase_defect_levels.dat")
-LONG = os.path.join(ROOT, "docs", "data", "fine_reference_levels_long.dat")
+LONG = os.path.join(ROOT, "tools", "maintenance", "data", "fine_reference_levels_long.dat")
 FIGURE = os.path.join(ROOT, "build", "figures", "staircase_defects.png")  # --figure lab/figures/staircase_defects.png for the docs
 NU = 0.25
 RATIOS = (0.5, 1.0, 2.0, 5.0, 10.0)

@@ -6,7 +6,7 @@ lab/figures/staircase_normalisation.png; --figure lab/figures/staircase_normalis
     /usr/bin/python3 lab/staircase_normalisation_study.py [--from 32] [--to 148] [--kalker] [--levels-file F]
                                                               [--no-figure | --figure FILE]
 
-Data: docs/data/kalker_refined_levels.dat (the refined table's levels, stored
+Data: tools/maintenance/data/kalker_refined_levels.dat (the refined table's levels, stored
 normalised by the staircase area; Kalker's 57 points have levels 32 to 196
 cells across, --kalker keeps only those). For every ellipse in it, the
 levels from --from to --to cells across are fitted
@@ -36,7 +36,7 @@ sys.path[:0] = [os.path.join(os.path.dirname(os.path.abspath(__file__)), d) for 
 import kcreep_levels as K  # noqa: E402
 
 ROOT = os.path.join(os.path.dirname(os.path.abspath(__file__)), "..")
-LEVELS = os.path.join(ROOT, "docs", "data", "kalker_refined_levels.dat")
+LEVELS = os.path.join(ROOT, "tools", "maintenance", "data", "kalker_refined_levels.dat")
 FIGURE = os.path.join(ROOT, "build", "figures", "staircase_normalisation.png")  # --figure lab/figures/staircase_normalisation.png for the docs
 SHOWN = [(1.0, 0.25), (0.7, 0.25), (2.5, 0.5)]
 NAMES = ("c11", "c22", "c23")
@@ -109,7 +109,7 @@ def main():
             ax.grid(alpha=0.3)
             if i == 0 and j == 0:
                 ax.legend(fontsize=8)
-    fig.suptitle("Ellipse levels normalised three ways (docs/data/kalker_refined_levels.dat)")
+    fig.suptitle("Ellipse levels normalised three ways (tools/maintenance/data/kalker_refined_levels.dat)")
     fig.tight_layout()
     path = args.figure
     os.makedirs(os.path.dirname(os.path.abspath(path)), exist_ok=True)

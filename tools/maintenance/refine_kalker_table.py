@@ -12,7 +12,7 @@ backward scheme on the iterative path, coefficients normalised by the area
 of the cells inside the ellipse (as stored; each level is then referred to
 the ellipse by the staircase's second moments, kcreep_levels.refer_to_ellipse,
 as kcreep's own ellipse levels are). Each level's numbers are appended to
-docs/data/kalker_refined_levels.dat as soon as they exist, so the script
+tools/maintenance/data/kalker_refined_levels.dat as soon as they exist, so the script
 resumes where it stopped (run it in chunks). The table
 docs/data/kalker_refined.dat is then rebuilt from all levels present:
 
@@ -57,10 +57,10 @@ sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 import kcreep_levels as K  # noqa: E402
 
 ROOT = os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..")
-LEVELS_FILE = os.path.join(ROOT, "docs", "data", "kalker_refined_levels.dat")
+LEVELS_FILE = os.path.join(ROOT, "tools", "maintenance", "data", "kalker_refined_levels.dat")
 TABLE_FILE = os.path.join(ROOT, "docs", "data", "kalker_refined.dat")
 KALKER_FILE = os.path.join(ROOT, "data", "kalker-table-E3.dat")
-FINE_LEVELS = ",".join(os.path.join(ROOT, "docs", "data", name)
+FINE_LEVELS = ",".join(os.path.join(ROOT, "tools", "maintenance", "data", name)
                        for name in ("fine_reference_levels.dat", "fine_reference_levels_long.dat"))
 #: the fewest fine levels a fine row is fitted through
 FINE_MIN_LEVELS = 6
