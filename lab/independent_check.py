@@ -44,7 +44,7 @@ import sys
 
 sys.path[:0] = [os.path.join(os.path.dirname(os.path.abspath(__file__)), d) for d in (".", "../tools/maintenance", "../scripts/convergence", "../tests/calibration")]
 import kcreep_levels as K  # noqa: E402
-from refine_kalker_table import T95, lstsq_columns  # noqa: E402
+from refine_kalker_table import lstsq_columns  # noqa: E402
 
 ROOT = os.path.join(os.path.dirname(os.path.abspath(__file__)), "..")
 CACHE = os.path.join(ROOT, "lab", "data", "independent_reference_levels.dat")
@@ -76,7 +76,7 @@ def reference(levels, ratio, nu):
         values = [x[c] for x in referred]
         f0, se, dof = lstsq_columns(columns, values)
         f0_quadratic = lstsq_columns(quadratic, values)[0]
-        out[c] = (f0, max(T95.get(dof, 2.0) * se, abs(f0_quadratic - f0)))
+        out[c] = (f0, max(K.student_t95(dof) * se, abs(f0_quadratic - f0)))
     return out
 
 
