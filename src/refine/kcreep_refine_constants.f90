@@ -26,6 +26,9 @@ module kcreep_refine_constants
   integer, parameter :: min_estimate_cells = 12
   !> A sampled shape's levels: the fewest in a fit (shape_level_estimate, 2
   !> coefficients), and the finest this many in one fit (Student's factor 2.45).
+  !> (calibration) With base_levels, next_level_growth and order_margin:
+  !> ctest -R calibration_ellipse_levels (solved ellipses a/b 0.1 to 10
+  !> against the refined table).
   integer, parameter :: ellipse_fit_min = 5, ellipse_fit_width = 8
   !> Cells long in y (ellipse_level_grid) are at most this many times as long
   !> as wide: the estimate was checked on a/b = 0.1 to 0.5 with cells up to
@@ -59,6 +62,7 @@ module kcreep_refine_constants
   !> blended levels the error of 24 solved ellipses (a/b 0.1 to 10, nu 0
   !> to 0.5) against the refined table was at most 0.105 times their
   !> extrapolation, median 0.019 (docs/accuracy.md, "Ellipses").
+  !> (calibration) calibration_ellipse_levels fails with it at 0.
   real(real64), parameter :: order_margin = 0.1_real64
   !> Patch cells of the finest level kcreep may choose at target_error = 1e-3
   !> (level_cell_budget). A run-time budget: a solved ellipse long in x
@@ -113,6 +117,8 @@ module kcreep_refine_constants
   !> levels amplifies the levels' solver error: the superellipse at 1e-3
   !> (levels to GMRES 1e-5) estimated C23 at 0.0054 % with an error of
   !> 0.0085 %; at 1e-6 and below its estimate is 0.028 %, as with 1e-8.
+  !> (calibration) The shipped masks at 1e-3 within their estimates, with
+  !> max_split: ctest -R calibration_mask_examples.
   real(real64), parameter :: split_tolerance_share = 1e-3_real64
   real(real64), parameter :: split_order_range(2) = [1.25_real64, 1.75_real64]
   !> The error of a grid given as is, from one more grid: an ellipse's grid
@@ -168,7 +174,8 @@ module kcreep_refine_constants
   !> 2 the normal grid's estimate was 0.0055 / 0.0071 / 0.019 % at 256
   !> across and 0.0020 / 0.0026 / 0.0076 % at 512 (C11, C22, C23; targets
   !> 0.01 / 0.01 / 0.03 %), the run `ok` at 512 in 19 s (docs/accuracy.md,
-  !> "Gaps").
+  !> "Gaps"). (calibration) ctest -R accurate_gap, with
+  !> tight_target_budget_growth.
   real(real64), parameter :: gap_normal_cells_below_default = 512
   !> The fine normal grid has at most this share of the level cell budget
   !> (200,000 cells at the default target; coarser cells on a long thin
