@@ -5,7 +5,8 @@ in src/, io reaches the solver's types through the facade only); and the library
 nothing of the operating system (the command line in app/ does that).
 The laboratory is walled off: no code outside lab/ (a build step, test,
 script, tool or source; comments and docstrings may point into it) names a
-path in lab/, and lab/README.md indexes every file in lab/.
+path in lab/, lab/README.md indexes every file in lab/, and scripts/ keeps
+to at most 45 files.
 
 usage: test_layout.py SOURCE_DIR
 """
@@ -128,6 +129,12 @@ for top in ("src", "app", "tests", "scripts", "tools", "python", "cmake", "inclu
         if any(LAB_PATH.search(piece.strip()) for piece in pieces):
             readers.append(rel)
 kc.check(not readers, f"nothing outside lab/ names a path in it (in code, not comments): {readers}")
+
+# scripts/ holds the user's tools, not studies: a cap on its size (42 files at
+# the move of the studies to lab/, 77 before) makes a new study go to lab/
+scripts = [os.path.join(d, n) for d, _, ns in os.walk(os.path.join(root, "scripts")) for n in ns
+           if "__pycache__" not in d]
+kc.check(len(scripts) <= 45, f"scripts/ holds {len(scripts)} files (at most 45; studies go to lab/)")
 
 # lab/README.md names every file in lab/ (its index: status and what it backs)
 lab = os.path.join(root, "lab")
