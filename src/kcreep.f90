@@ -217,7 +217,7 @@ contains
     type(patch_t) :: bound
     integer :: level
     integer(int64) :: need
-    !> the normal solve's ~21 doubles per grid cell (measured: 166 MiB at 1000 x 1000, scripts/bench_normal.sh)
+    !> the normal solve's ~21 doubles per grid cell (measured: 166 MiB at 1000 x 1000, scripts/bench/bench_normal.sh)
     integer(int64), parameter :: normal_cell_bytes = 168
 
     bytes = 0

@@ -54,7 +54,7 @@ def copy_repository(repo, copy):
     if not files:
         anywhere = shutil.ignore_patterns(".git", "build*", "__pycache__", "*.tab.partial")
 
-        def ignore(folder, names):  # studies/ only at the top (scripts/studies/ is source)
+        def ignore(folder, names):  # studies/ only at the top (lab/ is source)
             top = os.path.abspath(folder) == os.path.abspath(repo)
             return set(anywhere(folder, names)) | ({"studies"} & set(names) if top else set())
         shutil.copytree(repo, copy, symlinks=True, ignore=ignore)

@@ -1,4 +1,4 @@
-!> The machine's practical limits for the benchmark (scripts/bench.sh):
+!> The machine's practical limits for the benchmark (scripts/bench/bench.sh):
 !>   kcreep_blas_bench dgemm N        GFLOP/s of an N x N x N dgemm (median of 3)
 !>   kcreep_blas_bench dgetrf N...    seconds and GFLOP/s of dgetrf on random N x N matrices (median of 3)
 !> One line per measurement: "<routine> <n> <seconds> <gflops>".

@@ -11,7 +11,7 @@
 !> from the table instead of solving; and the same on a regular grid of 401
 !> a/b (log-spaced) x 101 nu over the whole range, with the largest stated
 !> uncertainties, and at how many of those the accurate mode's target (1e-4,
-!> C23 3e-4) is met (the table's fine rows, docs/accuracy.md 5.2). Run it
+!> C23 3e-4) is met (the table's fine rows, docs/accuracy.md, "The refined table of ellipses"). Run it
 !> under flock /tmp/kcreep-bench.lock.
 !>   kcreep_table_bench [CALLS [M]]
 program table_bench
@@ -98,7 +98,7 @@ contains
         call table_coefficients(ratio, 0.5_real64 * j / (n_nu - 1), c4, r4, sweep_status)
         worst = max(worst, r4)
         if (r4(1) <= 1e-3_real64 .and. r4(2) <= 1e-3_real64 .and. r4(3) <= 3e-3_real64) within = within + 1
-        ! a/b >= 3.33 is where every column of the table's rows is a fine row (docs/accuracy.md 5.2)
+        ! a/b >= 3.33 is where every column of the table's rows is a fine row (docs/accuracy.md, "The refined table of ellipses")
         if (ratio >= 10.0_real64 / 3) long_points = long_points + 1
         if (r4(1) <= 1e-4_real64 .and. r4(2) <= 1e-4_real64 .and. r4(3) <= 3e-4_real64) then
           within_accurate = within_accurate + 1

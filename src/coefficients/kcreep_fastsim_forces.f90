@@ -43,7 +43,7 @@
 !>    |p| = g (one root, Newton on the secular equation 1/g - 1/|p(lambda)|).
 !>    Small creepage: f11, f22, f23 exact as with the separate rule; pure
 !>    creepage: Kalker's FASTSIM; full slip: F along the rigid slip w, as in
-!>    the exact solution (docs/fastsim.md section 7: the study against the
+!>    the exact solution (docs/fastsim.md, "Against the exact solver": the study against the
 !>    exact rolling solver).
 !>
 !> Forces: Fx = sum px dA, Fy = sum py dA, Mz = sum (x py - y px) dA,

@@ -97,7 +97,7 @@ contains
   !> held there: the slopes still grow at a/b = 10 (C11 0.62, 0.64, 0.66,
   !> 0.68, 0.69 between solved ellipses a/b = 8, 10, 12, 14, 17, 20 at nu =
   !> 0.28), the continued slope is within 2.4 % of those differences where the
-  !> one held at a/b = 10 was 4-9 % low (docs/accuracy.md section 3). The
+  !> one held at a/b = 10 was 4-9 % low (docs/accuracy.md, "Ellipses"). The
   !> slope turns a change of a contact area's aspect ratio into one of its
   !> C's (the normal grid's estimate, kcreep_gap_levels) and scales a given
   !> ellipse grid's correction for its staircase's aspect ratio.

@@ -1,5 +1,5 @@
 !> Creep coefficients of an ellipse by interpolation in kcreep's refined
-!> table (kcreep_refined_table_data, docs/accuracy.md sections 5 and 5.1), with
+!> table (kcreep_refined_table_data, docs/accuracy.md, "The refined table of ellipses"), with
 !> a stated relative uncertainty: the table's own (interpolated) plus an
 !> estimate of the interpolation error.
 !>
@@ -11,7 +11,7 @@
 !> Each interpolation error is estimated as the larger difference to the two
 !> quadratics through three of the four nodes (an interpolant of one order
 !> less; in an end interval only the one that interpolates there). Measured
-!> (docs/accuracy.md section 5.1): leaving out each interior row and
+!> (docs/accuracy.md, "The refined table of ellipses"): leaving out each interior row and
 !> interpolating it from the others, and against direct solves between the
 !> columns, these estimates bound the actual error in at least 19 of 20 cases.
 !>

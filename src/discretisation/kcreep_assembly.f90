@@ -32,7 +32,7 @@ module kcreep_assembly
             rigid_creepage, load_case_names, n_load_cases, slip_weight, blended_row
 
   !> The blended edge's weight of a partly outside cell's own traction.
-  !> Measured on the circle in a dense model (scripts/studies/boundary_blend_study.py,
+  !> Measured on the circle in a dense model (lab/boundary_blend_study.py,
   !> levels 24 to 64 cells across): kappa = 2 leaves the levels' C11 with
   !> no first-order term and a scatter of 0.0035 % about their line; kappa
   !> = 1 and 4 scatter 10 times more (docs/wheel_rail.md, "The blended edge").

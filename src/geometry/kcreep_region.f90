@@ -13,7 +13,7 @@
 !> cell edges. The outermost contact cells (a neighbour outside) carry about
 !> the mean pressure over the cell, which the edge cuts, not the value at
 !> the centre (Hertz at 50 cells across: 0.90 of the centre value,
-!> scripts/studies/edge_pressure.py), and
+!> lab/edge_pressure.py), and
 !> their p^2 alone puts the edge inside by 0.02-0.08 cells; the parabola
 !> through the three cells behind them uses centre values 0.4-1 % high near
 !> the edge and puts it outside by as much. Their level is the mean of the
@@ -56,7 +56,7 @@ module kcreep_region
   !> area 0.17 %; extrapolation alone (0) 0.19 % (0.50 %), area 0.20 %, on
   !> the other side; the mean (0.5) 0.024 % (0.12 %), area 0.014 % (the
   !> grids set by a temporary override of the cell count; reproducible at
-  !> the default 128 cells: scripts/studies/gap_error_calibration.py prints
+  !> the default 128 cells: lab/gap_error_calibration.py prints
   !> the default runs' area against pi a b, 0.016 % median, and
   !> tests/unit/test_region.f90 checks one solved grid).
   real(real64), parameter :: edge_blend = 0.5_real64

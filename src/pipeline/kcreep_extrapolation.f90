@@ -180,7 +180,7 @@ contains
         if (level_patch%kind == 'ellipse') then
           ! normalise by the staircase's own area: the cells inside the ellipse
           ! cover an area that changes irregularly with the mesh, and that noise
-          ! would otherwise spoil the fit (docs/convergence.md, section 2)
+          ! would otherwise spoil the fit (docs/convergence.md, "Convergence in the mesh size")
           area_ratio = pi * level_patch%semi_a * level_patch%semi_b / level_patch%area()
           values(level, :) = values(level, :) * [area_ratio, area_ratio, area_ratio**1.5_real64]
         end if

@@ -45,8 +45,8 @@ contains
   !> C11, C22, C23 the levels cannot reduce (a contact area's normal grid),
   !> combined with the ladder's own in quadrature (two independent 95 %
   !> bounds; their plain sum bounded the 15 Hertzian gaps at a median
-  !> estimate / error of 4.2 on staircase levels, the quadrature on blended
-  !> levels at 3.2, 45 of 45 bounded; docs/accuracy.md section 5).
+  !> estimate / error of 4.2 on staircase levels; the quadrature on blended
+  !> levels bounds 45 of 45, docs/accuracy.md, "Gaps").
   subroutine run_shape_levels(problem, result, status, region, other_error)
     type(problem_t), intent(in) :: problem
     type(result_t), intent(out) :: result
@@ -146,7 +146,7 @@ contains
                                     'the coefficients are the finest level''s')
     ! collocation's levels of a sampled shape tend to a limit 0.07-0.15 % off
     ! the continuum, beyond their estimates (solved ellipses a/b = 0.5 to 5
-    ! against the refined table, docs/accuracy.md section 3): no `ok`
+    ! against the refined table, docs/accuracy.md, "Ellipses"): no `ok`
     if (.not. split .and. problem%scheme%name == 'collocation') &
       call mark_uncertain(result, 'uncertain: the estimate of levels is calibrated for the backward scheme; '// &
                           'with collocation the limit is up to 0.15 % off (scheme = ''backward'' for error control)')

@@ -1,8 +1,8 @@
 !> Every constant of kcreep's refinement engine (error control), with the
 !> measurement behind it: targets, budgets, level ladders, fit widths and
-!> the estimator's margins. docs/accuracy.md gives the evidence in full;
-!> `ctest -L calibration` re-measures the ones marked (calibration) against
-!> the reference levels kept in docs/data/ (tests/calibration/).
+!> the estimator's margins. docs/accuracy.md gives the evidence;
+!> `ctest -L calibration` (tests/calibration/) re-measures the ones marked
+!> (calibration) through the library's own estimator.
 module kcreep_refine_constants
   use, intrinsic :: iso_fortran_env, only: real64
   implicit none
@@ -26,15 +26,18 @@ module kcreep_refine_constants
   integer, parameter :: min_estimate_cells = 12
   !> A sampled shape's levels: the fewest in a fit (shape_level_estimate, 2
   !> coefficients), and the finest this many in one fit (Student's factor 2.45).
+  !> (calibration) With base_levels, next_level_growth and order_margin:
+  !> ctest -R calibration_ellipse_levels (solved ellipses a/b 0.1 to 10
+  !> against the refined table).
   integer, parameter :: ellipse_fit_min = 5, ellipse_fit_width = 8
   !> Cells long in y (ellipse_level_grid) are at most this many times as long
   !> as wide: the estimate was checked on a/b = 0.1 to 0.5 with cells up to
-  !> 10 times as long (27 of 27 bounded, docs/accuracy.md section 6.4); at
+  !> 10 times as long (27 of 27 bounded, the staircase levels before the blended edge); at
   !> a/b = 0.02 on cells 50 times as long it missed C23 (0.025 % against an
   !> estimate of 0.017 %). A contact area's levels (kcreep_level_ladder)
   !> have cells as much longer along its longer axis as the area is long,
   !> up to this: on Hertzian gaps a/b = 5, 10 and 20 every error of ten
-  !> perturbed runs each was bounded (docs/accuracy.md section 5). Held to
+  !> perturbed runs each was bounded (docs/accuracy.md, "Gaps"). Held to
   !> 5 instead, the S1002 table took 16.5 s instead of 18.2 s (medians of
   !> three, one core), but at a/b = 10 the C11 estimate missed its error in
   !> 2 to 3 of 10 runs (0.063 % against 0.047 %).
@@ -48,7 +51,7 @@ module kcreep_refine_constants
   !> with a limit of 10 (13.4 s on square cells), every row `ok` and within
   !> its estimates of the 1e-4 references (docs/wheel_rail.md, "Speed"). The
   !> Hertzian gaps a/b = 5, 7, 10 and 20 stayed bounded in 10 of 10
-  !> perturbed runs each (docs/accuracy.md section 5). Longer cells on
+  !> perturbed runs each (docs/accuracy.md, "Gaps"). Longer cells on
   !> shorter areas were not honest: cells sqrt(a/b) times as long missed
   !> C11 of the gap a/b = 0.63 at nu = 0.25 and 0.5 in the calibration
   !> (0.021 % against 0.016 %); sqrt(a/b / 4) times as long (1.12 at a/b =
@@ -58,20 +61,21 @@ module kcreep_refine_constants
   !> counted as the uncertainty of its order (shape_level_estimate). On
   !> blended levels the error of 24 solved ellipses (a/b 0.1 to 10, nu 0
   !> to 0.5) against the refined table was at most 0.105 times their
-  !> extrapolation, median 0.019 (docs/accuracy.md section 3).
+  !> extrapolation, median 0.019 (docs/accuracy.md, "Ellipses").
+  !> (calibration) calibration_ellipse_levels fails with it at 0.
   real(real64), parameter :: order_margin = 0.1_real64
   !> Patch cells of the finest level kcreep may choose at target_error = 1e-3
   !> (level_cell_budget). A run-time budget: a solved ellipse long in x
   !> needs it, its levels being near-square cells over the whole ellipse
   !> (a/b = 10 at 40,000 cells stopped `uncertain` at 71 cells across, estimates
   !> 0.08 / 0.13 / 0.23 %; at 160,000 it ends `ok` at 96 across in 2.6 s on one
-  !> core; a/b = 5 `ok` in 0.7 s, docs/accuracy.md section 3); ellipses, masks
+  !> core; a/b = 5 `ok` in 0.7 s, docs/accuracy.md, "Ellipses"); ellipses, masks
   !> and gaps that meet the target on coarser levels stop there. Looser targets
   !> scale it by (1e-3 / target)**(1/4); tighter ones by 10 for each factor
   !> 10 (1.6 million cells at 1e-4): the Hertzian gaps a/b = 2, 5 and 0.5
   !> meet 1e-4 on levels of 550,000, 450,000 and 1.28 million grid cells
   !> (19-49 s on one core; at 320,000 all three stopped `uncertain`,
-  !> docs/accuracy.md section 5).
+  !> docs/accuracy.md, "Gaps").
   real(real64), parameter :: cells_at_default_target = 160000
   real(real64), parameter :: tight_target_budget_growth = 10
   !> The range of a cell budget the caller gives (&solver cell_budget): below
@@ -91,7 +95,8 @@ module kcreep_refine_constants
   !> (docs/data/mask_split_levels.dat, every window of splits coarser than
   !> the reference's): 4 levels bound 111 of 111 coefficient cases (median
   !> estimate / error 3.8), 5 levels 88 of 90 (90 allowing the reference's
-  !> u; median 3.1). scripts/studies/mask_accuracy_check.py --calibrate.
+  !> u; median 3.1): ctest -R calibration_split_levels
+  !> (tests/calibration/test_split_levels.f90).
   integer, parameter :: split_min_levels = 4, split_fit_width = 5
   !> The finest split the ladder tries, whatever the budget: the shipped
   !> masks meet 1e-3 by k = 5 and 1e-4 within the budget's k; a mask that
@@ -112,6 +117,8 @@ module kcreep_refine_constants
   !> levels amplifies the levels' solver error: the superellipse at 1e-3
   !> (levels to GMRES 1e-5) estimated C23 at 0.0054 % with an error of
   !> 0.0085 %; at 1e-6 and below its estimate is 0.028 %, as with 1e-8.
+  !> (calibration) The shipped masks at 1e-3 within their estimates, with
+  !> max_split: ctest -R calibration_mask_examples.
   real(real64), parameter :: split_tolerance_share = 1e-3_real64
   real(real64), parameter :: split_order_range(2) = [1.25_real64, 1.75_real64]
   !> The error of a grid given as is, from one more grid: an ellipse's grid
@@ -129,8 +136,8 @@ module kcreep_refine_constants
   !> (1e-4, was 1e-5): the S1002 table took 17 % less time (10 instead of 13
   !> GMRES steps per level), its C's moved by at most 7e-5 (0.29 of their
   !> estimates), the +7 mm flange's levels by at most 6e-6 against residual
-  !> 1e-9; the 15 Hertzian gaps stayed bounded, 45 of 45 (docs/accuracy.md
-  !> section 5).
+  !> 1e-9; the 15 Hertzian gaps stayed bounded, 45 of 45 (docs/accuracy.md,
+  !> "Gaps").
   real(real64), parameter :: level_tolerance_share = 1e-1_real64, max_level_tolerance = 1e-4_real64
 
   ! ---- ellipses, solved (continued) ----
@@ -164,14 +171,15 @@ module kcreep_refine_constants
   !> blended levels (the S1002 table, one core, medians of three): 112
   !> across 18.2 s, 128 across 20.0 s, every row `ok` (at 96 across, in a
   !> run with cells at most 5 times as long, one row stayed `uncertain`);
-  !> the 15 Hertzian gaps at 112 bounded 45 of 45 at a median estimate /
-  !> error of 3.2 (3.1 at 128), every run `ok` (docs/accuracy.md section 5).
+  !> the 15 Hertzian gaps bounded 45 of 45 at 112 as at 128, their median
+  !> estimate / error the same to 0.1, every run `ok`.
   real(real64), parameter :: gap_normal_cells_at_default = 112
   !> The same below the default target. At 1e-4 on the Hertzian gap a/b =
   !> 2 the normal grid's estimate was 0.0055 / 0.0071 / 0.019 % at 256
   !> across and 0.0020 / 0.0026 / 0.0076 % at 512 (C11, C22, C23; targets
-  !> 0.01 / 0.01 / 0.03 %), the run `ok` at 512 in 19 s (docs/accuracy.md
-  !> section 5).
+  !> 0.01 / 0.01 / 0.03 %), the run `ok` at 512 in 19 s (docs/accuracy.md,
+  !> "Gaps"). (calibration) ctest -R accurate_gap, with
+  !> tight_target_budget_growth.
   real(real64), parameter :: gap_normal_cells_below_default = 512
   !> The fine normal grid has at most this share of the level cell budget
   !> (200,000 cells at the default target; coarser cells on a long thin
@@ -195,9 +203,9 @@ module kcreep_refine_constants
   !> from the coarse grid to the fine one, the part a finer grid still
   !> removes: it falls faster than first order (orders 1.2 to 3.7 observed
   !> on grids of 4, 2 and 1 times the cell size over Hertzian gaps).
-  !> (calibration) 15 Hertzian gaps (scripts/studies/gap_error_calibration.py
-  !> --check, docs/accuracy.md section 5): 45 of 45 bounded, median estimate
-  !> / error 3.9 (the whole coarse change alone: 44 of 45, one only within
+  !> (calibration) 15 Hertzian gaps (ctest -R calibration_gap_levels;
+  !> docs/accuracy.md, "Gaps", quotes the median estimate / error): 45 of
+  !> 45 bounded (the whole coarse change alone: 44 of 45, one only within
   !> the reference's u: C11 at Rx/Ry = 5, nu = 0.5, error 0.027 % against
   !> 0.021 %, whose placement noise is 0.019 %). On the S1002 +5 and +6 mm
   !> tread patches the coarse grid (64 cells across) is far from the

@@ -1,7 +1,7 @@
 !> Error control in the mesh size: which grids to run for a target error, the
 !> extrapolation to zero cell size, the error estimate and the verdict.
 !>
-!> The model (measured, docs/accuracy.md sections 2 to 5): with the backward
+!> The model (measured, docs/accuracy.md, "The engine" and the sections after it): with the backward
 !> scheme, every coefficient of a ladder's levels behaves as
 !>     f(h) = f0 + K h [+ L g(h)] + noise(h),
 !> fitted as a regression through the finest levels; the estimate is t95 x
@@ -71,8 +71,8 @@ contains
   !> scheme. The discretisation error's first-order term follows the cell
   !> length in the rolling direction relative to a (the leading edge), not
   !> the cell width across it: the levels' slope K / f0 of C11 is 0.28-0.30
-  !> per 1/(cells across a) at a/b = 0.25, 0.5 and 1 alike (docs/accuracy.md
-  !> section 6.4). On an ellipse long in y, near-square cells spend b/a
+  !> per 1/(cells across a) at a/b = 0.25, 0.5 and 1 alike (measured on
+  !> the staircase levels before the blended edge). On an ellipse long in y, near-square cells spend b/a
   !> times the cells on the width; cells x cells over the bounding box give
   !> the same estimates with a/b times the cells (a/b = 0.5: ok at 452 x 452
   !> in 4 s, where near-square cells stopped uncertain at 520 x 1040 after
@@ -151,7 +151,7 @@ contains
   !> levels bend away from it (L h^2) and are not used.
   !> Estimate: t95 x the standard error of f0 (the scatter), plus
   !> order_margin x the extrapolation's own size |f0 - f(finest)| (the order
-  !> is 1 only to within a few per cent; docs/accuracy.md section 2).
+  !> is 1 only to within a few per cent; docs/accuracy.md, "The engine").
   pure subroutine shape_level_estimate(h, f, limit, rel_error)
     real(real64), intent(in) :: h(:), f(:)
     real(real64), intent(out) :: limit, rel_error
@@ -219,7 +219,7 @@ contains
   !> Levels of a split patch (a mask or CONTACT's grid, every cell split
   !> k x k: the same staircase on every level, no level-to-level noise). The
   !> staircase's re-entrant corners bend the convergence: f0 + K h + L h^p
-  !> with p between 4/3 and 3/2 (docs/accuracy.md section 3). Limit: the fit
+  !> with p between 4/3 and 3/2 (docs/accuracy.md, "Masks"). Limit: the fit
   !> with p = split_order; estimate: the largest change of f0 when p is one
   !> of split_order_range instead (the model's uncertainty) plus t95 x the
   !> standard error of f0 (what the model does not take out). At least 4

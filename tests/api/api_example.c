@@ -3,7 +3,7 @@
  * error paths (NULL handle, NULL arrays, bad values) exercised.
  *
  *   api_example [ellipse|mask|errors|bench N [ellipse|mask|moving [auto|dense|iterative [estimate|steps]]]]
- * prints "key value..." lines that tests/test_install.py compares with the
+ * prints "key value..." lines that tests/api/test_install.py compares with the
  * command line and Python; bench ... steps also prints each step's C11 C22
  * C23 and GMRES iterations (to compare the solver paths step by step). */
 #include <math.h>

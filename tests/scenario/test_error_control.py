@@ -95,7 +95,7 @@ kc.check(t[0]["verdict"] == "uncertain" and "uncertain: no error estimate of C11
 
 # --- 4. the solved run on an ellipse (kcreep chooses the levels) against the refined table
 # (method = 'iterative': the default 'auto' answers such an ellipse from the table itself).
-# Measured (scripts/studies/accuracy_table.sh --solver "method = 'iterative'"): a/b = 0.2, nu = 0.25
+# Measured (lab/accuracy_table.sh --solver "method = 'iterative'"): a/b = 0.2, nu = 0.25
 # ends ok with estimates of 0.03-0.09 % against errors below 0.02 % (reference u 0.02-0.05 %)
 ref_rows = [r for r in kc.read_table(os.path.join(repo, "docs", "data", "kalker_refined.dat"))
             if abs(r["a_over_b"] - 0.2) < 1e-9 and abs(r["nu"] - 0.25) < 1e-9]
@@ -118,7 +118,7 @@ if ref_rows:
     kc.check(r["n"] > 0, f"a/b = 0.2, target 1e-4: solved, not the table ({r['n']} cells)")
     # tighter than the default: N x N cells over the bounding box, long in y
     # (kcreep_refine_estimate.ellipse_cells_long_in_y); measured: ok at 452 x 452 in about 3.5 s,
-    # errors against independent references of 0.001-0.007 % (docs/accuracy.md section 6.4)
+    # errors against independent references of 0.001-0.007 % (docs/accuracy.md, "Ellipses")
     kc.check(r["mx"] == r["my"] and r["verdict"] == "ok",
              f"a/b = 0.2, target 1e-4: cells long in y, ok ({r['mx']} x {r['my']}, {r['verdict']})")
     for c, e, u in zip(COEFFS, ("err11", "err22", "err23"), ("u11", "u22", "u23")):

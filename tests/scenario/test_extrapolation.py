@@ -7,7 +7,7 @@ level normalised by its staircase area): collocation C11 -> 4.1278 +- 0.0076,
 C22 -> 3.6763 +- 0.021, C23 -> 1.4672 +- 0.016; backward C11 -> 4.1231 +-
 0.016, C22 -> 3.6741 +- 0.0086, C23 -> 1.4666 +- 0.0013. The limits differ
 by less than the sum of the estimates. Reference: the 20/40/80 limits of
-both schemes (scripts/studies/sweep_n.sh, docs/data/richardson_sweep_n.dat, @area
+both schemes (scripts/convergence/richardson.py on docs/data/sweep_n.dat, @area
 rows) agree on C11 = 4.0965, C22 = 3.661, C23 = 1.4665 to 0.07 %; the
 10/20/40 limits are 0.7 % (C11) off it while the 40 x 40 level is 3.5 %
 (collocation) and 1.8 % (backward, raw) off: the check asks for at least a

@@ -10,7 +10,7 @@ Measured (docs/fastsim.md), errors |F - F_CONTACT| / (mu Fn):
   - pure creepages: both rules identical (the weighted L of a pure creepage is its own L);
   - the kidney's pure curves: exact L within 4.9 %, the equivalent ellipses' L up to 9.6 %;
   - the aligned rule (the program's default since the study against the exact solver,
-    docs/fastsim.md section 7): pure cases as the separate rule; combined cases with the exact L
+    docs/fastsim.md, "Against the exact solver"): pure cases as the separate rule; combined cases with the exact L
     2.3 / 3.3 / 4.2 / 4.9 % (circle, ellipse, kidney, twin) against separate's 2.6 / 5.2 / 4.0 / 7.5 %:
     its largest over the four patches 4.9 % against 7.5 %.
 Limits below: the measured value plus a margin of ~1 % of mu Fn (a change of the scheme that

@@ -1,5 +1,5 @@
 """FASTSIM's flexibility rules against the exact rolling solver, on a small subset of the study
-scripts/studies/fastsim_vs_exact.py (docs/fastsim.md section 7): three of its 110 generated patches, made
+scripts/fastsim_vs_exact.py (docs/fastsim.md, "Against the exact solver"): three of its 110 generated patches, made
 by the same generator with the same seed (ellipse00: a/b = 0.2, Hertz; two_lobed0: make_shapes'
 two_lobed stretched, parabolic strip pressure; paraboloid0: a gap of curvature ratio 0.2 through
 the normal problem), at 12 of its 77 creepages (the same definition: level s of the linear theory,
@@ -31,7 +31,7 @@ import kctest as kc
 folder = kc.setup()
 root = os.path.abspath(sys.argv[2])
 sys.path.insert(0, os.path.join(root, 'python'))
-spec = importlib.util.spec_from_file_location('fastsim_vs_exact', os.path.join(root, 'scripts', 'studies', 'fastsim_vs_exact.py'))
+spec = importlib.util.spec_from_file_location('fastsim_vs_exact', os.path.join(root, 'scripts', 'fastsim_vs_exact.py'))
 study = importlib.util.module_from_spec(spec)
 spec.loader.exec_module(study)
 

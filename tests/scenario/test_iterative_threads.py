@@ -7,7 +7,7 @@ thread whole transforms with the same single-threaded plan, the kernel
 product and the running sums have no reductions, and GMRES's
 orthogonalisation sums over fixed blocks of rows in a fixed order; so the
 same operations run in the same order on any number of threads
-(tests/test_fft_operator.f90 checks the operator bit for bit). Not the
+(tests/unit/test_fft_operator.f90 checks the operator bit for bit). Not the
 strip preconditioner: its row factors go through the threaded BLAS, whose
 sums may depend on the threads."""
 import kctest as kc

@@ -1,6 +1,6 @@
 """docs/convergence.md cannot drift from the code or from its reference.
 
-1. docs/convergence.md is exactly what scripts/studies/make_report.py makes of its
+1. docs/convergence.md is exactly what tools/maintenance/make_report.py makes of its
    template and docs/data (so every number in it comes from the data).
 2. The cheap points of the data (unit circle, nu = 0.25, 10, 20 and 40
    cells per direction, both schemes) are recomputed with this kcreep and
@@ -27,13 +27,13 @@ import sys
 import kctest as kc
 
 repo = kc.REPO
-sys.path.insert(0, os.path.join(repo, "scripts", "studies"))
+sys.path[:0] = [os.path.join(repo, "tools", "maintenance"), os.path.join(repo, "scripts", "convergence")]
 from richardson import read_table  # noqa: E402
 import make_report  # noqa: E402
 
 folder = kc.setup()
 data = os.path.join(repo, "docs", "data")
-proc = subprocess.run([sys.executable, os.path.join(repo, "scripts", "studies", "make_report.py"), "--check"],
+proc = subprocess.run([sys.executable, os.path.join(repo, "tools", "maintenance", "make_report.py"), "--check"],
                       capture_output=True, text=True)
 kc.check(proc.returncode == 0, "docs/convergence.md matches its template and data: " + (proc.stdout + proc.stderr).strip())
 text, values = make_report.render()
@@ -129,8 +129,8 @@ if default:
     kc.check(int(row["mx"]) == int(w[1]), f"default run: finest grid {row['mx']} as quoted {w[1]}")
     for i, c in enumerate(("11", "22", "23")):
         kc.check(abs(row["c" + c] - float(w[4 + i])) <= 1e-6,
-                 f"default run c{c} {row['c' + c]:.6f} as quoted {w[4 + i]} (rerun scripts/studies/error_vs_time.sh --docs "
-                 "and scripts/studies/make_report.py when the default run changes)")
+                 f"default run c{c} {row['c' + c]:.6f} as quoted {w[4 + i]} (rerun scripts/convergence/error_vs_time.sh --docs "
+                 "and tools/maintenance/make_report.py when the default run changes)")
         kc.close(row["err" + c], float(w[14 + i]), 1e-3, f"default run estimate err{c} as quoted")
     kc.check(row["verdict"] == w[17], f"default run verdict {row['verdict']} as quoted {w[17]}")
 

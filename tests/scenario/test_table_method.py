@@ -76,7 +76,7 @@ for name, a, b, key in (("circle", 1.0, 1.0, (1.0, 0.25)), ("ab2", 2.0, 1.0, (2.
     kc.check(t[0]["verdict"] == "ok" and "warning" not in err, f"{name}: target_error 0.01 met: verdict ok")
 
 # --- 1b. the accurate mode (target_error = 1e-4, method 'auto'): answered from the table at a
-# point whose row meets it (the fine rows, docs/accuracy.md 5.2: the circle at nu = 0.25, and
+# point whose row meets it (the fine rows, docs/accuracy.md, "The refined table of ellipses": the circle at nu = 0.25, and
 # a/b = 10 at nu = 0.5, which the solve leaves uncertain within 10 s), solved at one whose row
 # does not (a/b = 0.2; a small cell budget keeps the solve short)
 for name, ratio, nu, budget, expect_fine in (("accurate_circle", 1.0, 0.25, "", True),

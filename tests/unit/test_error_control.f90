@@ -124,7 +124,7 @@ program test_error_control
   call t%check(slopes(1) > 0.35_real64 .and. slopes(1) < 0.41_real64, 'aspect_slopes: d ln C11 / d ln(a/b) at a/b = 2')
   ! beyond the table (a/b = 10): continued without a jump, growing, within 2 %
   ! of the solved ellipses' differences (C11 0.682 at a/b = 15.4, nu = 0.28:
-  ! docs/accuracy.md section 3), held from a/b = 20 on
+  ! docs/accuracy.md, "Ellipses"), held from a/b = 20 on
   slopes = aspect_slopes(10.0_real64, 0.28_real64)
   call t%check(all(abs(aspect_slopes(10.001_real64, 0.28_real64) / slopes - 1) < 1e-3_real64), &
                'aspect_slopes: continuous at the table''s end (a/b = 10)')

@@ -3,6 +3,10 @@ holds the module of its name with the kcreep_ prefix; dependencies between
 pipeline stages run one way (io is used by nothing below it, app by nothing
 in src/, io reaches the solver's types through the facade only); and the library prints nothing, reads no environment and calls
 nothing of the operating system (the command line in app/ does that).
+The laboratory is walled off: no code outside lab/ (a build step, test,
+script, tool or source; comments and docstrings may point into it) names a
+path in lab/, lab/README.md indexes every file in lab/, and scripts/ keeps
+to at most 45 files.
 
 usage: test_layout.py SOURCE_DIR
 """
@@ -80,4 +84,63 @@ for rel, stage, text in files:
         kc.check(not re.search(r"action\s*=\s*'(write|readwrite)'|status\s*=\s*'(new|replace)'", code, re.I),
                  f"{rel}: io reads, it writes no files (app/ does)")
 kc.check(len(files) > 30, f"{len(files)} Fortran files checked")
+
+
+# ---- the laboratory: nothing outside lab/ imports, runs or reads it ----
+def code_strings_py(text):
+    """The string constants of a Python file other than docstrings."""
+    import ast
+    tree = ast.parse(text)
+    docs = set()
+    for node in ast.walk(tree):
+        if isinstance(node, (ast.Module, ast.FunctionDef, ast.ClassDef, ast.AsyncFunctionDef)) and node.body:
+            first = node.body[0]
+            if isinstance(first, ast.Expr) and isinstance(first.value, ast.Constant):
+                docs.add(id(first.value))
+    return [n.value for n in ast.walk(tree)
+            if isinstance(n, ast.Constant) and isinstance(n.value, str) and id(n) not in docs]
+
+
+def code_lines(text, comment):
+    """The lines of a file without their comments (comment: the comment marker)."""
+    return [line.split(comment)[0] for line in text.splitlines()]
+
+
+LAB_PATH = re.compile(r"(^|[\s\"'/$({=:])lab/|^lab$")
+readers = []
+for top in ("src", "app", "tests", "scripts", "tools", "python", "cmake", "include", "CMakeLists.txt"):
+    where = os.path.join(root, top)
+    paths = [where] if os.path.isfile(where) else [os.path.join(d, n) for d, _, ns in os.walk(where) for n in ns]
+    for path in sorted(paths):
+        rel = os.path.relpath(path, root)
+        if "__pycache__" in rel or rel in (os.path.join("tests", "unit", "test_layout.py"),
+                                           os.path.join("tests", "unit", "test_docs.py")):
+            continue   # (this test reads lab/ for its index; the docs test names it to leave it out)
+        if path.endswith(".py"):
+            pieces = code_strings_py(open(path).read())
+        elif path.endswith((".sh", ".txt", ".cmake")):
+            pieces = code_lines(open(path).read(), "#")
+        elif path.endswith((".f90", ".in")):
+            pieces = code_lines(open(path).read(), "!")
+        elif path.endswith((".c", ".h")):
+            pieces = [re.sub(r"/\*.*?\*/|//[^\n]*", "", open(path).read(), flags=re.S)]
+        else:
+            continue
+        if any(LAB_PATH.search(piece.strip()) for piece in pieces):
+            readers.append(rel)
+kc.check(not readers, f"nothing outside lab/ names a path in it (in code, not comments): {readers}")
+
+# scripts/ holds the user's tools, not studies: a cap on its size (42 files at
+# the move of the studies to lab/, 77 before) makes a new study go to lab/
+scripts = [os.path.join(d, n) for d, _, ns in os.walk(os.path.join(root, "scripts")) for n in ns
+           if "__pycache__" not in d]
+kc.check(len(scripts) <= 45, f"scripts/ holds {len(scripts)} files (at most 45; studies go to lab/)")
+
+# lab/README.md names every file in lab/ (its index: status and what it backs)
+lab = os.path.join(root, "lab")
+index = open(os.path.join(lab, "README.md")).read()
+unindexed = sorted(os.path.relpath(os.path.join(d, n), lab) for d, _, ns in os.walk(lab) for n in ns
+                   if n != "README.md" and "__pycache__" not in d
+                   and os.path.relpath(os.path.join(d, n), lab) not in index)
+kc.check(not unindexed, f"lab/README.md indexes every file in lab/ (missing: {unindexed[:8]})")
 kc.finish()

@@ -1,4 +1,5 @@
-"""The rules of scripts/ (and its folders slurm/, studies/, figures/):
+"""The rules of scripts/ (and its folders bench/, convergence/, figures/, slurm/)
+and of the maintenance tools in tools/maintenance/:
 
 - every script is executable (git mode 100755, or the execute bit without git)
   and starts with a #! line, so that it runs as itself;
@@ -64,16 +65,17 @@ DEBIAN_PACKAGE = {"numpy": "python3-numpy", "scipy": "python3-scipy", "matplotli
 
 def scripts_of(repo):
     found = []
-    for folder, dirs, files in os.walk(os.path.join(repo, "scripts")):
-        dirs[:] = sorted(d for d in dirs if d != "__pycache__")
-        found += [os.path.relpath(os.path.join(folder, n), repo) for n in sorted(files) if n.endswith((".sh", ".py"))]
+    for top in ("scripts", os.path.join("tools", "maintenance")):
+        for folder, dirs, files in os.walk(os.path.join(repo, top)):
+            dirs[:] = sorted(d for d in dirs if d != "__pycache__")
+            found += [os.path.relpath(os.path.join(folder, n), repo) for n in sorted(files) if n.endswith((".sh", ".py"))]
     return found
 
 
 def git_modes(repo):
-    """{path: mode} of the files git tracks under scripts/ ({} without git)."""
+    """{path: mode} of the files git tracks under scripts/ and tools/maintenance/ ({} without git)."""
     try:
-        out = subprocess.run(["git", "-C", repo, "ls-files", "-s", "scripts"], capture_output=True, text=True,
+        out = subprocess.run(["git", "-C", repo, "ls-files", "-s", "scripts", "tools/maintenance"], capture_output=True, text=True,
                              check=True).stdout
     except (OSError, subprocess.CalledProcessError):
         return {}
@@ -140,7 +142,7 @@ def main():
     copy = os.path.join(scratch, "repo")
     kctest.copy_repository(repo, copy)
     scripts = scripts_of(copy)
-    kctest.check(len(scripts) >= 50, f"found {len(scripts)} scripts under scripts/")
+    kctest.check(len(scripts) >= 40, f"found {len(scripts)} scripts under scripts/ and tools/maintenance/")
     check_rules(repo, [rel for rel in scripts_of(repo)])
     heavy = os.path.join(scratch, "heavy")
     blocker(heavy)

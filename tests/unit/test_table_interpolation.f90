@@ -16,7 +16,7 @@
 !>
 !>   test_table_interpolation [all] [levels]
 !> 'all': the nu check at all rows instead of 5 and the per-case lines
-!> (the tables of docs/accuracy.md section 5.1).
+!> (the tables of docs/accuracy.md, "The refined table of ellipses").
 program test_table_interpolation
   use, intrinsic :: iso_fortran_env, only: real64, output_unit
   use kcreep, only: problem_t, result_t, default_problem, ellipse_patch, kcreep_solve, status_t
@@ -98,7 +98,7 @@ contains
       write (output_unit, '(a, i0, a, i0, a, f6.3, a, es9.2, a, i0)') 'leave-one-out '//names(q)//': bounded in ', &
         bounded(q), ' of ', cases, ', largest actual/stated ', worst(q), ', mean actual ', sum_ratio(q) / cases, &
         ', by the interpolation part alone in ', by_interpolation(q)
-      ! the claim: at least 19 of 20 (measured: docs/accuracy.md section 5.1)
+      ! the claim: at least 19 of 20 (measured: docs/accuracy.md, "The refined table of ellipses")
       call t%check(20 * bounded(q) >= 19 * cases, 'leave-one-out in a/b: the stated uncertainty of '//names(q)// &
                    ' bounds the actual error in at least 19 of 20 cases')
     end do
@@ -161,7 +161,7 @@ contains
       write (output_unit, '(a, i0, a, i0, a, es9.2)') 'nu interpolation '//names(q)//': bounded in ', bounded(q), &
         ' of ', cases, ', largest actual ', worst(q)
     end do
-    ! the claim: at least 19 of 20 over all coefficients (measured at all rows: docs/accuracy.md section 5.1)
+    ! the claim: at least 19 of 20 over all coefficients (measured at all rows: docs/accuracy.md, "The refined table of ellipses")
     call t%check(20 * sum(bounded) >= 19 * 4 * cases, 'nu: the interpolation error estimate bounds the actual '// &
                  'error in at least 19 of 20 cases')
   end subroutine check_nu
