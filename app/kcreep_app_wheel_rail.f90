@@ -58,12 +58,12 @@ contains
     write (output_unit, '(a)') 'kcreep: '//input_path
     write (output_unit, '(2x, a)') 'wheel/rail: '//itoa(size(cfg%wheel_rail%shifts))//' shifts, '//itoa(size(rows))// &
       ' patches, side '//cfg%wheel_rail%side//'; table: '//cfg%wheel_rail_file
-    write (output_unit, '(2x, a)') '  shift patch        fn     delta   y_rail  y_wheel  r_wheel    c11    c22    c23'// &
-      '   err11   err22   err23 verdict'
+    write (output_unit, '(2x, a)') '  shift patch   kind        fn     delta   y_rail  y_wheel  r_wheel    c11    c22'// &
+      '    c23   err11   err22   err23 verdict'
     do k = 1, size(rows)
       associate (r => rows(k))
-        write (output_unit, '(2x, f7.2, i6, es10.3, f10.4, 3f9.3, 3f7.3, 3es8.1, 1x, a)') r%shift, r%patch, r%fn, &
-          r%delta, r%y_rail, r%y_wheel, r%r_wheel, r%c(1:3), r%err, trim(r%verdict)
+        write (output_unit, '(2x, f7.2, i6, a7, es10.3, f10.4, 3f9.3, 3f7.3, 3es8.1, 1x, a)') r%shift, r%patch, &
+          trim(r%kind), r%fn, r%delta, r%y_rail, r%y_wheel, r%r_wheel, r%c(1:3), r%err, trim(r%verdict)
         if (allocated(r%result%warnings)) then
           do j = 1, size(r%result%warnings)
             write (error_unit, '(a)') 'kcreep: warning: shift '//rtoa(r%shift)//' patch '//itoa(r%patch)//': '// &

@@ -46,16 +46,19 @@ contains
     end if
     lines(5) = '# material g '//rtoa(g)//', nu '//rtoa(nu)//'; target_error '//rtoa(target_error)// &
                '; lengths mm, forces N, angles rad'
-    lines(6) = '# delta: contact angle; y_rail, y_wheel: contact point in each profile''s own coordinates; '// &
-               'r_wheel: rolling radius there; area = pi c^2, length x width: extent of the contact area'
+    lines(6) = '# delta: contact angle (the patch''s weighted mean surface angle); y_rail, y_wheel: its reference '// &
+               'point (interpenetration centre) in each profile''s own coordinates; r_wheel: rolling radius there; '// &
+               'area = pi c^2, length x width: extent of the contact area; kind: tread or flange (|delta| >= pi/4); '// &
+               'turn: largest |surface angle - delta| across the patch (rad)'
     lines(7) = '# c11 c22 c23 = f/(G c^2), f23/(G c^3), c33 = f33/(G c^4) about the contact point; err: '// &
                'estimated relative errors; l1 l2 l3: FASTSIM flexibilities; spin = sin(delta)/r_wheel'
     lines(8) = '# '//wheel_rail_columns
     do k = 1, size(rows)
       associate (r => rows(k))
-        write (lines(k + 8), '(2(es15.7), i4, 5(es16.8), 3(es14.6), 4(es15.7), 3(es10.2), 1x, a, 4(es14.6))') &
+        write (lines(k + 8), '(2(es15.7), i4, 5(es16.8), 3(es14.6), 4(es15.7), 3(es10.2), 1x, a, 4(es14.6), 1x, a, '// &
+               'es12.4)') &
           r%shift, r%yaw, r%patch, r%fn, r%delta, r%y_rail, r%y_wheel, r%r_wheel, r%area, r%length, r%width, &
-          r%c, r%err, trim(no_blanks(r%verdict)), r%l, r%spin
+          r%c, r%err, trim(no_blanks(r%verdict)), r%l, r%spin, trim(r%kind), r%turn
       end associate
     end do
   end function wheel_rail_lines

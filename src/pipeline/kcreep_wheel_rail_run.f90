@@ -26,7 +26,8 @@ module kcreep_wheel_rail_run
   use kcreep_wheel_rail_geometry, only: track_t, contact_t, plane_gap_t, place_track, clearance, find_contacts, &
                                         plane_of, plane_gap_value, plane_gap_grid, search_step
   use kcreep_gap, only: gap_t, outside_gap
-  use kcreep_problem, only: problem_t, result_t
+  use kcreep_problem, only: problem_t, result_t, add_warning
+  use kcreep_verdict, only: message_length
   use kcreep_normal_solve, only: normal_result_t, solve_normal
   use kcreep_normal_influence, only: compliance_from_g_nu
   use kcreep_error_run, only: run_controlled
@@ -38,10 +39,19 @@ module kcreep_wheel_rail_run
   public :: wheel_rail_setup_t, wheel_rail_row_t, prepare_track, run_wheel_rail, wheel_rail_columns, &
             check_wheel_rail_setup, max_wheel_rail_shifts, most_shifts_at_once
 
-  !> The table's columns, in order (verdict a word).
-  character(len=*), parameter :: wheel_rail_columns = 'shift yaw patch fn delta y_rail y_wheel r_wheel area '// &
-                                 'length width c11 c22 c23 c33 err11 err22 err23 verdict l1 l2 l3 spin'
   real(real64), parameter :: pi = acos(-1.0_real64)
+  !> The table's columns, in order (verdict and kind words).
+  character(len=*), parameter :: wheel_rail_columns = 'shift yaw patch fn delta y_rail y_wheel r_wheel area '// &
+                                 'length width c11 c22 c23 c33 err11 err22 err23 verdict l1 l2 l3 spin kind turn'
+  !> A patch is 'flange' where its contact angle |delta| is at least this
+  !> (rad, 45 degrees), else 'tread': the row's kind.
+  real(real64), parameter :: flange_angle = pi / 4
+  !> Warn where the rail's surface angle across a patch departs from its
+  !> contact angle by more than this (rad): acos(1 / 1.03), where the gap
+  !> along the plane's normal is 3 % off the gap along the surface's, the
+  !> threshold of CONTACT's warning "large angle variation within contact
+  !> patch" (its m_wr_undefdist).
+  real(real64), parameter :: turn_warning = 0.24153_real64
   !> At most this many shifts in one table.
   integer, parameter :: max_wheel_rail_shifts = 10000
   !> Cells across the larger side of a patch's potential contact area on the
@@ -67,6 +77,9 @@ module kcreep_wheel_rail_run
     real(real64) :: yaw = 0
     logical :: force_given = .true.
     real(real64) :: vertical_force = 0, approach = 0
+    !> with vertical_force: a patch whose share fn cos(delta) / vertical_force
+    !> is below this is dropped and the others carry the load (0: none dropped)
+    real(real64) :: min_patch_share = 0
   end type wheel_rail_setup_t
 
   !> One row of the table: one patch at one shift.
@@ -77,6 +90,8 @@ module kcreep_wheel_rail_run
     real(real64) :: c(4) = 0                 !< C11 C22 C23 C33
     real(real64) :: err(3) = 0
     real(real64) :: l(3) = 0, spin = 0
+    character(len=6) :: kind = 'tread'       !< 'tread' or 'flange' (flange_angle)
+    real(real64) :: turn = 0                 !< largest |surface angle - delta| across the patch (rad)
     real(real64) :: approach = 0             !< the vertical approach of the shift
     real(real64) :: y_track = 0, z_track = 0 !< contact point in track coordinates (the side's own)
     character(len=:), allocatable :: verdict
@@ -117,7 +132,11 @@ contains
       call check_range('vertical_force', setup%vertical_force, 1e-6_real64, 1e9_real64)
     else
       call check_range('approach', setup%approach, 1e-9_real64, 10.0_real64)
+      if (setup%min_patch_share /= 0 .and. .not. status%failed()) call fail(status, exit_bad_input, where// &
+          'min_patch_share = '//rtoa(setup%min_patch_share)//' needs vertical_force (the shares of a given '// &
+          'approach are not known before the patches are solved)')
     end if
+    call check_range('min_patch_share', setup%min_patch_share, 0.0_real64, 0.5_real64)
     if (status%failed()) return
     if (.not. allocated(setup%shifts)) then
       call fail(status, exit_bad_input, where//'shifts: none given')
@@ -243,17 +262,18 @@ contains
     type(wheel_rail_row_t), allocatable, intent(out) :: rows(:)
     type(status_t), intent(inout) :: status
     real(real64), allocatable :: ys(:), d(:), xs(:)
-    type(contact_t), allocatable :: contacts(:)
+    type(contact_t), allocatable :: contacts(:), refs(:)
     type(gap_t), allocatable :: grids(:)
     type(plane_gap_t), allocatable :: planes(:)
-    real(real64), allocatable :: forces(:)
-    real(real64) :: shift, yaw, dz, w0
-    integer :: k
+    real(real64), allocatable :: forces(:), hmins(:)
+    real(real64) :: shift, yaw, dz, w0, refs_dz
+    integer :: k, j
+    character(len=message_length), allocatable :: notes(:)
     type(wheel_rail_row_t) :: row
     type(problem_t) :: problem
     character(len=:), allocatable :: where
 
-    allocate (rows(0))
+    allocate (rows(0), notes(0))
     shift = sgn * setup%shifts(i)
     yaw = sgn * setup%yaw
     where = '&wheel_rail shift = '//rtoa(setup%shifts(i))//' mm: '
@@ -267,13 +287,14 @@ contains
     if (setup%force_given) then
       call approach_for_force(first_approach, dz)
       if (status%failed()) return
+      call drop_small_patches()
     else
       dz = setup%approach
       call patches_at(dz)
       if (status%failed()) return
-      allocate (forces(size(contacts)), source=0.0_real64)
+      allocate (forces(size(refs)), source=0.0_real64)
     end if
-    do k = 1, size(contacts)
+    do k = 1, size(refs)
       problem = base
       problem%normal%active = .true.
       problem%normal%gap = grids(k)
@@ -281,57 +302,61 @@ contains
       problem%normal%poly_given = .false.
       problem%normal%force_given = setup%force_given
       problem%normal%normal_force = forces(k)
-      problem%normal%approach = dz * cos(contacts(k)%delta)
+      problem%normal%approach = dz * cos(refs(k)%delta)
       problem%refine_grid = .true.
       if (setup%force_given .and. .not. forces(k) > 0) cycle    ! touches, carries nothing
       call run_controlled(problem, row%result, status)
       if (status%failed()) then
-        status%message = where//'patch '//itoa(k)//': '//status%message
+        status%message = where//'patch '//itoa(size(rows) + 1)//': '//status%message
         return
       end if
-      call fill_row(contacts(k), k)
+      call fill_row(refs(k), hmins(k), size(rows) + 1)
+      do j = 1, size(notes)
+        call add_warning(row%result, trim(notes(j)))
+      end do
       rows = [rows, row]
     end do
 
   contains
 
-    !> The contacts, their gap objects and coarse grids at vertical approach dz_now.
+    !> The contacts at vertical approach dz_now (refs, the planes' references),
+    !> their gap objects, coarse grids and smallest gaps.
     subroutine patches_at(dz_now)
       real(real64), intent(in) :: dz_now
       integer :: j
-      call find_contacts(track, shift, yaw, ys, d, xs, dz_now, contacts)
-      if (size(contacts) == 0) then
+      call find_contacts(track, shift, yaw, ys, d, xs, dz_now, refs)
+      refs_dz = dz_now
+      if (size(refs) == 0) then
         call fail(status, exit_bad_input, where//'approach = '//rtoa(dz_now)//' mm: no interpenetration (the '// &
                   'approach must be > 0)')
         return
       end if
-      if (allocated(grids)) deallocate (grids, planes)
-      allocate (grids(size(contacts)), planes(size(contacts)))
-      do j = 1, size(contacts)
-        call potential_area(contacts(j), dz_now, planes(j), grids(j))
+      if (allocated(grids)) deallocate (grids, planes, hmins)
+      allocate (grids(size(refs)), planes(size(refs)), hmins(size(refs)))
+      do j = 1, size(refs)
+        call potential_area(refs(j), dz_now, planes(j), grids(j), hmins(j))
       end do
     end subroutine patches_at
 
     !> The plane of a contact with the limits of its potential contact area in
-    !> s (twice its interpenetration depth, not into a neighbour's interval) and
-    !> a grid over that area in the plane (x: rolling, y: s).
-    subroutine potential_area(c, dz_now, plane, grid)
+    !> s (twice its interpenetration depth, not into a neighbour's interval), a
+    !> grid over that area in the plane (x: rolling, y: s), and the smallest
+    !> gap of the touching wheel in the plane (hmin; the patch's interpenetration
+    !> at approach dz is dz cos(delta) - hmin).
+    subroutine potential_area(c, dz_now, plane, grid, hmin)
       type(contact_t), intent(in) :: c
       real(real64), intent(in) :: dz_now
       type(plane_gap_t), intent(out) :: plane
       type(gap_t), intent(out) :: grid
-      integer :: klo, khi, mx, my, line, step, k, ridge
-      real(real64) :: level, h0, a, s_lo, s_hi, x_lo, x_hi, cell, s, cd
+      real(real64), intent(out) :: hmin
+      real(real64), parameter :: ds = 0.05_real64     ! steps along the plane's lines (mm)
+      integer :: klo, khi, mx, my, line, step, k, ridge, n_in
+      real(real64) :: level, a, s_lo, s_hi, x_lo, x_hi, cell, s, cd, s_in_lo, s_in_hi, h, s_min
       plane = plane_of(track, shift, yaw, w0, c)
       cd = cos(c%delta)
       klo = nint((c%y_lo - ys(1)) / search_step) + 1
       khi = nint((c%y_hi - ys(1)) / search_step) + 1
-      ! in s: where the gap on the line through the contact point stays below
-      ! twice the interpenetration (steps of 0.05 mm), but not beyond the ridge
-      ! of d towards a neighbouring patch's interval
-      a = dz_now * cd
-      h0 = plane_gap_value(plane, 0.0_real64, 0.0_real64)
-      level = h0 + 2 * max(a - h0, 0.0_real64)
+      ! in s: not beyond the ridge of d towards a neighbouring patch's interval
       s_lo = -huge(1.0_real64)
       s_hi = huge(1.0_real64)
       ridge = 0
@@ -354,14 +379,34 @@ contains
       end do
       plane%s_lo = s_lo
       plane%s_hi = s_hi
-      do step = 1, 4000
-        if (plane_gap_value(plane, 0.0_real64, -step * 0.05_real64) >= level) exit
+      ! the smallest gap on the line xi = 0 across the interpenetration interval
+      ! (its image in the plane), refined by a parabola and, with yaw, along xi
+      s_in_lo = max((c%y_lo - search_step - c%y) / cd, plane%s_lo)
+      s_in_hi = min((c%y_hi + search_step - c%y) / cd, plane%s_hi)
+      n_in = max(4, ceiling((s_in_hi - s_in_lo) / ds))
+      hmin = huge(1.0_real64)
+      s_min = 0
+      do k = 0, n_in
+        s = s_in_lo + (s_in_hi - s_in_lo) * k / n_in
+        h = plane_gap_value(plane, 0.0_real64, s)
+        if (h < hmin) then
+          hmin = h
+          s_min = s
+        end if
       end do
-      s_lo = max(s_lo, -step * 0.05_real64)
+      call refine_minimum(plane, 0.0_real64, s_min, (s_in_hi - s_in_lo) / n_in, .false., hmin)
+      if (yaw /= 0) call refine_minimum(plane, 0.0_real64, s_min, 0.5_real64, .true., hmin)
+      ! in s: where the gap on the line xi = 0 stays below twice the interpenetration
+      a = dz_now * cd
+      level = hmin + 2 * max(a - hmin, 0.0_real64)
       do step = 1, 4000
-        if (plane_gap_value(plane, 0.0_real64, step * 0.05_real64) >= level) exit
+        if (plane_gap_value(plane, 0.0_real64, s_in_lo - step * ds) >= level) exit
       end do
-      s_hi = min(s_hi, step * 0.05_real64)
+      s_lo = max(plane%s_lo, s_in_lo - step * ds)
+      do step = 1, 4000
+        if (plane_gap_value(plane, 0.0_real64, s_in_hi + step * ds) >= level) exit
+      end do
+      s_hi = min(plane%s_hi, s_in_hi + step * ds)
       s_lo = s_lo - 0.1_real64 * (s_hi - s_lo) - 0.05_real64
       s_hi = s_hi + 0.1_real64 * (s_hi - s_lo) + 0.05_real64
       plane%s_lo = max(plane%s_lo, s_lo)
@@ -373,12 +418,12 @@ contains
         s = s_lo + (s_hi - s_lo) * (line + 0.5_real64) / 9
         ! the largest |xi| each way with the gap below level (steps of 0.05 mm, up to 100 mm)
         do step = 1, 2000
-          if (plane_gap_value(plane, step * 0.05_real64, s) >= level) exit
-          x_hi = max(x_hi, step * 0.05_real64)
+          if (plane_gap_value(plane, step * ds, s) >= level) exit
+          x_hi = max(x_hi, step * ds)
         end do
         do step = 1, 2000
-          if (plane_gap_value(plane, -step * 0.05_real64, s) >= level) exit
-          x_lo = min(x_lo, -step * 0.05_real64)
+          if (plane_gap_value(plane, -step * ds, s) >= level) exit
+          x_lo = min(x_lo, -step * ds)
         end do
       end do
       x_lo = x_lo - 0.1_real64 * (x_hi - x_lo) - 0.05_real64
@@ -390,14 +435,18 @@ contains
                           (s_lo + s_hi) / 2 - (my - 1) * cell / 2, grid)
     end subroutine potential_area
 
+
     !> The vertical approach at which sum(Fn cos(delta)) is the vertical force
-    !> (coarse normal solves, Fn ~ dz^(3/2) updates), and each patch's Fn.
+    !> (coarse normal solves, Fn ~ dz^(3/2) updates), and each patch's Fn. The
+    !> patches' references and planes are those of the final approach (within
+    !> 1e-3 of it): the weighted reference moves with the approach.
     subroutine approach_for_force(dz_first, dz_out)
       real(real64), intent(in) :: dz_first
       real(real64), intent(out) :: dz_out
       real(real64) :: total, dz_grid, compliance
       type(normal_result_t) :: nres
       integer :: it, j, n_before
+      logical :: converged
       compliance = base%normal%compliance
       if (compliance <= 0) compliance = compliance_from_g_nu(base%g, base%nu)
       dz_out = dz_first
@@ -414,26 +463,32 @@ contains
         if (size(contacts) /= size(grids)) then
           call patches_at(dz_out)
           if (status%failed()) return
-          dz_grid = dz_out
+          dz_grid = 1.3_real64 * dz_out
         end if
         if (allocated(forces)) deallocate (forces)
-        allocate (forces(size(contacts)))
+        allocate (forces(size(refs)))
         total = 0
-        do j = 1, size(contacts)
+        do j = 1, size(refs)
           forces(j) = 0
-          if (.not. any(grids(j)%h < dz_out * cos(contacts(j)%delta))) cycle
+          if (.not. any(grids(j)%h < dz_out * cos(refs(j)%delta))) cycle
           call solve_normal(grids(j)%h, grids(j)%dx, grids(j)%dy, compliance, base%normal%options, nres, status, &
-                            approach=dz_out * cos(contacts(j)%delta))
+                            approach=dz_out * cos(refs(j)%delta))
           if (status%failed()) then
             status%message = where//'finding the approach: '//status%message
             return
           end if
           forces(j) = nres%fn
-          total = total + nres%fn * cos(contacts(j)%delta)
+          total = total + nres%fn * cos(refs(j)%delta)
         end do
-        if (abs(total / setup%vertical_force - 1) < 1e-6_real64 .and. size(contacts) == n_before) exit
-        n_before = size(contacts)
-        if (total > 0) then
+        converged = abs(total / setup%vertical_force - 1) < 1e-6_real64 .and. size(refs) == n_before
+        if (converged .and. abs(refs_dz / dz_out - 1) <= 1e-3_real64) exit
+        n_before = size(refs)
+        if (converged) then
+          ! the references and planes at this approach; the forces again on them
+          call patches_at(dz_out)
+          if (status%failed()) return
+          dz_grid = 1.3_real64 * dz_out
+        else if (total > 0) then
           dz_out = dz_out * (setup%vertical_force / total)**(2.0_real64 / 3)
         else
           dz_out = 2 * dz_out
@@ -443,26 +498,48 @@ contains
         call fail(status, exit_numerical, where//'no approach found for vertical_force = '//rtoa(setup%vertical_force))
         return
       end if
-      ! the final patches and grids at this approach; the forces scaled to the vertical force
+      ! the forces scaled to the vertical force
       forces = forces * setup%vertical_force / total
     end subroutine approach_for_force
 
-    subroutine fill_row(c, patch)
+    !> Patches whose share of the vertical force is below min_patch_share
+    !> carry nothing (skipped); the others' forces are scaled to carry the
+    !> load, and every row of the shift notes each dropped patch.
+    subroutine drop_small_patches()
+      real(real64) :: shares(size(forces)), kept
+      integer :: j
+      shares = forces * cos(refs%delta) / setup%vertical_force
+      if (.not. any(shares < setup%min_patch_share) .or. all(shares < setup%min_patch_share)) return
+      do j = 1, size(forces)
+        if (shares(j) < setup%min_patch_share .and. forces(j) > 0) notes = [notes, &
+            [character(len=message_length) :: 'a patch of '//rtoa(1e2_real64 * shares(j))//' % of the vertical '// &
+             'force at y_rail = '//rtoa(rail_y(refs(j)))//' mm dropped (min_patch_share); the other patches '// &
+             'carry its share']]
+      end do
+      where (shares < setup%min_patch_share) forces = 0
+      kept = sum(forces * cos(refs%delta))
+      forces = forces * setup%vertical_force / kept
+    end subroutine drop_small_patches
+
+    !> The row of a patch: CONTACT's reference point, angle and rolling
+    !> radius: the distance from the wheel's axis of the reference point moved
+    !> along the plane's normal by the patch's interpenetration pen (CONTACT's
+    !> point Q, m_wr_rigslip), pen = dz cos(delta) - hmin.
+    subroutine fill_row(c, hmin, patch)
       type(contact_t), intent(in) :: c
+      real(real64), intent(in) :: hmin
       integer, intent(in) :: patch
-      real(real64) :: yp, zp
+      real(real64) :: pen
       associate (r => row%result)
         row%shift = setup%shifts(i)
         row%yaw = setup%yaw
         row%patch = patch
         row%fn = r%fn
         row%delta = sgn * c%delta
-        yp = c%y - track%rail_shift(1)
-        zp = c%z - track%rail_shift(2)
-        row%y_rail = cos(track%cant) * yp + sin(track%cant) * zp
-        if (setup%rail_mirror) row%y_rail = -row%y_rail
+        row%y_rail = rail_y(c)
         row%y_wheel = merge(-c%y_wheel, c%y_wheel, setup%wheel_mirror)
-        row%r_wheel = c%r_wheel
+        pen = dz * cos(c%delta) - hmin
+        row%r_wheel = c%z + pen * cos(c%delta) - (w0 + dz - track%r_nom)
         row%area = pi * r%c**2
         row%length = r%bbox(2) - r%bbox(1)
         row%width = r%bbox(4) - r%bbox(3)
@@ -471,13 +548,75 @@ contains
         row%err = r%err
         row%verdict = r%verdict
         row%l = r%fastsim
-        row%spin = sin(row%delta) / c%r_wheel
+        row%spin = sin(row%delta) / row%r_wheel
+        row%turn = c%turn
+        row%kind = merge('flange', 'tread ', abs(c%delta) >= flange_angle)
         row%approach = dz
         row%y_track = sgn * c%y
         row%z_track = c%z
       end associate
+      if (c%turn > turn_warning) call add_warning(row%result, 'the rail''s surface angle varies by up '// &
+          'to '//rtoa(c%turn)//' rad from the contact angle across the patch (more than '//rtoa(turn_warning)// &
+          ': the planar gap along the normal is off by more than 3 % there; CONTACT warns too)')
     end subroutine fill_row
 
+    !> The reference point's lateral coordinate in the rail profile's own coordinates.
+    pure real(real64) function rail_y(c) result(y)
+      type(contact_t), intent(in) :: c
+      real(real64) :: yp, zp
+      yp = c%y - track%rail_shift(1)
+      zp = c%z - track%rail_shift(2)
+      y = cos(track%cant) * yp + sin(track%cant) * zp
+      if (setup%rail_mirror) y = -y
+    end function rail_y
+
   end subroutine rows_at_shift
+
+  !> hmin lowered to the smallest gap near (xi, s) along s (along_xi false)
+  !> or xi: parabolas through three points, steps quartered three times.
+  pure subroutine refine_minimum(plane, xi, s, step0, along_xi, hmin)
+    type(plane_gap_t), intent(in) :: plane
+    real(real64), intent(in) :: xi, step0
+    real(real64), intent(inout) :: s, hmin
+    logical, intent(in) :: along_xi
+    real(real64) :: t0, h0, hm, hp, step, t, h
+    integer :: pass
+    t0 = merge(xi, s, along_xi)
+    step = step0
+    h0 = value_at(t0)
+    do pass = 1, 3
+      hm = value_at(t0 - step)
+      hp = value_at(t0 + step)
+      if (hm < h0 .and. hm <= hp) then
+        t0 = t0 - step
+        h0 = hm
+      else if (hp < h0) then
+        t0 = t0 + step
+        h0 = hp
+      else if (hm + hp - 2 * h0 > 0) then
+        t = t0 + step * (hm - hp) / (2 * (hm + hp - 2 * h0))
+        h = value_at(t)
+        if (h < h0) then
+          t0 = t
+          h0 = h
+        end if
+      end if
+      step = step / 4
+    end do
+    hmin = min(hmin, h0)
+    if (.not. along_xi) s = t0
+
+  contains
+
+    pure real(real64) function value_at(tt) result(v)
+      real(real64), intent(in) :: tt
+      if (along_xi) then
+        v = plane_gap_value(plane, tt, s)
+      else
+        v = plane_gap_value(plane, xi, tt)
+      end if
+    end function value_at
+
+  end subroutine refine_minimum
 
 end module kcreep_wheel_rail_run
