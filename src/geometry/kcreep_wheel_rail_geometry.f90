@@ -63,7 +63,7 @@ module kcreep_wheel_rail_geometry
   type :: contact_t
     real(real64) :: x = 0, y = 0, z = 0      !< the contact reference point on the rail, track coordinates
     real(real64) :: delta = 0                !< contact angle (rad), the weighted mean surface angle
-    real(real64) :: turn = 0                 !< largest |surface angle - delta| over the interpenetration (rad)
+    real(real64) :: turn = 0                 !< largest |surface angle - delta| where pen >= max pen / 2 (rad)
     real(real64) :: weight = 0               !< integral of pen^(5/2) dy (mm^(7/2))
     real(real64) :: y_lo = 0, y_hi = 0       !< the interval of y where d < dz (its interpenetration)
     real(real64) :: y_wheel = 0              !< the reference point in the wheel profile's coordinates
@@ -210,15 +210,16 @@ contains
   !> w_k = pen(y_k)^(5/2), and
   !>   y = sum w y_k / sum w,   x = sum w xs_k / sum w,
   !>   delta = sum w alpha_k / sum w,  alpha = atan(-dz_r/dy) the rail's surface angle,
-  !> z the rail's surface at y. turn is the largest |alpha_k - delta| over the
-  !> interval (the planar patch's misfit: its gap along the plane's normal is
-  !> off by about 1 / cos(turn) - 1). ys, d, xs from clearance.
+  !> z the rail's surface at y. turn is the largest |alpha_k - delta| where
+  !> pen >= max pen / 2 (for a Hertzian gap, the contact area): the planar
+  !> patch's misfit, its gap along the plane's normal is off by about
+  !> 1 / cos(turn) - 1 there. ys, d, xs from clearance.
   pure subroutine find_contacts(track, shift, yaw, ys, d, xs, dz, contacts)
     type(track_t), intent(in) :: track
     real(real64), intent(in) :: shift, yaw, ys(:), d(:), xs(:), dz
     type(contact_t), allocatable, intent(out) :: contacts(:)
-    real(real64) :: d0, w, sw, swy, swx, swa, alpha, lo, hi
-    integer :: k, k1, n
+    real(real64) :: d0, w, sw, swy, swx, swa, alpha, pen_max
+    integer :: k, k1, n, j
     type(contact_t) :: one
     allocate (contacts(0))
     d0 = minval(d)
@@ -234,8 +235,7 @@ contains
       swy = 0
       swx = 0
       swa = 0
-      lo = huge(1.0_real64)
-      hi = -huge(1.0_real64)
+      pen_max = 0
       do while (k <= n)
         if (d(k) - d0 >= dz) exit
         w = (dz - (d(k) - d0))**2.5_real64
@@ -244,8 +244,7 @@ contains
         swy = swy + w * ys(k)
         swx = swx + w * xs(k)
         swa = swa + w * alpha
-        lo = min(lo, alpha)
-        hi = max(hi, alpha)
+        pen_max = max(pen_max, dz - (d(k) - d0))
         k = k + 1
       end do
       one%y_lo = ys(k1)
@@ -254,7 +253,11 @@ contains
       one%y = swy / sw
       one%x = swx / sw
       one%delta = swa / sw
-      one%turn = max(hi - one%delta, one%delta - lo)
+      one%turn = 0
+      do j = k1, k - 1
+        if (dz - (d(j) - d0) < pen_max / 2) cycle
+        one%turn = max(one%turn, abs(atan(-envelope_slope(track%rail, ys(j), 0.05_real64)) - one%delta))
+      end do
       one%z = envelope_at(track%rail, one%y)
       one%y_wheel = -one%x * sin(yaw) + (one%y - shift) * cos(yaw) - track%wheel_origin
       contacts = [one, contacts]

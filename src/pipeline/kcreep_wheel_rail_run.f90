@@ -63,6 +63,10 @@ module kcreep_wheel_rail_run
   !> it (from the previous approach, S1002's +5 mm row on its given grid had a
   !> C23 1.5 % off the same shift run alone).
   real(real64), parameter :: first_approach = 0.05_real64
+  !> The force iteration makes a patch's plane and grid anew when its
+  !> reference at the approach tried has moved by more than this (mm of the
+  !> point, rad of the angle) from the plane's.
+  real(real64), parameter :: ref_moved = 1e-4_real64
 
   !> What &wheel_rail describes (the profiles already read).
   type :: wheel_rail_setup_t
@@ -266,7 +270,7 @@ contains
     type(gap_t), allocatable :: grids(:)
     type(plane_gap_t), allocatable :: planes(:)
     real(real64), allocatable :: forces(:), hmins(:)
-    real(real64) :: shift, yaw, dz, w0, refs_dz
+    real(real64) :: shift, yaw, dz, w0, refs_dz, area_dz
     integer :: k, j
     character(len=message_length), allocatable :: notes(:)
     type(wheel_rail_row_t) :: row
@@ -290,7 +294,7 @@ contains
       call drop_small_patches()
     else
       dz = setup%approach
-      call patches_at(dz)
+      call patches_at(dz, dz)
       if (status%failed()) return
       allocate (forces(size(refs)), source=0.0_real64)
     end if
@@ -320,12 +324,14 @@ contains
   contains
 
     !> The contacts at vertical approach dz_now (refs, the planes' references),
-    !> their gap objects, coarse grids and smallest gaps.
-    subroutine patches_at(dz_now)
-      real(real64), intent(in) :: dz_now
+    !> their gap objects, coarse grids over the potential area of approach
+    !> dz_area >= dz_now, and smallest gaps.
+    subroutine patches_at(dz_now, dz_area)
+      real(real64), intent(in) :: dz_now, dz_area
       integer :: j
       call find_contacts(track, shift, yaw, ys, d, xs, dz_now, refs)
       refs_dz = dz_now
+      area_dz = dz_area
       if (size(refs) == 0) then
         call fail(status, exit_bad_input, where//'approach = '//rtoa(dz_now)//' mm: no interpenetration (the '// &
                   'approach must be > 0)')
@@ -334,7 +340,7 @@ contains
       if (allocated(grids)) deallocate (grids, planes, hmins)
       allocate (grids(size(refs)), planes(size(refs)), hmins(size(refs)))
       do j = 1, size(refs)
-        call potential_area(refs(j), dz_now, planes(j), grids(j), hmins(j))
+        call potential_area(refs(j), dz_now, dz_area, planes(j), grids(j), hmins(j))
       end do
     end subroutine patches_at
 
@@ -343,9 +349,9 @@ contains
     !> grid over that area in the plane (x: rolling, y: s), and the smallest
     !> gap of the touching wheel in the plane (hmin; the patch's interpenetration
     !> at approach dz is dz cos(delta) - hmin).
-    subroutine potential_area(c, dz_now, plane, grid, hmin)
+    subroutine potential_area(c, dz_now, dz_area, plane, grid, hmin)
       type(contact_t), intent(in) :: c
-      real(real64), intent(in) :: dz_now
+      real(real64), intent(in) :: dz_now, dz_area
       type(plane_gap_t), intent(out) :: plane
       type(gap_t), intent(out) :: grid
       real(real64), intent(out) :: hmin
@@ -396,17 +402,20 @@ contains
       end do
       call refine_minimum(plane, 0.0_real64, s_min, (s_in_hi - s_in_lo) / n_in, .false., hmin)
       if (yaw /= 0) call refine_minimum(plane, 0.0_real64, s_min, 0.5_real64, .true., hmin)
-      ! in s: where the gap on the line xi = 0 stays below twice the interpenetration
-      a = dz_now * cd
+      ! in s: where the gap on the line xi = 0 stays below twice the interpenetration,
+      ! from the reference outward, at least to the interval's ends
+      a = dz_area * cd
       level = hmin + 2 * max(a - hmin, 0.0_real64)
       do step = 1, 4000
-        if (plane_gap_value(plane, 0.0_real64, s_in_lo - step * ds) >= level) exit
+        s = -step * ds
+        if (s < s_in_lo .and. plane_gap_value(plane, 0.0_real64, s) >= level) exit
       end do
-      s_lo = max(plane%s_lo, s_in_lo - step * ds)
+      s_lo = max(plane%s_lo, -step * ds)
       do step = 1, 4000
-        if (plane_gap_value(plane, 0.0_real64, s_in_hi + step * ds) >= level) exit
+        s = step * ds
+        if (s > s_in_hi .and. plane_gap_value(plane, 0.0_real64, s) >= level) exit
       end do
-      s_hi = min(plane%s_hi, s_in_hi + step * ds)
+      s_hi = min(plane%s_hi, step * ds)
       s_lo = s_lo - 0.1_real64 * (s_hi - s_lo) - 0.05_real64
       s_hi = s_hi + 0.1_real64 * (s_hi - s_lo) + 0.05_real64
       plane%s_lo = max(plane%s_lo, s_lo)
@@ -437,33 +446,31 @@ contains
 
 
     !> The vertical approach at which sum(Fn cos(delta)) is the vertical force
-    !> (coarse normal solves, Fn ~ dz^(3/2) updates), and each patch's Fn. The
-    !> patches' references and planes are those of the final approach (within
-    !> 1e-3 of it): the weighted reference moves with the approach.
+    !> (coarse normal solves), and each patch's Fn. Every evaluation takes the
+    !> patches' references and planes at its own approach (CONTACT's contact
+    !> search at each wheelset height): those made before are kept while the
+    !> references at this approach are within ref_moved of theirs and the
+    !> grids cover it. Fn ~ dz^(3/2) updates inside a bracket of the force,
+    !> halved (geometrically) when an update leaves it: where the weighted
+    !> angle turns fast with the approach (a flange root) the force need not
+    !> follow the power law.
     subroutine approach_for_force(dz_first, dz_out)
       real(real64), intent(in) :: dz_first
       real(real64), intent(out) :: dz_out
-      real(real64) :: total, dz_grid, compliance
+      real(real64) :: total, compliance, dz_lo, dz_hi, dz_next
       type(normal_result_t) :: nres
-      integer :: it, j, n_before
-      logical :: converged
+      integer :: it, j
       compliance = base%normal%compliance
       if (compliance <= 0) compliance = compliance_from_g_nu(base%g, base%nu)
       dz_out = dz_first
-      dz_grid = -1
-      n_before = -1
-      do it = 1, 60
-        ! new grids when the approach outgrows them or the set of patches changes
-        if (dz_out > dz_grid) then
-          call patches_at(1.3_real64 * dz_out)
-          if (status%failed()) return
-          dz_grid = 1.3_real64 * dz_out
-        end if
+      dz_lo = 0
+      dz_hi = huge(1.0_real64)
+      area_dz = -1
+      do it = 1, 100
         call find_contacts(track, shift, yaw, ys, d, xs, dz_out, contacts)
-        if (size(contacts) /= size(grids)) then
-          call patches_at(dz_out)
+        if (dz_out > area_dz .or. .not. same_references(contacts)) then
+          call patches_at(dz_out, 1.3_real64 * dz_out)
           if (status%failed()) return
-          dz_grid = 1.3_real64 * dz_out
         end if
         if (allocated(forces)) deallocate (forces)
         allocate (forces(size(refs)))
@@ -480,19 +487,28 @@ contains
           forces(j) = nres%fn
           total = total + nres%fn * cos(refs(j)%delta)
         end do
-        converged = abs(total / setup%vertical_force - 1) < 1e-6_real64 .and. size(refs) == n_before
-        if (converged .and. abs(refs_dz / dz_out - 1) <= 1e-3_real64) exit
-        n_before = size(refs)
-        if (converged) then
-          ! the references and planes at this approach; the forces again on them
-          call patches_at(dz_out)
-          if (status%failed()) return
-          dz_grid = 1.3_real64 * dz_out
-        else if (total > 0) then
-          dz_out = dz_out * (setup%vertical_force / total)**(2.0_real64 / 3)
+        if (abs(total / setup%vertical_force - 1) < 1e-6_real64) exit
+        if (total < setup%vertical_force) then
+          dz_lo = max(dz_lo, dz_out)
         else
-          dz_out = 2 * dz_out
+          dz_hi = min(dz_hi, dz_out)
         end if
+        if (dz_hi < huge(1.0_real64) .and. dz_hi - dz_lo <= 1e-9_real64 * dz_hi .and. total > 0) exit  ! a step of the force
+        if (total > 0) then
+          dz_next = dz_out * (setup%vertical_force / total)**(2.0_real64 / 3)
+        else
+          dz_next = 2 * dz_out
+        end if
+        if (dz_next <= dz_lo .or. dz_next >= dz_hi) then
+          if (dz_hi < huge(1.0_real64) .and. dz_lo > 0) then
+            dz_next = sqrt(dz_lo * dz_hi)
+          else if (dz_hi < huge(1.0_real64)) then
+            dz_next = dz_hi / 2
+          else
+            dz_next = 2 * dz_lo
+          end if
+        end if
+        dz_out = dz_next
       end do
       if (.not. (total > 0)) then
         call fail(status, exit_numerical, where//'no approach found for vertical_force = '//rtoa(setup%vertical_force))
@@ -501,6 +517,17 @@ contains
       ! the forces scaled to the vertical force
       forces = forces * setup%vertical_force / total
     end subroutine approach_for_force
+
+    !> The planes' references are those of now (the same patches, each point
+    !> and angle within ref_moved).
+    pure logical function same_references(now) result(same)
+      type(contact_t), intent(in) :: now(:)
+      same = .false.
+      if (.not. allocated(refs)) return
+      if (size(now) /= size(refs)) return
+      same = all(abs(now%y - refs%y) <= ref_moved .and. abs(now%x - refs%x) <= ref_moved .and. &
+                 abs(now%delta - refs%delta) <= ref_moved)
+    end function same_references
 
     !> Patches whose share of the vertical force is below min_patch_share
     !> carry nothing (skipped); the others' forces are scaled to carry the
