@@ -27,7 +27,6 @@ module kcreep_wheel_rail_run
                                         plane_of, plane_gap_value, plane_gap_grid, search_step
   use kcreep_gap, only: gap_t, outside_gap
   use kcreep_problem, only: problem_t, result_t, add_warning
-  use kcreep_verdict, only: message_length
   use kcreep_normal_solve, only: normal_result_t, solve_normal
   use kcreep_normal_influence, only: compliance_from_g_nu
   use kcreep_error_run, only: run_controlled
@@ -272,7 +271,7 @@ contains
     real(real64), allocatable :: forces(:), hmins(:)
     real(real64) :: shift, yaw, dz, w0, refs_dz, area_dz
     integer :: k, j
-    character(len=message_length), allocatable :: notes(:)
+    character(len=200), allocatable :: notes(:)   !< the shift's dropped patches (min_patch_share)
     type(wheel_rail_row_t) :: row
     type(problem_t) :: problem
     character(len=:), allocatable :: where
@@ -539,7 +538,7 @@ contains
       if (.not. any(shares < setup%min_patch_share) .or. all(shares < setup%min_patch_share)) return
       do j = 1, size(forces)
         if (shares(j) < setup%min_patch_share .and. forces(j) > 0) notes = [notes, &
-            [character(len=message_length) :: 'a patch of '//rtoa(1e2_real64 * shares(j))//' % of the vertical '// &
+            [character(len=200) :: 'a patch of '//rtoa(1e2_real64 * shares(j))//' % of the vertical '// &
              'force at y_rail = '//rtoa(rail_y(refs(j)))//' mm dropped (min_patch_share); the other patches '// &
              'carry its share']]
       end do
