@@ -269,7 +269,7 @@ contains
     type(gap_t), allocatable :: grids(:)
     type(plane_gap_t), allocatable :: planes(:)
     real(real64), allocatable :: forces(:), hmins(:)
-    real(real64) :: shift, yaw, dz, w0, refs_dz, area_dz
+    real(real64) :: shift, yaw, dz, w0, area_dz
     integer :: k, j
     character(len=200), allocatable :: notes(:)   !< the shift's dropped patches (min_patch_share)
     type(wheel_rail_row_t) :: row
@@ -329,7 +329,6 @@ contains
       real(real64), intent(in) :: dz_now, dz_area
       integer :: j
       call find_contacts(track, shift, yaw, ys, d, xs, dz_now, refs)
-      refs_dz = dz_now
       area_dz = dz_area
       if (size(refs) == 0) then
         call fail(status, exit_bad_input, where//'approach = '//rtoa(dz_now)//' mm: no interpenetration (the '// &
@@ -442,7 +441,6 @@ contains
       call plane_gap_grid(plane, mx, my, cell, cell, (x_lo + x_hi) / 2 - (mx - 1) * cell / 2, &
                           (s_lo + s_hi) / 2 - (my - 1) * cell / 2, grid)
     end subroutine potential_area
-
 
     !> The vertical approach at which sum(Fn cos(delta)) is the vertical force
     !> (coarse normal solves), and each patch's Fn. Every evaluation takes the
