@@ -49,7 +49,7 @@ contains
     lines(6) = '# delta: contact angle (the patch''s weighted mean surface angle); y_rail, y_wheel: its reference '// &
                'point (interpenetration centre) in each profile''s own coordinates; r_wheel: rolling radius there; '// &
                'area = pi c^2, length x width: extent of the contact area; kind: tread or flange (|delta| >= pi/4); '// &
-               'turn: largest |surface angle - delta| across the patch (rad)'
+               'turn: largest |surface angle - delta| across the patch (rad; above 0.2415 the row is warned of)'
     lines(7) = '# c11 c22 c23 = f/(G c^2), f23/(G c^3), c33 = f33/(G c^4) about the contact point; err: '// &
                'estimated relative errors; l1 l2 l3: FASTSIM flexibilities; spin = sin(delta)/r_wheel'
     lines(8) = '# '//wheel_rail_columns
