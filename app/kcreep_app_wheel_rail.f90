@@ -216,15 +216,15 @@ contains
   !> The summary's column names, each right-aligned over its column of summary_row.
   function summary_columns() result(line)
     character(len=:), allocatable :: line
-    character(len=8), parameter :: names(14) = [character(len=8) :: 'shift', 'patch', 'fn', 'delta', 'y_rail', &
-      'y_wheel', 'r_wheel', 'c11', 'c22', 'c23', 'err11', 'err22', 'err23', 'verdict']
-    integer, parameter :: widths(13) = [9, 6, 11, 10, 10, 10, 10, 9, 9, 9, 9, 9, 9]
+    character(len=8), parameter :: names(15) = [character(len=8) :: 'shift', 'patch', 'kind', 'fn', 'delta', &
+      'y_rail', 'y_wheel', 'r_wheel', 'c11', 'c22', 'c23', 'err11', 'err22', 'err23', 'verdict']
+    integer, parameter :: widths(14) = [9, 6, 7, 11, 10, 10, 10, 10, 9, 9, 9, 9, 9, 9]
     integer :: k
     line = ''
-    do k = 1, 13
+    do k = 1, 14
       line = line//repeat(' ', widths(k) - len_trim(names(k)))//trim(names(k))
     end do
-    line = line//' '//trim(names(14))
+    line = line//' '//trim(names(15))
   end function summary_columns
 
   !> One row of the summary: every number in a field of its own that starts
@@ -237,7 +237,7 @@ contains
     integer :: k
     line = cell(r%shift, 9, 2)
     write (buf, '(i6)') r%patch
-    line = line//buf(1:6)
+    line = line//buf(1:6)//repeat(' ', 7 - len_trim(r%kind))//trim(r%kind)
     write (buf, '(es11.3)') r%fn     ! (1x, es10.3: holds any sign and exponent up to 99)
     line = line//buf(1:11)//cell(r%delta, 10, 4)//cell(r%y_rail, 10, 3)//cell(r%y_wheel, 10, 3)// &
            cell(r%r_wheel, 10, 3)

@@ -164,10 +164,10 @@ int kcreep_set_track(kcreep_handle handle, const char *side, double gauge_width,
 int kcreep_wheel_rail(kcreep_handle handle, int n_shifts, const double *shifts, double yaw, double vertical_force,
                       double approach, int *rows);
 /* The table row by row: table[r * KCREEP_WHEEL_RAIL_COLUMNS + k] (length >= rows * columns),
- * columns named as below, the verdict as its bits (0: ok). */
-#define KCREEP_WHEEL_RAIL_COLUMNS 23
+ * columns named as below, the verdict as its bits (0: ok), kind 0 tread, 1 flange. */
+#define KCREEP_WHEEL_RAIL_COLUMNS 25
 #define KCREEP_WHEEL_RAIL_COLUMN_NAMES "shift yaw patch fn delta y_rail y_wheel r_wheel area length width " \
-  "c11 c22 c23 c33 err11 err22 err23 verdict l1 l2 l3 spin"
+  "c11 c22 c23 c33 err11 err22 err23 verdict l1 l2 l3 spin kind turn"
 int kcreep_get_wheel_rail(kcreep_handle handle, int length, double *table);
 
 /* The wheelset (docs/wheel_rail.md, Wheelset; the program's &wheel_rail

@@ -93,7 +93,7 @@ _signatures = {
 }
 #: the columns of the wheel-rail contact table (KCREEP_WHEEL_RAIL_COLUMN_NAMES of kcreep.h)
 WHEEL_RAIL_COLUMNS = ("shift yaw patch fn delta y_rail y_wheel r_wheel area length width c11 c22 c23 c33 "
-                      "err11 err22 err23 verdict l1 l2 l3 spin").split()
+                      "err11 err22 err23 verdict l1 l2 l3 spin kind turn").split()
 #: the columns of the wheelset table (KCREEP_WHEELSET_COLUMN_NAMES of kcreep.h)
 WHEELSET_COLUMNS = "shift r_right r_left delta_r delta_right delta_left roll z lambda_eq".split()
 for _name, (_args, _res) in _signatures.items():
@@ -229,7 +229,8 @@ class Solver:
         automatic, as the program's default; this Solver's material,
         solver settings and target_error (0: the program's default, 1e-3).
         Returns a dict of numpy arrays, one per column of WHEEL_RAIL_COLUMNS (one
-        entry per shift and patch; 'patch' integers, 'verdict' the verdict bits)."""
+        entry per shift and patch; 'patch' integers, 'verdict' the verdict bits,
+        'kind' the words 'tread' or 'flange')."""
         s = np.ascontiguousarray(np.atleast_1d(shifts), dtype=np.float64)
         self._check(_lib.kcreep_set_profiles(self._handle, os.fsencode(wheel_file), os.fsencode(rail_file),
                                              int(bool(wheel_mirror)), int(bool(rail_mirror)), float(smoothing)))
@@ -245,6 +246,7 @@ class Solver:
         table = {name: values[:, k].copy() for k, name in enumerate(WHEEL_RAIL_COLUMNS)}
         table["patch"] = table["patch"].astype(int)
         table["verdict"] = table["verdict"].astype(int)
+        table["kind"] = np.where(table["kind"] > 0.5, "flange", "tread")
         return table
 
     def wheelset(self, wheel_file, rail_file, shifts, *, vertical_force, yaw=0.0, left_wheel_file=None,

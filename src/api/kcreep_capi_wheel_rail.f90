@@ -15,7 +15,7 @@ module kcreep_capi_wheel_rail
   private
 
   !> The wheel-rail table's columns (KCREEP_WHEEL_RAIL_COLUMNS in kcreep.h).
-  integer, parameter :: wheel_rail_column_count = 23
+  integer, parameter :: wheel_rail_column_count = 25
   !> The wheelset table's columns (KCREEP_WHEELSET_COLUMNS in kcreep.h).
   integer, parameter :: wheelset_column_count = 9
 
@@ -156,7 +156,7 @@ contains
 
   !> The last kcreep_wheel_rail's table, row by row: table[r * KCREEP_WHEEL_RAIL_COLUMNS + k]
   !> (length >= rows * KCREEP_WHEEL_RAIL_COLUMNS), the columns of
-  !> KCREEP_WHEEL_RAIL_COLUMN_NAMES, the verdict as its bits.
+  !> KCREEP_WHEEL_RAIL_COLUMN_NAMES, the verdict as its bits, kind 0 tread, 1 flange.
   integer(c_int) function c_get_wheel_rail(handle, length, table) bind(c, name='kcreep_get_wheel_rail')
     type(c_ptr), value :: handle, table
     integer(c_int), value :: length
@@ -184,7 +184,8 @@ contains
       associate (w => h%wheel_rail_rows(r))
         values((r - 1) * wheel_rail_column_count + 1:r * wheel_rail_column_count) = &
           [w%shift, w%yaw, real(w%patch, wp), w%fn, w%delta, w%y_rail, w%y_wheel, w%r_wheel, w%area, w%length, &
-           w%width, w%c, w%err, real(w%result%verdict_flags, wp), w%l, w%spin]
+           w%width, w%c, w%err, real(w%result%verdict_flags, wp), w%l, w%spin, merge(1.0_wp, 0.0_wp, w%kind == 'flange'), &
+           w%turn]
       end associate
     end do
   end function c_get_wheel_rail

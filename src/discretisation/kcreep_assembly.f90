@@ -35,7 +35,7 @@ module kcreep_assembly
   !> Measured on the circle in a dense model (lab/boundary_blend_study.py,
   !> levels 24 to 64 cells across): kappa = 2 leaves the levels' C11 with
   !> no first-order term and a scatter of 0.0035 % about their line; kappa
-  !> = 1 and 4 scatter 10 times more (docs/wheel_rail.md, "The blended edge").
+  !> = 1 and 4 scatter 10 times more (docs/wheel_rail_checks.md, "The blended edge").
   real(real64), parameter :: blend_kappa = 2
 
   integer, parameter :: n_load_cases = 3

@@ -31,7 +31,7 @@
 !> cells: the S1002 +8 mm flange patch moved by 0.1 % when its normal grid
 !> was moved by half a cell, and the +7 mm row's C11 was 0.2 % apart between
 !> normal grids; at 0.001 mm (3e-7 mm) the +8 mm patch's normal-grid part of
-!> C11's estimate is 0.007 % instead of 0.083 % (docs/wheel_rail.md, "Speed").
+!> C11's estimate is 0.007 % instead of 0.083 % (docs/wheel_rail_checks.md, "Speed").
 module kcreep_profile
   use, intrinsic :: iso_fortran_env, only: real64
   use kcreep_status, only: status_t, fail, exit_bad_input

@@ -22,14 +22,16 @@
 !> wheel's height (exact for any yaw).
 !>
 !> Contact search: d(y) = z_rail(y) - max_x z_wheel(x, y) on a fine y grid (the
-!> vertical clearance); the wheel is lowered until min d = 0 (touching) and then
-!> by the vertical approach dz; every interval of y where d < dz is one contact
-!> patch, at the minimum of d in it (so two minima joined by a ridge lower than
-!> dz make one non-elliptic patch, separate intervals separate patches).
-!> Contact plane: tangent to the rail at the contact point (the rail is
-!> straight along x), tilted about x by the contact angle delta = atan(-dz_r/dy)
-!> (positive towards the flange on the right side). Gap: for a point (xi, s) of
-!> the plane (xi along x, s along the tilted lateral axis), the distance between
+!> vertical clearance over the contact locus); the wheel is lowered until
+!> min d = 0 (touching) and then by the vertical approach dz; every interval of
+!> y where d < dz is one contact patch (two dips joined by a ridge lower than
+!> dz make one non-elliptic patch, separate intervals separate patches), its
+!> reference point and contact angle CONTACT's weighted interpenetration
+!> centre and weighted mean surface angle (find_contacts).
+!> Contact plane: through the reference point on the rail (the rail is
+!> straight along x), tilted about x by the contact angle delta (positive
+!> towards the flange on the right side). Gap: for a point (xi, s) of the
+!> plane (xi along x, s along the tilted lateral axis), the distance between
 !> the two surfaces along the plane's normal (0, sin delta, cos delta), each found
 !> by Newton's method on the surface functions.
 module kcreep_wheel_rail_geometry
@@ -42,7 +44,7 @@ module kcreep_wheel_rail_geometry
   implicit none
   private
   public :: track_t, contact_t, plane_gap_t, place_track, clearance, find_contacts, plane_of, plane_gap_value, &
-            plane_gap_grid, wheel_surface, search_step
+            plane_gap_grid, wheel_surface, search_step, refine_minimum
 
   !> Lateral step of the contact search (mm).
   real(real64), parameter :: search_step = 0.02_real64
@@ -57,13 +59,14 @@ module kcreep_wheel_rail_geometry
     real(real64) :: r_nom = 460
   end type track_t
 
-  !> One contact found at a shift.
+  !> One contact patch found at a shift (find_contacts: CONTACT's reference).
   type :: contact_t
-    real(real64) :: x = 0, y = 0, z = 0      !< the contact point on the rail, track coordinates
-    real(real64) :: delta = 0                !< contact angle (rad)
-    real(real64) :: separation = 0           !< vertical clearance of this minimum when the wheel touches (>= 0)
+    real(real64) :: x = 0, y = 0, z = 0      !< the contact reference point on the rail, track coordinates
+    real(real64) :: delta = 0                !< contact angle (rad), the weighted mean surface angle
+    real(real64) :: turn = 0                 !< largest |surface angle - delta| where pen >= max pen / 2 (rad)
+    real(real64) :: weight = 0               !< integral of pen^(5/2) dy (mm^(7/2))
     real(real64) :: y_lo = 0, y_hi = 0       !< the interval of y where d < dz (its interpenetration)
-    real(real64) :: y_wheel = 0, r_wheel = 0 !< contact point in the wheel profile's coordinates, radius there
+    real(real64) :: y_wheel = 0              !< the reference point in the wheel profile's coordinates
   end type contact_t
 
   !> The undeformed distance in a contact plane.
@@ -196,15 +199,27 @@ contains
 
   end subroutine clearance
 
-  !> The contacts at vertical approach dz (beyond touching): one per interval of
-  !> d - min(d) < dz, at the interval's minimum (parabola through the three
-  !> samples around it). ys, d, xs from clearance.
+  !> The contacts at vertical approach dz (beyond touching): one per interval
+  !> of y where the interpenetration pen(y) = dz - (d(y) - min d) is positive,
+  !> ordered from the field side (largest y) to the track centre as CONTACT
+  !> orders them. Each contact's reference is CONTACT's module 1 "weighted
+  !> centre" (its m_wr_locatecp, default gap weighting): with the wheel's
+  !> surface along x taken as a parabola of curvature 1 / nominal_radius about
+  !> the lowest point xs(y), the squared interpenetration integrated along x is
+  !> (16/15) pen^(5/2) sqrt(2 nominal_radius), so each sample y_k weighs
+  !> w_k = pen(y_k)^(5/2), and
+  !>   y = sum w y_k / sum w,   x = sum w xs_k / sum w,
+  !>   delta = sum w alpha_k / sum w,  alpha = atan(-dz_r/dy) the rail's surface angle,
+  !> z the rail's surface at y. turn is the largest |alpha_k - delta| where
+  !> pen >= max pen / 2 (for a Hertzian gap, the contact area): the planar
+  !> patch's misfit, its gap along the plane's normal is off by about
+  !> 1 / cos(turn) - 1 there. ys, d, xs from clearance.
   pure subroutine find_contacts(track, shift, yaw, ys, d, xs, dz, contacts)
     type(track_t), intent(in) :: track
     real(real64), intent(in) :: shift, yaw, ys(:), d(:), xs(:), dz
     type(contact_t), allocatable, intent(out) :: contacts(:)
-    real(real64) :: d0, a, b, c, t
-    integer :: k, k1, km, n
+    real(real64) :: d0, w, sw, swy, swx, swa, alpha, pen_max
+    integer :: k, k1, n, j
     type(contact_t) :: one
     allocate (contacts(0))
     d0 = minval(d)
@@ -216,43 +231,37 @@ contains
         cycle
       end if
       k1 = k
-      km = k
+      sw = 0
+      swy = 0
+      swx = 0
+      swa = 0
+      pen_max = 0
       do while (k <= n)
         if (d(k) - d0 >= dz) exit
-        if (d(k) < d(km)) km = k
+        w = (dz - (d(k) - d0))**2.5_real64
+        alpha = atan(-envelope_slope(track%rail, ys(k), 0.05_real64))
+        sw = sw + w
+        swy = swy + w * ys(k)
+        swx = swx + w * xs(k)
+        swa = swa + w * alpha
+        pen_max = max(pen_max, dz - (d(k) - d0))
         k = k + 1
       end do
       one%y_lo = ys(k1)
       one%y_hi = ys(k - 1)
-      t = 0
-      if (km > 1 .and. km < n) then
-        a = d(km - 1)
-        b = d(km)
-        c = d(km + 1)
-        if (a + c - 2 * b > 0) t = min(max((a - c) / (2 * (a + c - 2 * b)), -0.5_real64), 0.5_real64)
-      end if
-      one%y = ys(km) + t * search_step
-      one%x = xs(km)
-      one%separation = max(0.0_real64, b_value(km, t) - d0)
+      one%weight = sw * search_step
+      one%y = swy / sw
+      one%x = swx / sw
+      one%delta = swa / sw
+      one%turn = 0
+      do j = k1, k - 1
+        if (dz - (d(j) - d0) < pen_max / 2) cycle
+        one%turn = max(one%turn, abs(atan(-envelope_slope(track%rail, ys(j), 0.05_real64)) - one%delta))
+      end do
       one%z = envelope_at(track%rail, one%y)
-      one%delta = atan(-envelope_slope(track%rail, one%y, 0.05_real64))
       one%y_wheel = -one%x * sin(yaw) + (one%y - shift) * cos(yaw) - track%wheel_origin
-      one%r_wheel = track%r_nom + envelope_at(track%wheel, one%y_wheel)
-      contacts = [contacts, one]
+      contacts = [one, contacts]
     end do
-
-  contains
-
-    pure real(real64) function b_value(k0, tt) result(v)
-      integer, intent(in) :: k0
-      real(real64), intent(in) :: tt
-      if (k0 > 1 .and. k0 < n) then
-        v = d(k0) + tt * (d(k0 + 1) - d(k0 - 1)) / 2 + tt**2 * (d(k0 + 1) + d(k0 - 1) - 2 * d(k0)) / 2
-      else
-        v = d(k0)
-      end if
-    end function b_value
-
   end subroutine find_contacts
 
   !> The gap object of a contact: plane through the contact point, wheel at its
@@ -362,5 +371,52 @@ contains
       end do
     end do
   end subroutine plane_gap_grid
+
+  !> hmin lowered to the smallest gap near (xi, s) along s (along_xi false)
+  !> or xi: parabolas through three points, steps quartered three times.
+  pure subroutine refine_minimum(plane, xi, s, step0, along_xi, hmin)
+    type(plane_gap_t), intent(in) :: plane
+    real(real64), intent(in) :: xi, step0
+    real(real64), intent(inout) :: s, hmin
+    logical, intent(in) :: along_xi
+    real(real64) :: t0, h0, hm, hp, step, t, h
+    integer :: pass
+    t0 = merge(xi, s, along_xi)
+    step = step0
+    h0 = value_at(t0)
+    do pass = 1, 3
+      hm = value_at(t0 - step)
+      hp = value_at(t0 + step)
+      if (hm < h0 .and. hm <= hp) then
+        t0 = t0 - step
+        h0 = hm
+      else if (hp < h0) then
+        t0 = t0 + step
+        h0 = hp
+      else if (hm + hp - 2 * h0 > 0) then
+        t = t0 + step * (hm - hp) / (2 * (hm + hp - 2 * h0))
+        h = value_at(t)
+        if (h < h0) then
+          t0 = t
+          h0 = h
+        end if
+      end if
+      step = step / 4
+    end do
+    hmin = min(hmin, h0)
+    if (.not. along_xi) s = t0
+
+  contains
+
+    pure real(real64) function value_at(tt) result(v)
+      real(real64), intent(in) :: tt
+      if (along_xi) then
+        v = plane_gap_value(plane, tt, s)
+      else
+        v = plane_gap_value(plane, xi, tt)
+      end if
+    end function value_at
+
+  end subroutine refine_minimum
 
 end module kcreep_wheel_rail_geometry

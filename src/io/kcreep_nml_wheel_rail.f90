@@ -31,18 +31,19 @@ module kcreep_nml_wheel_rail
     real(real64) :: smoothing = -1, gauge_width = 1435, gauge_height = 14, rail_cant = 0, &
                     flange_back_distance = 1360, flange_back_position = -70, nominal_radius = 460, &
                     shift_from = unset, shift_to = unset, shift_step = unset, yaw = 0, &
-                    vertical_force = unset, approach = unset
+                    vertical_force = unset, approach = unset, min_patch_share = 0
     real(real64), allocatable :: shifts(:)
   end type wheel_rail_group_t
 
   !> The group's variables and their types, as in its namelist statement
   !> (kcreep_namelist_scan diagnose_group explains a failed read with them).
-  character(len=*), parameter :: wheel_rail_variables(22) = [character(len=30) :: &
+  character(len=*), parameter :: wheel_rail_variables(23) = [character(len=30) :: &
     'wheel_file character', 'rail_file character', 'wheel_mirror logical', 'rail_mirror logical', &
     'wheelset logical', 'left_wheel_file character', 'left_rail_file character', &
     'smoothing real', 'side character', 'gauge_width real', 'gauge_height real', 'rail_cant real', &
     'flange_back_distance real', 'flange_back_position real', 'nominal_radius real', 'shifts real list', &
-    'shift_from real', 'shift_to real', 'shift_step real', 'yaw real', 'vertical_force real', 'approach real']
+    'shift_from real', 'shift_to real', 'shift_step real', 'yaw real', 'vertical_force real', 'approach real', &
+    'min_patch_share real']
 
 contains
 
@@ -55,12 +56,12 @@ contains
     character(len=16) :: side
     logical :: wheel_mirror, rail_mirror, wheelset
     real(real64) :: smoothing, gauge_width, gauge_height, rail_cant, flange_back_distance, flange_back_position, &
-                    nominal_radius, shift_from, shift_to, shift_step, yaw, vertical_force, approach
+                    nominal_radius, shift_from, shift_to, shift_step, yaw, vertical_force, approach, min_patch_share
     real(real64), allocatable :: shifts(:)
     namelist /wheel_rail/ wheel_file, rail_file, wheel_mirror, rail_mirror, smoothing, side, gauge_width, &
                           gauge_height, rail_cant, flange_back_distance, flange_back_position, nominal_radius, &
                           shifts, shift_from, shift_to, shift_step, yaw, vertical_force, approach, &
-                          wheelset, left_wheel_file, left_rail_file
+                          wheelset, left_wheel_file, left_rail_file, min_patch_share
 
     allocate (shifts(max_wheel_rail_shifts))   ! more values: the read fails, diagnose_group counts them
     shifts = unset
@@ -85,6 +86,7 @@ contains
     wheelset = grp%wheelset
     left_wheel_file = grp%left_wheel_file
     left_rail_file = grp%left_rail_file
+    min_patch_share = grp%min_patch_share
     read (unit, nml=wheel_rail, iostat=ios, iomsg=msg)
     grp%wheel_file = wheel_file
     grp%rail_file = rail_file
@@ -107,6 +109,7 @@ contains
     grp%wheelset = wheelset
     grp%left_wheel_file = left_wheel_file
     grp%left_rail_file = left_rail_file
+    grp%min_patch_share = min_patch_share
     call move_alloc(shifts, grp%shifts)
   end subroutine read_wheel_rail_group
 
@@ -191,6 +194,7 @@ contains
         call fail(status, exit_bad_input, where//'left_wheel_file and left_rail_file need wheelset = .true.')
         return
       end if
+      setup%min_patch_share = grp%min_patch_share
       call check_wheel_rail_setup(setup, where, status)
       if (status%failed()) return
 

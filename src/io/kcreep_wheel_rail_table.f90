@@ -37,9 +37,11 @@ module kcreep_wheel_rail_table
   integer, parameter :: wheel_rail_header_lines = 8
 
   !> The comment lines on the columns (a table's lines 6 and 7).
-  character(len=*), parameter :: point_note = '# delta: contact angle; y_rail, y_wheel: contact point in each '// &
-    'profile''s own coordinates; r_wheel: rolling radius there; area = pi c^2, length x width: extent of the '// &
-    'contact area'
+  character(len=*), parameter :: point_note = '# delta: contact angle (the patch''s weighted mean surface '// &
+    'angle); y_rail, y_wheel: its reference point (interpenetration centre) in each profile''s own coordinates; '// &
+    'r_wheel: rolling radius there; area = pi c^2, length x width: extent of the contact area; kind: tread or '// &
+    'flange (|delta| >= pi/4); turn: largest |surface angle - delta| across the patch (rad; above 0.2415 the '// &
+    'row is warned of)'
   character(len=*), parameter :: coefficient_note = '# c11 c22 c23 = f/(G c^2), f23/(G c^3), c33 = f33/(G c^4) '// &
     'about the contact point; err: estimated relative errors; l1 l2 l3: FASTSIM flexibilities; '// &
     'spin = sin(delta)/r_wheel'
@@ -92,9 +94,9 @@ contains
   function wheel_rail_row(r) result(line)
     type(wheel_rail_row_t), intent(in) :: r
     character(len=line_length) :: line
-    write (line, '(2(es15.7), i4, 5(es16.8), 3(es14.6), 4(es15.7), 3(es10.2), 1x, a, 4(es14.6))') &
+    write (line, '(2(es15.7), i4, 5(es16.8), 3(es14.6), 4(es15.7), 3(es10.2), 1x, a, 4(es14.6), 1x, a, es12.4)') &
       r%shift, r%yaw, r%patch, r%fn, r%delta, r%y_rail, r%y_wheel, r%r_wheel, r%area, r%length, r%width, &
-      r%c, r%err, trim(no_blanks(r%verdict)), r%l, r%spin
+      r%c, r%err, trim(no_blanks(r%verdict)), r%l, r%spin, trim(r%kind), r%turn
   end function wheel_rail_row
 
   !> The fixed comment lines and the column names of a batch's merged table

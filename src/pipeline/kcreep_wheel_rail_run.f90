@@ -24,9 +24,9 @@ module kcreep_wheel_rail_run
   use kcreep_strings, only: itoa, rtoa
   use kcreep_profile, only: profile_t, make_profile, no_surface, check_flange_side, envelope_at
   use kcreep_wheel_rail_geometry, only: track_t, contact_t, plane_gap_t, place_track, clearance, find_contacts, &
-                                        plane_of, plane_gap_value, plane_gap_grid, search_step
+                                        plane_of, plane_gap_value, plane_gap_grid, search_step, refine_minimum
   use kcreep_gap, only: gap_t, outside_gap
-  use kcreep_problem, only: problem_t, result_t
+  use kcreep_problem, only: problem_t, result_t, add_warning
   use kcreep_normal_solve, only: normal_result_t, solve_normal
   use kcreep_normal_influence, only: compliance_from_g_nu
   use kcreep_error_run, only: run_controlled
@@ -39,10 +39,19 @@ module kcreep_wheel_rail_run
             check_wheel_rail_setup, max_wheel_rail_shifts, most_shifts_at_once
   public :: wheel_state_t, rows_at_shift
 
-  !> The table's columns, in order (verdict a word).
-  character(len=*), parameter :: wheel_rail_columns = 'shift yaw patch fn delta y_rail y_wheel r_wheel area '// &
-                                 'length width c11 c22 c23 c33 err11 err22 err23 verdict l1 l2 l3 spin'
   real(real64), parameter :: pi = acos(-1.0_real64)
+  !> The table's columns, in order (verdict and kind words).
+  character(len=*), parameter :: wheel_rail_columns = 'shift yaw patch fn delta y_rail y_wheel r_wheel area '// &
+                                 'length width c11 c22 c23 c33 err11 err22 err23 verdict l1 l2 l3 spin kind turn'
+  !> A patch is 'flange' where its contact angle |delta| is at least this
+  !> (rad, 45 degrees), else 'tread': the row's kind.
+  real(real64), parameter :: flange_angle = pi / 4
+  !> Warn where the rail's surface angle across a patch departs from its
+  !> contact angle by more than this (rad): acos(1 / 1.03), where the gap
+  !> along the plane's normal is 3 % off the gap along the surface's, the
+  !> threshold of CONTACT's warning "large angle variation within contact
+  !> patch" (its m_wr_undefdist).
+  real(real64), parameter :: turn_warning = 0.24153_real64
   !> At most this many shifts in one table.
   integer, parameter :: max_wheel_rail_shifts = 10000
   !> Cells across the larger side of a patch's potential contact area on the
@@ -54,6 +63,10 @@ module kcreep_wheel_rail_run
   !> it (from the previous approach, S1002's +5 mm row on its given grid had a
   !> C23 1.5 % off the same shift run alone).
   real(real64), parameter :: first_approach = 0.05_real64
+  !> The force iteration makes a patch's plane and grid anew when its
+  !> reference at the approach tried has moved by more than this (mm of the
+  !> point, rad of the angle) from the plane's.
+  real(real64), parameter :: ref_moved = 1e-4_real64
 
   !> What &wheel_rail describes (the profiles already read).
   type :: wheel_rail_setup_t
@@ -71,6 +84,9 @@ module kcreep_wheel_rail_run
     logical :: wheelset = .false.                                               !< also the wheelset table (kcreep_wheelset)
     real(real64), allocatable :: left_wheel_y(:), left_wheel_z(:), left_rail_y(:), left_rail_z(:)  !< the left side's own, if given
     character(len=:), allocatable :: left_wheel_name, left_rail_name
+    !> with vertical_force: a patch whose share fn cos(delta) / vertical_force
+    !> is below this is dropped and the others carry the load (0: none dropped)
+    real(real64) :: min_patch_share = 0
   end type wheel_rail_setup_t
 
   !> One wheel at one shift without the patches' solves (rows_at_shift with
@@ -90,6 +106,8 @@ module kcreep_wheel_rail_run
     real(real64) :: c(4) = 0                 !< C11 C22 C23 C33
     real(real64) :: err(3) = 0
     real(real64) :: l(3) = 0, spin = 0
+    character(len=6) :: kind = 'tread'       !< 'tread' or 'flange' (flange_angle)
+    real(real64) :: turn = 0                 !< largest |surface angle - delta| across the patch (rad)
     real(real64) :: approach = 0             !< the vertical approach of the shift
     real(real64) :: y_track = 0, z_track = 0 !< contact point in track coordinates (the side's own)
     character(len=:), allocatable :: verdict
@@ -131,7 +149,11 @@ contains
       call check_range('vertical_force', setup%vertical_force, 1e-6_real64, 1e9_real64)
     else
       call check_range('approach', setup%approach, 1e-9_real64, 10.0_real64)
+      if (setup%min_patch_share /= 0 .and. .not. status%failed()) call fail(status, exit_bad_input, where// &
+          'min_patch_share = '//rtoa(setup%min_patch_share)//' needs vertical_force (the shares of a given '// &
+          'approach are not known before the patches are solved)')
     end if
+    call check_range('min_patch_share', setup%min_patch_share, 0.0_real64, 0.5_real64)
     if (status%failed()) return
     if (setup%wheelset .and. .not. setup%force_given) then
       call fail(status, exit_bad_input, where//'wheelset = .true. needs vertical_force (each wheel carries it), '// &
@@ -268,17 +290,18 @@ contains
     type(status_t), intent(inout) :: status
     type(wheel_state_t), intent(out), optional :: wheel
     real(real64), allocatable :: ys(:), d(:), xs(:)
-    type(contact_t), allocatable :: contacts(:)
+    type(contact_t), allocatable :: contacts(:), refs(:)
     type(gap_t), allocatable :: grids(:)
     type(plane_gap_t), allocatable :: planes(:)
-    real(real64), allocatable :: forces(:)
-    real(real64) :: shift, yaw, dz, w0
-    integer :: k
+    real(real64), allocatable :: forces(:), hmins(:)
+    real(real64) :: shift, yaw, dz, w0, area_dz
+    integer :: k, j
+    character(len=200), allocatable :: notes(:)   !< the shift's dropped patches (min_patch_share)
     type(wheel_rail_row_t) :: row
     type(problem_t) :: problem
     character(len=:), allocatable :: where
 
-    allocate (rows(0))
+    allocate (rows(0), notes(0))
     shift = sgn * setup%shifts(i)
     yaw = sgn * setup%yaw
     where = '&wheel_rail shift = '//rtoa(setup%shifts(i))//' mm: '
@@ -292,23 +315,24 @@ contains
     if (setup%force_given) then
       call approach_for_force(first_approach, dz)
       if (status%failed()) return
+      call drop_small_patches()
     else
       dz = setup%approach
-      call patches_at(dz)
+      call patches_at(dz, dz)
       if (status%failed()) return
-      allocate (forces(size(contacts)), source=0.0_real64)
+      allocate (forces(size(refs)), source=0.0_real64)
     end if
-    call check_profile_ends(setup, track, ys, d, contacts, where, status)
+    call check_profile_ends(setup, track, ys, d, refs, where, status)
     if (status%failed()) return
     if (present(wheel)) then
       wheel%height = w0 + dz
       wheel%fn = pack(forces, forces > 0)
-      wheel%delta = pack(contacts%delta, forces > 0)
-      wheel%r_wheel = pack(contacts%r_wheel, forces > 0)
-      wheel%y = pack(contacts%y, forces > 0)
+      wheel%delta = pack(refs%delta, forces > 0)
+      wheel%r_wheel = pack([(rolling_radius(refs(k), hmins(k)), k = 1, size(refs))], forces > 0)
+      wheel%y = pack(refs%y, forces > 0)
       return
     end if
-    do k = 1, size(contacts)
+    do k = 1, size(refs)
       problem = base
       problem%normal%active = .true.
       problem%normal%gap = grids(k)
@@ -316,57 +340,62 @@ contains
       problem%normal%poly_given = .false.
       problem%normal%force_given = setup%force_given
       problem%normal%normal_force = forces(k)
-      problem%normal%approach = dz * cos(contacts(k)%delta)
+      problem%normal%approach = dz * cos(refs(k)%delta)
       problem%refine_grid = .true.
       if (setup%force_given .and. .not. forces(k) > 0) cycle    ! touches, carries nothing
       call run_controlled(problem, row%result, status)
       if (status%failed()) then
-        status%message = where//'patch '//itoa(k)//': '//status%message
+        status%message = where//'patch '//itoa(size(rows) + 1)//': '//status%message
         return
       end if
-      call fill_row(contacts(k), k)
+      call fill_row(refs(k), hmins(k), size(rows) + 1)
+      do j = 1, size(notes)
+        call add_warning(row%result, trim(notes(j)))
+      end do
       rows = [rows, row]
     end do
 
   contains
 
-    !> The contacts, their gap objects and coarse grids at vertical approach dz_now.
-    subroutine patches_at(dz_now)
-      real(real64), intent(in) :: dz_now
+    !> The contacts at vertical approach dz_now (refs, the planes' references),
+    !> their gap objects, coarse grids over the potential area of approach
+    !> dz_area >= dz_now, and smallest gaps.
+    subroutine patches_at(dz_now, dz_area)
+      real(real64), intent(in) :: dz_now, dz_area
       integer :: j
-      call find_contacts(track, shift, yaw, ys, d, xs, dz_now, contacts)
-      if (size(contacts) == 0) then
+      call find_contacts(track, shift, yaw, ys, d, xs, dz_now, refs)
+      area_dz = dz_area
+      if (size(refs) == 0) then
         call fail(status, exit_bad_input, where//'approach = '//rtoa(dz_now)//' mm: no interpenetration (the '// &
                   'approach must be > 0)')
         return
       end if
-      if (allocated(grids)) deallocate (grids, planes)
-      allocate (grids(size(contacts)), planes(size(contacts)))
-      do j = 1, size(contacts)
-        call potential_area(contacts(j), dz_now, planes(j), grids(j))
+      if (allocated(grids)) deallocate (grids, planes, hmins)
+      allocate (grids(size(refs)), planes(size(refs)), hmins(size(refs)))
+      do j = 1, size(refs)
+        call potential_area(refs(j), dz_now, dz_area, planes(j), grids(j), hmins(j))
       end do
     end subroutine patches_at
 
     !> The plane of a contact with the limits of its potential contact area in
-    !> s (twice its interpenetration depth, not into a neighbour's interval) and
-    !> a grid over that area in the plane (x: rolling, y: s).
-    subroutine potential_area(c, dz_now, plane, grid)
+    !> s (twice its interpenetration depth, not into a neighbour's interval), a
+    !> grid over that area in the plane (x: rolling, y: s), and the smallest
+    !> gap of the touching wheel in the plane (hmin; the patch's interpenetration
+    !> at approach dz is dz cos(delta) - hmin).
+    subroutine potential_area(c, dz_now, dz_area, plane, grid, hmin)
       type(contact_t), intent(in) :: c
-      real(real64), intent(in) :: dz_now
+      real(real64), intent(in) :: dz_now, dz_area
       type(plane_gap_t), intent(out) :: plane
       type(gap_t), intent(out) :: grid
-      integer :: klo, khi, mx, my, line, step, k, ridge
-      real(real64) :: level, h0, a, s_lo, s_hi, x_lo, x_hi, cell, s, cd
+      real(real64), intent(out) :: hmin
+      real(real64), parameter :: ds = 0.05_real64     ! steps along the plane's lines (mm)
+      integer :: klo, khi, mx, my, line, step, k, ridge, n_in
+      real(real64) :: level, a, s_lo, s_hi, x_lo, x_hi, cell, s, cd, s_in_lo, s_in_hi, h, s_min
       plane = plane_of(track, shift, yaw, w0, c)
       cd = cos(c%delta)
       klo = nint((c%y_lo - ys(1)) / search_step) + 1
       khi = nint((c%y_hi - ys(1)) / search_step) + 1
-      ! in s: where the gap on the line through the contact point stays below
-      ! twice the interpenetration (steps of 0.05 mm), but not beyond the ridge
-      ! of d towards a neighbouring patch's interval
-      a = dz_now * cd
-      h0 = plane_gap_value(plane, 0.0_real64, 0.0_real64)
-      level = h0 + 2 * max(a - h0, 0.0_real64)
+      ! in s: not beyond the ridge of d towards a neighbouring patch's interval
       s_lo = -huge(1.0_real64)
       s_hi = huge(1.0_real64)
       ridge = 0
@@ -389,14 +418,37 @@ contains
       end do
       plane%s_lo = s_lo
       plane%s_hi = s_hi
-      do step = 1, 4000
-        if (plane_gap_value(plane, 0.0_real64, -step * 0.05_real64) >= level) exit
+      ! the smallest gap on the line xi = 0 across the interpenetration interval
+      ! (its image in the plane), refined by a parabola and, with yaw, along xi
+      s_in_lo = max((c%y_lo - search_step - c%y) / cd, plane%s_lo)
+      s_in_hi = min((c%y_hi + search_step - c%y) / cd, plane%s_hi)
+      n_in = max(4, ceiling((s_in_hi - s_in_lo) / ds))
+      hmin = huge(1.0_real64)
+      s_min = 0
+      do k = 0, n_in
+        s = s_in_lo + (s_in_hi - s_in_lo) * k / n_in
+        h = plane_gap_value(plane, 0.0_real64, s)
+        if (h < hmin) then
+          hmin = h
+          s_min = s
+        end if
       end do
-      s_lo = max(s_lo, -step * 0.05_real64)
+      call refine_minimum(plane, 0.0_real64, s_min, (s_in_hi - s_in_lo) / n_in, .false., hmin)
+      if (yaw /= 0) call refine_minimum(plane, 0.0_real64, s_min, 0.5_real64, .true., hmin)
+      ! in s: where the gap on the line xi = 0 stays below twice the interpenetration,
+      ! from the reference outward, at least to the interval's ends
+      a = dz_area * cd
+      level = hmin + 2 * max(a - hmin, 0.0_real64)
       do step = 1, 4000
-        if (plane_gap_value(plane, 0.0_real64, step * 0.05_real64) >= level) exit
+        s = -step * ds
+        if (s < s_in_lo .and. plane_gap_value(plane, 0.0_real64, s) >= level) exit
       end do
-      s_hi = min(s_hi, step * 0.05_real64)
+      s_lo = max(plane%s_lo, -step * ds)
+      do step = 1, 4000
+        s = step * ds
+        if (s > s_in_hi .and. plane_gap_value(plane, 0.0_real64, s) >= level) exit
+      end do
+      s_hi = min(plane%s_hi, step * ds)
       s_lo = s_lo - 0.1_real64 * (s_hi - s_lo) - 0.05_real64
       s_hi = s_hi + 0.1_real64 * (s_hi - s_lo) + 0.05_real64
       plane%s_lo = max(plane%s_lo, s_lo)
@@ -408,12 +460,12 @@ contains
         s = s_lo + (s_hi - s_lo) * (line + 0.5_real64) / 9
         ! the largest |xi| each way with the gap below level (steps of 0.05 mm, up to 100 mm)
         do step = 1, 2000
-          if (plane_gap_value(plane, step * 0.05_real64, s) >= level) exit
-          x_hi = max(x_hi, step * 0.05_real64)
+          if (plane_gap_value(plane, step * ds, s) >= level) exit
+          x_hi = max(x_hi, step * ds)
         end do
         do step = 1, 2000
-          if (plane_gap_value(plane, -step * 0.05_real64, s) >= level) exit
-          x_lo = min(x_lo, -step * 0.05_real64)
+          if (plane_gap_value(plane, -step * ds, s) >= level) exit
+          x_lo = min(x_lo, -step * ds)
         end do
       end do
       x_lo = x_lo - 0.1_real64 * (x_hi - x_lo) - 0.05_real64
@@ -426,78 +478,125 @@ contains
     end subroutine potential_area
 
     !> The vertical approach at which sum(Fn cos(delta)) is the vertical force
-    !> (coarse normal solves, Fn ~ dz^(3/2) updates), and each patch's Fn.
+    !> (coarse normal solves), and each patch's Fn. Every evaluation takes the
+    !> patches' references and planes at its own approach (CONTACT's contact
+    !> search at each wheelset height): those made before are kept while the
+    !> references at this approach are within ref_moved of theirs and the
+    !> grids cover it. Fn ~ dz^(3/2) updates inside a bracket of the force,
+    !> halved (geometrically) when an update leaves it: where the weighted
+    !> angle turns fast with the approach (a flange root) the force need not
+    !> follow the power law.
     subroutine approach_for_force(dz_first, dz_out)
       real(real64), intent(in) :: dz_first
       real(real64), intent(out) :: dz_out
-      real(real64) :: total, dz_grid, compliance
+      real(real64) :: total, compliance, dz_lo, dz_hi, dz_next
       type(normal_result_t) :: nres
-      integer :: it, j, n_before
+      integer :: it, j
       compliance = base%normal%compliance
       if (compliance <= 0) compliance = compliance_from_g_nu(base%g, base%nu)
       dz_out = dz_first
-      dz_grid = -1
-      n_before = -1
-      do it = 1, 60
-        ! new grids when the approach outgrows them or the set of patches changes
-        if (dz_out > dz_grid) then
-          call patches_at(1.3_real64 * dz_out)
-          if (status%failed()) return
-          dz_grid = 1.3_real64 * dz_out
-        end if
+      dz_lo = 0
+      dz_hi = huge(1.0_real64)
+      area_dz = -1
+      do it = 1, 100
         call find_contacts(track, shift, yaw, ys, d, xs, dz_out, contacts)
-        if (size(contacts) /= size(grids)) then
-          call patches_at(dz_out)
+        if (dz_out > area_dz .or. .not. same_references(contacts)) then
+          call patches_at(dz_out, 1.3_real64 * dz_out)
           if (status%failed()) return
-          dz_grid = dz_out
         end if
         if (allocated(forces)) deallocate (forces)
-        allocate (forces(size(contacts)))
+        allocate (forces(size(refs)))
         total = 0
-        do j = 1, size(contacts)
+        do j = 1, size(refs)
           forces(j) = 0
-          if (.not. any(grids(j)%h < dz_out * cos(contacts(j)%delta))) cycle
+          if (.not. any(grids(j)%h < dz_out * cos(refs(j)%delta))) cycle
           call solve_normal(grids(j)%h, grids(j)%dx, grids(j)%dy, compliance, base%normal%options, nres, status, &
-                            approach=dz_out * cos(contacts(j)%delta))
+                            approach=dz_out * cos(refs(j)%delta))
           if (status%failed()) then
             status%message = where//'finding the approach: '//status%message
             return
           end if
           forces(j) = nres%fn
-          total = total + nres%fn * cos(contacts(j)%delta)
+          total = total + nres%fn * cos(refs(j)%delta)
         end do
-        if (abs(total / setup%vertical_force - 1) < 1e-6_real64 .and. size(contacts) == n_before) exit
-        n_before = size(contacts)
-        if (total > 0) then
-          dz_out = dz_out * (setup%vertical_force / total)**(2.0_real64 / 3)
+        if (abs(total / setup%vertical_force - 1) < 1e-6_real64) exit
+        if (total < setup%vertical_force) then
+          dz_lo = max(dz_lo, dz_out)
         else
-          dz_out = 2 * dz_out
+          dz_hi = min(dz_hi, dz_out)
         end if
+        if (dz_hi < huge(1.0_real64) .and. dz_hi - dz_lo <= 1e-9_real64 * dz_hi .and. total > 0) exit  ! a step of the force
+        if (total > 0) then
+          dz_next = dz_out * (setup%vertical_force / total)**(2.0_real64 / 3)
+        else
+          dz_next = 2 * dz_out
+        end if
+        if (dz_next <= dz_lo .or. dz_next >= dz_hi) then
+          if (dz_hi < huge(1.0_real64) .and. dz_lo > 0) then
+            dz_next = sqrt(dz_lo * dz_hi)
+          else if (dz_hi < huge(1.0_real64)) then
+            dz_next = dz_hi / 2
+          else
+            dz_next = 2 * dz_lo
+          end if
+        end if
+        dz_out = dz_next
       end do
       if (.not. (total > 0)) then
         call fail(status, exit_numerical, where//'no approach found for vertical_force = '//rtoa(setup%vertical_force))
         return
       end if
-      ! the final patches and grids at this approach; the forces scaled to the vertical force
+      ! the forces scaled to the vertical force
       forces = forces * setup%vertical_force / total
     end subroutine approach_for_force
 
-    subroutine fill_row(c, patch)
+    !> The planes' references are those of now (the same patches, each point
+    !> and angle within ref_moved).
+    pure logical function same_references(now) result(same)
+      type(contact_t), intent(in) :: now(:)
+      same = .false.
+      if (.not. allocated(refs)) return
+      if (size(now) /= size(refs)) return
+      same = all(abs(now%y - refs%y) <= ref_moved .and. abs(now%x - refs%x) <= ref_moved .and. &
+                 abs(now%delta - refs%delta) <= ref_moved)
+    end function same_references
+
+    !> Patches whose share of the vertical force is below min_patch_share
+    !> carry nothing (skipped); the others' forces are scaled to carry the
+    !> load, and every row of the shift notes each dropped patch.
+    subroutine drop_small_patches()
+      real(real64) :: shares(size(forces)), kept
+      integer :: j
+      shares = forces * cos(refs%delta) / setup%vertical_force
+      if (.not. any(shares < setup%min_patch_share) .or. all(shares < setup%min_patch_share)) return
+      do j = 1, size(forces)
+        if (shares(j) < setup%min_patch_share .and. forces(j) > 0) notes = [notes, &
+            [character(len=200) :: 'a patch of '//rtoa(1e2_real64 * shares(j))//' % of the vertical '// &
+             'force at y_rail = '//rtoa(rail_y(refs(j)))//' mm dropped (min_patch_share); the other patches '// &
+             'carry its share']]
+      end do
+      where (shares < setup%min_patch_share) forces = 0
+      kept = sum(forces * cos(refs%delta))
+      forces = forces * setup%vertical_force / kept
+    end subroutine drop_small_patches
+
+    !> The row of a patch: CONTACT's reference point, angle and rolling
+    !> radius: the distance from the wheel's axis of the reference point moved
+    !> along the plane's normal by the patch's interpenetration pen (CONTACT's
+    !> point Q, m_wr_rigslip), pen = dz cos(delta) - hmin.
+    subroutine fill_row(c, hmin, patch)
       type(contact_t), intent(in) :: c
+      real(real64), intent(in) :: hmin
       integer, intent(in) :: patch
-      real(real64) :: yp, zp
       associate (r => row%result)
         row%shift = setup%shifts(i)
         row%yaw = setup%yaw
         row%patch = patch
         row%fn = r%fn
         row%delta = sgn * c%delta
-        yp = c%y - track%rail_shift(1)
-        zp = c%z - track%rail_shift(2)
-        row%y_rail = cos(track%cant) * yp + sin(track%cant) * zp
-        if (setup%rail_mirror) row%y_rail = -row%y_rail
+        row%y_rail = rail_y(c)
         row%y_wheel = merge(-c%y_wheel, c%y_wheel, setup%wheel_mirror)
-        row%r_wheel = c%r_wheel
+        row%r_wheel = rolling_radius(c, hmin)
         row%area = pi * r%c**2
         row%length = r%bbox(2) - r%bbox(1)
         row%width = r%bbox(4) - r%bbox(3)
@@ -506,12 +605,37 @@ contains
         row%err = r%err
         row%verdict = r%verdict
         row%l = r%fastsim
-        row%spin = sin(row%delta) / c%r_wheel
+        row%spin = sin(row%delta) / row%r_wheel
+        row%turn = c%turn
+        row%kind = merge('flange', 'tread ', abs(c%delta) >= flange_angle)
         row%approach = dz
         row%y_track = sgn * c%y
         row%z_track = c%z
       end associate
+      if (c%turn > turn_warning) call add_warning(row%result, 'the rail''s surface angle varies by up '// &
+          'to '//rtoa(c%turn)//' rad from the contact angle across the patch (more than '//rtoa(turn_warning)// &
+          ': the planar gap along the normal is off by more than 3 % there; CONTACT warns too)')
     end subroutine fill_row
+
+    !> The rolling radius at CONTACT's point Q: the reference point moved along
+    !> the normal by the patch's interpenetration, from the wheel's axis.
+    pure real(real64) function rolling_radius(c, hmin) result(r)
+      type(contact_t), intent(in) :: c
+      real(real64), intent(in) :: hmin
+      real(real64) :: pen
+      pen = dz * cos(c%delta) - hmin
+      r = c%z + pen * cos(c%delta) - (w0 + dz - track%r_nom)
+    end function rolling_radius
+
+    !> The reference point's lateral coordinate in the rail profile's own coordinates.
+    pure real(real64) function rail_y(c) result(y)
+      type(contact_t), intent(in) :: c
+      real(real64) :: yp, zp
+      yp = c%y - track%rail_shift(1)
+      zp = c%z - track%rail_shift(2)
+      y = cos(track%cant) * yp + sin(track%cant) * zp
+      if (setup%rail_mirror) y = -y
+    end function rail_y
 
   end subroutine rows_at_shift
 

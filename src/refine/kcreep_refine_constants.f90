@@ -49,7 +49,7 @@ module kcreep_refine_constants
   !> depend on). On the S1002 flange patches (length / width 19 to 22:
   !> cells about 4 times as long) the table took 9.5 s instead of 11.0 s
   !> with a limit of 10 (13.4 s on square cells), every row `ok` and within
-  !> its estimates of the 1e-4 references (docs/wheel_rail.md, "Speed"). The
+  !> its estimates of the 1e-4 references (docs/wheel_rail_checks.md, "Speed"). The
   !> Hertzian gaps a/b = 5, 7, 10 and 20 stayed bounded in 10 of 10
   !> perturbed runs each (docs/accuracy.md, "Gaps"). Longer cells on
   !> shorter areas were not honest: cells sqrt(a/b) times as long missed

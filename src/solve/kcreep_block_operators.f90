@@ -70,7 +70,7 @@ module kcreep_block_operators
   !> inside, on a patch with none). The circulant inverse of a core of cells
   !> at least half inside took 29-70 GMRES steps per level on the S1002
   !> flange strips, of cells at least 0.9 inside 11-18, as many as the
-  !> staircase's levels (docs/wheel_rail.md, "The blended edge").
+  !> staircase's levels (docs/wheel_rail_checks.md, "The blended edge").
   real(real64), parameter :: core_fraction = 0.9_real64
 
   !> The strip preconditioner on the representative cells (their mirror

@@ -249,13 +249,33 @@ kc.check(code == 0, "hollow wheel runs" + ("" if code == 0 else ": " + err.strip
 rows = kc.read_table(os.path.join(folder, "two.wr")) if code == 0 else []
 kc.check(len(rows) == 2, f"two-point contact: two patches ({len(rows)})")
 if len(rows) == 2:
-    # minima of d(y) = (y+5)^2/400 + y^2/600 and (y-7)^2/520 + y^2/600 (the crown as a parabola; a circle moves them < 0.01 mm)
-    kc.small(rows[0]["y_rail"] + 3.0, 1, 0.02, "first contact at y = -3")
-    kc.small(rows[1]["y_rail"] - 3.75, 1, 0.02, "second contact at y = 3.75")
+    # minima of d(y) = (y+5)^2/400 + y^2/600 and (y-7)^2/520 + y^2/600 (the crown as a parabola; a circle
+    # moves them < 0.01 mm); each lobe's interpenetration is nearly symmetric about its minimum, so its weighted
+    # centre lies there too (measured 3.7498 and -2.9999). Patches are ordered from the field side (largest y).
+    kc.small(rows[0]["y_rail"] - 3.75, 1, 0.02, "first patch (field side) at y = 3.75")
+    kc.small(rows[1]["y_rail"] + 3.0, 1, 0.02, "second patch at y = -3")
     total = sum(r["fn"] * math.cos(r["delta"]) for r in rows)
     # each patch's normal solve meets its share of the force to its own tolerance (measured 1.4e-9 in all)
     kc.close(total, 20000.0, 1e-8, "sum of fn cos(delta) = vertical force")
-    kc.check(rows[1]["fn"] < rows[0]["fn"], "the contact with the larger clearance carries less")
+    kc.check(rows[0]["fn"] < rows[1]["fn"], "the contact with the larger clearance carries less")
+    # min_patch_share: the field-side patch carries 23.8 % (measured): at 0.3 it is dropped, the other carries
+    # the whole load and its row says so; with a given approach the share is not known: refused
+    code, out, err, _ = kc.run(
+        f"&wheel_rail wheel_file = 'hollow.dat', rail_file = 'rail_circle.dat', {place},\n"
+        "  shifts = 0, vertical_force = 20000, min_patch_share = 0.3 /\n&material g = 82000, nu = 0.28 /\n"
+        "&solver target_error = 0 /\n", folder, "two_drop", expect_ok=False)
+    dropped = kc.read_table(os.path.join(folder, "two_drop.wr")) if code == 0 else []
+    kc.check(len(dropped) == 1 and abs(dropped[0]["y_rail"] - rows[1]["y_rail"]) < 1e-3,
+             f"min_patch_share = 0.3: the 24 % patch dropped, the other kept ({len(dropped)} rows)")
+    if dropped:
+        kc.close(dropped[0]["fn"] * math.cos(dropped[0]["delta"]), 20000.0, 1e-8, "the kept patch carries the load")
+    kc.check("dropped (min_patch_share)" in err and "y_rail = 3.7" in err, f"the row warns of the drop: {err.strip()}")
+    for extra, words in (("approach = 0.1", "needs vertical_force"), ("vertical_force = 20000", "0.5")):
+        code, out, err, _ = kc.run(
+            f"&wheel_rail wheel_file = 'hollow.dat', rail_file = 'rail_circle.dat', {place},\n"
+            f"  shifts = 0, {extra}, min_patch_share = {0.3 if 'approach' in extra else 0.7} /\n", folder,
+            "two_bad", expect_ok=False)
+        kc.check(code == 2 and "min_patch_share" in err and words in err, f"refused ({extra}): {err.strip()}")
 
 # 4. S1002 on UIC60: tread contact at 0, flange contact at +8 mm
 if os.path.isdir(profiles):
