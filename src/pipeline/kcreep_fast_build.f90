@@ -17,14 +17,15 @@ module kcreep_fast_build
   use kcreep_assembly, only: scheme_t
   use kcreep_rolling_solve, only: rolling_info_t
   use kcreep_fast_model, only: fast_model_t, fast_model_grid, fast_model_ray, fast_model_fit, fast_model_forces
-  use kcreep_rolling_curve, only: rolling_state_t, prepare_rolling_state, solve_point, check_rolling_input
+  use kcreep_rolling_curve, only: rolling_state_t, prepare_rolling_state, solve_point, check_rolling_input, &
+                                 default_rolling_tolerance
   implicit none
   private
   public :: fast_forces_t, build_fast_forces, fast_forces_of
 
   !> Stop test of the table's exact solves, max|F| / max(mu pn): 1e-8 moves the forces
   !> by far less than the model's interpolation error (1e-3 of mu Fn).
-  real(real64), parameter :: build_tolerance = 1e-8_real64
+  real(real64), parameter :: build_tolerance = 1e-5_real64
 
   type :: fast_forces_t
     type(fast_model_t) :: model
@@ -71,12 +72,13 @@ contains
     da = patch%dx * patch%dy
     fn = sum(bound) * da
     area = n * da
-    ! the linear coefficients at a creepage far inside full adhesion (|F| ~ 4e-6 Fn)
-    tiny_creep = 1e-6_real64 * fn / (g * area)
-    call point([tiny_creep, 0.0_real64, 0.0_real64])
+    ! the linear coefficients at a creepage far inside full adhesion (|F| ~ 4e-4 Fn),
+    ! solved to the default tolerance (build_tolerance would accept zero tractions there)
+    tiny_creep = 1e-4_real64 * fn / (g * area)
+    call point([tiny_creep, 0.0_real64, 0.0_real64], tight=.true.)
     if (status%failed()) return
     f11 = -sum(p(1:n)) * da / tiny_creep
-    call point([0.0_real64, tiny_creep, 0.0_real64])
+    call point([0.0_real64, tiny_creep, 0.0_real64], tight=.true.)
     if (status%failed()) return
     f22 = -sum(p(n + 1:2 * n)) * da / tiny_creep
     k = [abs(f11), abs(f22), abs(f22) * sqrt(area / acos(-1.0_real64))] / max(fn, tiny(1.0_real64))
@@ -143,11 +145,15 @@ contains
   contains
 
     !> The exact solution p at creepage cr (mu = 1).
-    subroutine point(cr_in, start)
+    subroutine point(cr_in, start, tight)
       real(real64), intent(in) :: cr_in(3)
       real(real64), intent(in), optional :: start(:)
+      logical, intent(in), optional :: tight
+      real(real64) :: tolerance
       cr = cr_in
-      call solve_point(state, cr, 1.0_real64, bound, build_tolerance, p, cells, info, start=start)
+      tolerance = build_tolerance
+      if (present(tight)) tolerance = default_rolling_tolerance
+      call solve_point(state, cr, 1.0_real64, bound, tolerance, p, cells, info, start=start)
       fast%solves = fast%solves + 1
       fast%newton = fast%newton + info%newton
       if (.not. info%converged) call fail(status, exit_numerical, 'fast force model: Newton did not converge at '// &
