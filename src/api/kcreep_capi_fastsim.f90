@@ -8,6 +8,8 @@ module kcreep_capi_fastsim
   use kcreep, only: creep_request_t, creep_point_t, creep_map_t, creep_curve, flexibility_rule_of, &
                     rolling_request_t, rolling_point_t, rolling_curve, build_fast_forces, fast_forces_of
   use kcreep_capi_handle, only: handle_t, status_ok, solved, finish, from_c
+  use kcreep_threads, only: team_size, enter_team, leave_team, cells_per_thread_iterative
+  use, intrinsic :: iso_fortran_env, only: int64
   implicit none
   private
 
@@ -87,7 +89,7 @@ contains
     type(rolling_request_t) :: request
     type(rolling_point_t), allocatable :: points(:)
     type(creep_map_t), allocatable :: maps(:)
-    integer :: k
+    integer :: k, previous_team
     c_rolling = solved(handle, h)
     if (c_rolling /= status_ok) return
     if (.not. (mu > 0 .and. mu < huge(1.0_wp)) .or. n < 1) then
@@ -102,6 +104,9 @@ contains
       call c_f_pointer(creep, creepages, [3, int(n)])
       request%mu = mu
       request%creepages = creepages
+      ! the team of the handle's solves (automatic: one thread below cells_per_thread_iterative)
+      call enter_team(team_size(h%problem%solve%threads, int(h%result%patch%n, int64), cells_per_thread_iterative), &
+                      previous_team)
       if (allocated(h%result%traction)) then
         call rolling_curve(h%result%patch, h%problem%scheme, h%result%nu, h%result%g, h%result%spin_centre, pn, &
                            request, points, maps, h%last, h%result%traction, state=h%rolling)
@@ -109,6 +114,7 @@ contains
         call rolling_curve(h%result%patch, h%problem%scheme, h%result%nu, h%result%g, h%result%spin_centre, pn, &
                            request, points, maps, h%last, state=h%rolling)
       end if
+      call leave_team(previous_team)
     end if
     if (h%last%failed()) then
       c_rolling = finish(h)
@@ -134,6 +140,7 @@ contains
     type(handle_t), pointer :: h
     real(c_double), pointer :: creepages(:, :), forces(:, :)
     real(wp), allocatable :: pn(:, :)
+    integer :: previous_team
     c_fast_forces = solved(handle, h)
     if (c_fast_forces /= status_ok) return
     if (.not. (mu > 0 .and. mu < huge(1.0_wp)) .or. n < 1) then
@@ -149,8 +156,13 @@ contains
       if (.not. all(creepages == creepages .and. abs(creepages) < huge(1.0_wp))) &
         call fail(h%last, exit_bad_input, 'kcreep_fast_forces: the creepages must be finite')
     end if
-    if (.not. h%last%failed()) call build_fast_forces(h%result%patch, h%problem%scheme, h%result%nu, h%result%g, &
-                                                      h%result%spin_centre, pn, h%rolling, h%fast, h%last)
+    if (.not. h%last%failed()) then
+      call enter_team(team_size(h%problem%solve%threads, int(h%result%patch%n, int64), cells_per_thread_iterative), &
+                      previous_team)
+      call build_fast_forces(h%result%patch, h%problem%scheme, h%result%nu, h%result%g, h%result%spin_centre, pn, &
+                             h%rolling, h%fast, h%last)
+      call leave_team(previous_team)
+    end if
     if (h%last%failed()) then
       c_fast_forces = finish(h)
       return
