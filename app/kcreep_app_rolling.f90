@@ -2,14 +2,16 @@
 !> rolling forces with friction on the solved patch (kcreep_rolling_curve),
 !> the lines of the rolling table and maps, and the summary lines; with
 !> &fastsim given too, FASTSIM's largest distance from the exact forces per
-!> flexibility source, at the rolling points.
+!> flexibility source, and the fast force model's (kcreep_fast_build), at the
+!> rolling points.
 module kcreep_app_rolling
   use, intrinsic :: iso_fortran_env, only: real64
   use kcreep_status, only: status_t
   use kcreep_namelist, only: config_t
   use kcreep_table, only: run_record_t
   use kcreep, only: creep_request_t, creep_point_t, creep_map_t, creep_curve, source_names, rolling_point_t, &
-                    rolling_curve, flexibility_rule_name
+                    rolling_curve, flexibility_rule_name, rolling_state_t, release_rolling_state, fast_forces_t, &
+                    build_fast_forces, fast_forces_of
   use kcreep_rolling_table, only: rolling_lines, rolling_map_lines
   use kcreep_app_fastsim, only: source_pressure
   implicit none
@@ -49,6 +51,9 @@ contains
     type(creep_point_t), allocatable :: fpoints(:)
     type(creep_request_t) :: frequest
     real(real64) :: worst(size(source_names)), mufn, seconds
+    real(real64), allocatable :: fast_force(:, :)
+    type(rolling_state_t) :: state
+    type(fast_forces_t) :: fast
     character(len=200) :: buf
     integer :: k, s, q
 
@@ -102,6 +107,21 @@ contains
           ' % of mu Fn over the rolling points'
         summary = [character(len=200) :: summary, buf]
       end do
+      ! the fast force model of this patch and pressure at the same points
+      call build_fast_forces(record%patch, cfg%scheme, record%nu, record%g, record%spin_centre, pn, state, fast, &
+                             status)
+      call release_rolling_state(state)
+      if (status%failed()) return
+      allocate (fast_force(3, size(points)))
+      call fast_forces_of(fast, cfg%rolling%request%mu, cfg%rolling%request%creepages, fast_force)
+      mufn = 0
+      do k = 1, size(points)
+        mufn = max(mufn, hypot(fast_force(1, k) - points(k)%force%fx, fast_force(2, k) - points(k)%force%fy) / &
+                   (cfg%rolling%request%mu * points(k)%force%fn))
+      end do
+      write (buf, '(a, f8.3, a, i0, a, f6.2, a)') '  fast model against exact: largest |F - F_exact| =', 100 * mufn, &
+        ' % of mu Fn over the rolling points (', fast%solves, ' exact points, built in ', fast%seconds, ' s)'
+      summary = [character(len=200) :: summary, buf]
     end if
   end subroutine run_rolling
 
