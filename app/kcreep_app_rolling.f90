@@ -5,7 +5,7 @@
 !> flexibility source, and the fast force model's (kcreep_fast_build), at the
 !> rolling points.
 module kcreep_app_rolling
-  use, intrinsic :: iso_fortran_env, only: real64
+  use, intrinsic :: iso_fortran_env, only: real64, int64
   use kcreep_status, only: status_t
   use kcreep_namelist, only: config_t
   use kcreep_table, only: run_record_t
@@ -14,9 +14,14 @@ module kcreep_app_rolling
                     build_fast_forces, fast_forces_of
   use kcreep_rolling_table, only: rolling_lines, rolling_map_lines
   use kcreep_app_fastsim, only: source_pressure
+  use kcreep_threads, only: team_size, enter_team, leave_team, cells_per_thread_iterative
   implicit none
   private
   public :: run_rolling
+
+  !> The largest patch whose fast force model the summary builds (about 4 s of one thread
+  !> at 400 cells, growing with the cells; the model is meant for patches of 300-1000 cells).
+  integer, parameter :: fast_model_cells = 2000
 
 contains
 
@@ -45,6 +50,7 @@ contains
     character(len=200), allocatable, intent(out) :: summary(:)
     character(len=200), allocatable, intent(out) :: warnings(:)
     type(status_t), intent(inout) :: status
+    integer :: previous_team
     real(real64), allocatable :: pn(:, :)
     type(rolling_point_t), allocatable :: points(:)
     type(creep_map_t), allocatable :: maps(:), fmaps(:)
@@ -61,6 +67,8 @@ contains
     call source_pressure('rolling', cfg%rolling%pressure, cfg%rolling%pressure_input_file, cfg%rolling%fn, cfg, &
                          record, pn, warnings, status)
     if (status%failed()) return
+    ! the team of the solves (automatic: one thread below cells_per_thread_iterative)
+    call enter_team(team_size(cfg%solve%threads, int(record%patch%n, int64), cells_per_thread_iterative), previous_team)
     if (allocated(record%traction)) then
       call rolling_curve(record%patch, cfg%scheme, record%nu, record%g, record%spin_centre, pn, cfg%rolling%request, &
                          points, maps, status, record%traction)
@@ -68,6 +76,7 @@ contains
       call rolling_curve(record%patch, cfg%scheme, record%nu, record%g, record%spin_centre, pn, cfg%rolling%request, &
                          points, maps, status)
     end if
+    call leave_team(previous_team)
     if (status%failed()) return
     lines = rolling_lines(record%case_name, cfg%rolling%request, label_of(cfg%rolling%pressure, &
                           cfg%rolling%pressure_input_file), points)
@@ -108,8 +117,17 @@ contains
         summary = [character(len=200) :: summary, buf]
       end do
       ! the fast force model of this patch and pressure at the same points
+      if (record%patch%n > fast_model_cells) then
+        write (buf, '(a, i0, a, i0, a)') '  fast model: not built (', record%patch%n, ' cells, more than ', &
+          fast_model_cells, ')'
+        summary = [character(len=200) :: summary, buf]
+        return
+      end if
+      call enter_team(team_size(cfg%solve%threads, int(record%patch%n, int64), cells_per_thread_iterative), &
+                      previous_team)
       call build_fast_forces(record%patch, cfg%scheme, record%nu, record%g, record%spin_centre, pn, state, fast, &
                              status)
+      call leave_team(previous_team)
       call release_rolling_state(state)
       if (status%failed()) return
       allocate (fast_force(3, size(points)))
