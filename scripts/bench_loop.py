@@ -25,15 +25,10 @@ import os
 import sys
 import time
 
-os.environ["OMP_NUM_THREADS"] = "1"
 HERE = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
-sys.path.insert(0, os.path.join(HERE, "python"))
-import numpy as np  # noqa: E402
-import kcreep  # noqa: E402
-from kcreep.docsection import replace_section  # noqa: E402
 
 
-def circle(m=20):
+def circle(np, m=20):
     x = (np.arange(m) + 0.5) / m * 2 - 1
     X, Y = np.meshgrid(x, x)
     inside = X ** 2 + Y ** 2 < 1
@@ -59,8 +54,13 @@ def main():
     ap.add_argument("--repeat", type=int, default=3)
     ap.add_argument("--doc", default=None)
     args = ap.parse_args()
+    os.environ["OMP_NUM_THREADS"] = "1"
+    sys.path.insert(0, os.path.join(HERE, "python"))
+    import numpy as np
+    import kcreep
+    from kcreep.docsection import replace_section
     mu, n = 0.3, args.steps
-    inside, p, d, x0 = circle()
+    inside, p, d, x0 = circle(np)
     t = np.linspace(0, 1, n)
     history = np.c_[2e-3 * np.sin(3 * t), 1e-3 * np.cos(2 * t), 0.2 * np.sin(t)]
     rng = np.random.default_rng(1)
