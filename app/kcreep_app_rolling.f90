@@ -20,8 +20,8 @@ module kcreep_app_rolling
   public :: run_rolling
 
   !> The largest patch whose fast force model the summary builds (about 4 s of one thread
-  !> at 400 cells, growing with the cells; the model is meant for patches of 300-1000 cells).
-  integer, parameter :: fast_model_cells = 2000
+  !> at 400 cells, 12 s at 840; the model is meant for patches of 300-1000 cells).
+  integer, parameter :: fast_model_cells = 1000
 
 contains
 
