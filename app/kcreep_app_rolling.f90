@@ -137,8 +137,9 @@ contains
         mufn = max(mufn, hypot(fast_force(1, k) - points(k)%force%fx, fast_force(2, k) - points(k)%force%fy) / &
                    (cfg%rolling%request%mu * points(k)%force%fn))
       end do
-      write (buf, '(a, f8.3, a, i0, a, f6.2, a)') '  fast model against exact: largest |F - F_exact| =', 100 * mufn, &
-        ' % of mu Fn over the rolling points (', fast%solves, ' exact points, built in ', fast%seconds, ' s)'
+      write (buf, '(a, f8.3, a, i0, a, f4.1, a, f6.2, a)') '  fast model against exact: largest |F - F_exact| =', &
+        100 * mufn, ' % of mu Fn over the rolling points (', fast%solves, ' exact points, ', &
+        real(fast%newton, real64) / max(fast%solves, 1), ' Newton steps each, built in ', fast%seconds, ' s)'
       summary = [character(len=200) :: summary, buf]
     end if
   end subroutine run_rolling
