@@ -51,7 +51,8 @@ contains
     integer, allocatable :: cells(:)
     type(rolling_info_t) :: info
     real(real64) :: da, fn, area, tiny_creep, f11, f22, dir(3), k(3), a, cr(3), centre(2)
-    integer :: n, i, j, m, c, nt, np, ns, info_fit
+    integer :: n, i, j, m, c, nt, np, ns, info_fit, jm
+    logical :: mirrored
     integer(int64) :: t0, t1, rate
 
     call check_rolling_input(patch, scheme, pn, status)
@@ -87,6 +88,7 @@ contains
     centre = [sum(bound * x), sum(bound * y)] / max(sum(bound), tiny(1.0_real64))
     if (.not. sum(bound) > 0) centre = [sum(x), sum(y)] / n
     call fast_model_grid(k, centre, fast%model)
+    mirrored = mirror_symmetric(state%centred, pn)
     nt = fast%model%nt
     np = fast%model%np
     ns = fast%model%ns
@@ -94,6 +96,14 @@ contains
     do i = 0, nt
       do j = 0, np - 1
         if ((i == 0 .and. j > 0) .or. (i == nt .and. j >= np / 2)) cycle
+        ! a patch symmetric about y = 0: F(-z1, z2, z3) = (-Fx, Fy, Mz)(z1, z2, z3), the mirror
+        ! image y -> -y with the creepage's oddness; ray j is ray np/2 - j mirrored
+        jm = modulo(np / 2 - j, np)
+        if (mirrored .and. jm < j) then
+          v(1, i, j, :) = -v(1, i, jm, :)
+          v(2:3, i, j, :) = v(2:3, i, jm, :)
+          cycle
+        end if
         call fast_model_ray(fast%model, i, j, creep, dir)
         state%kept = 0
         do m = 1, ns - 1
@@ -168,6 +178,25 @@ contains
     end function forces
 
   end subroutine build_fast_forces
+
+  !> Whether the patch (spin centre at the origin) and its pressure pn (mx, my) are their own
+  !> mirror images in y -> -y (Hertzian ellipses about their centre): the grid's rows
+  !> symmetric about y = 0 within 1e-9 of a cell, the same cells and pressures (to 1e-12 of
+  !> the largest) in rows iy and my + 1 - iy. The backward scheme's operator and the rigid
+  !> slip (xi - phi y, eta + phi x) keep the mirror (x, the rolling direction, is unchanged).
+  pure logical function mirror_symmetric(centred, pn) result(yes)
+    type(patch_t), intent(in) :: centred
+    real(real64), intent(in) :: pn(:, :)
+    integer :: iy, my
+    my = centred%my
+    yes = abs(2 * centred%y0 + (my - 1) * centred%dy) <= 1e-9_real64 * centred%dy
+    if (.not. yes) return
+    do iy = 1, my / 2
+      yes = all(centred%inside(:, iy) .eqv. centred%inside(:, my + 1 - iy))
+      if (yes) yes = all(abs(pn(:, iy) - pn(:, my + 1 - iy)) <= 1e-12_real64 * maxval(abs(pn)))
+      if (.not. yes) return
+    end do
+  end function mirror_symmetric
 
   !> Forces (3, n) (Fx, Fy, Mz) of the creepages creep(3, n) at friction mu on the model.
   pure subroutine fast_forces_of(fast, mu, creep, force)
