@@ -145,6 +145,16 @@ int kcreep_fastsim(kcreep_handle handle, double mu, int n, const double *creep, 
  * backward scheme. */
 int kcreep_rolling(kcreep_handle handle, double mu, int n, const double *creep, const double *pressure,
                    double *force, double *adhesion);
+/* Calls of kcreep_rolling on one solved patch start from the previous call's
+ * solutions (and keep the solver's set-up): a time integration calling once
+ * per step with a slowly varying creepage pays a warm solve only. */
+/* The fast force model of the solved patch (docs/rolling.md): kcreep_rolling's
+ * forces interpolated in a table of exact solutions over normalised creepages
+ * (F(mu, c) = mu F(1, c/mu)), built on the first call for a pressure (one to a
+ * few seconds on one thread) and kept on the handle until the next solve;
+ * then microseconds per point. Arguments as kcreep_rolling. */
+int kcreep_fast_forces(kcreep_handle handle, double mu, int n, const double *creep, const double *pressure,
+                       double *force);
 
 /* Wheel and rail profiles to a contact table (docs/wheel_rail.md; the same
  * table as the program's &wheel_rail). Profiles are read by

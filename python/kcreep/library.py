@@ -82,6 +82,7 @@ _signatures = {
                            ctypes.POINTER(_i)], _i),
     "kcreep_fastsim": ([_h, _d, _i, _p, _p, ctypes.c_char_p, _p, _p], _i),
     "kcreep_rolling": ([_h, _d, _i, _p, _p, _p, _p], _i),
+    "kcreep_fast_forces": ([_h, _d, _i, _p, _p, _p], _i),
     "kcreep_get_diagnostics": ([_h, ctypes.POINTER(_i), ctypes.POINTER(_d), ctypes.POINTER(_d), ctypes.POINTER(_d)], _i),
     "kcreep_set_profiles": ([_h, ctypes.c_char_p, ctypes.c_char_p, _i, _i, _d], _i),
     "kcreep_set_track": ([_h, ctypes.c_char_p, _d, _d, _d, _d, _d, _d], _i),
@@ -285,6 +286,16 @@ class Solver:
         self._check(_lib.kcreep_rolling(self._handle, mu, n, creep.ctypes.data, None if p is None else p.ctypes.data,
                                         forces.ctypes.data, adhesion.ctypes.data))
         return forces, adhesion
+
+    def fast_forces(self, mu, creepages, pressure=None):
+        """The fast force model of the last solved patch (docs/rolling.md): the
+        forces of rolling (n x 3: Fx, Fy, Mz, its conventions) interpolated in a
+        table of exact solutions, built on the first call for a pressure and
+        kept until the next solve; microseconds per point."""
+        creep, n, forces, _, p = _creep_arrays(creepages, pressure)
+        self._check(_lib.kcreep_fast_forces(self._handle, mu, n, creep.ctypes.data,
+                                            None if p is None else p.ctypes.data, forces.ctypes.data))
+        return forces
 
     @property
     def reuse_count(self):

@@ -14,7 +14,8 @@ module kcreep_capi
   use kcreep_strings, only: itoa, rtoa
   use kcreep_limits, only: modulus_in_range
   use kcreep, only: kcreep_solve, kcreep_version_number, max_threads, default_problem, ellipse_patch, mask_patch, &
-                    gap_from_array, compliance_from_e_nu, combined_g_nu_from_e_nu, nominal_ellipse_cells
+                    gap_from_array, compliance_from_e_nu, combined_g_nu_from_e_nu, nominal_ellipse_cells, &
+                    release_rolling_state, fast_forces_t
   use kcreep_capi_handle, only: handle_t, status_ok, status_no_result, begin, solved, finish, from_c, to_c, output_array
   implicit none
   private
@@ -41,6 +42,7 @@ contains
     type(handle_t), pointer :: h
     if (.not. c_associated(handle)) return
     call c_f_pointer(handle, h)
+    call release_rolling_state(h%rolling)
     deallocate (h)
     handle = c_null_ptr
   end subroutine c_delete
@@ -346,6 +348,8 @@ contains
     c_solve = begin(handle, h)
     if (c_solve /= status_ok) return
     h%solved = .false.
+    ! the fast model belongs to the last solved patch (the rolling state checks its own patch)
+    h%fast = fast_forces_t()
     ! kcreep chooses the grids unless turned off, or an ellipse's grid was given
     h%problem%refine_grid = h%refine_grid .and. (h%problem%normal%active .or. .not. h%ellipse_grid_given)
     call kcreep_solve(h%problem, h%result, h%last, h%cache)

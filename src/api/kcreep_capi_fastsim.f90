@@ -6,8 +6,10 @@ module kcreep_capi_fastsim
   use kcreep_kinds, only: wp
   use kcreep_status, only: fail, exit_bad_input
   use kcreep, only: creep_request_t, creep_point_t, creep_map_t, creep_curve, flexibility_rule_of, &
-                    rolling_request_t, rolling_point_t, rolling_curve
+                    rolling_request_t, rolling_point_t, rolling_curve, build_fast_forces, fast_forces_of
   use kcreep_capi_handle, only: handle_t, status_ok, solved, finish, from_c
+  use kcreep_threads, only: team_size, enter_team, leave_team, cells_per_thread_iterative
+  use, intrinsic :: iso_fortran_env, only: int64
   implicit none
   private
 
@@ -105,10 +107,10 @@ contains
       request%threads = h%problem%solve%threads
       if (allocated(h%result%traction)) then
         call rolling_curve(h%result%patch, h%problem%scheme, h%result%nu, h%result%g, h%result%spin_centre, pn, &
-                           request, points, maps, h%last, h%result%traction)
+                           request, points, maps, h%last, h%result%traction, state=h%rolling)
       else
         call rolling_curve(h%result%patch, h%problem%scheme, h%result%nu, h%result%g, h%result%spin_centre, pn, &
-                           request, points, maps, h%last)
+                           request, points, maps, h%last, state=h%rolling)
       end if
     end if
     if (h%last%failed()) then
@@ -122,6 +124,50 @@ contains
       adhered = [(points(k)%force%adhesion, k=1, n)]
     end if
   end function c_rolling
+
+  !> The fast force model of the solved patch (docs/rolling.md, "7. In the time step: warm starts and the fast force model"): the
+  !> exact rolling forces interpolated in a table of exact solutions over normalised
+  !> creepages, built on the first call for a pressure (about a second) and kept on the
+  !> handle. Arguments as kcreep_rolling: creep[3 k + 0..2], pressure (or NULL: the
+  !> normal problem's), force[3 k + 0..2] = (Fx, Fy, Mz).
+  integer(c_int) function c_fast_forces(handle, mu, n, creep, pressure, force) bind(c, name='kcreep_fast_forces')
+    type(c_ptr), value :: handle, creep, pressure, force
+    real(c_double), value :: mu
+    integer(c_int), value :: n
+    type(handle_t), pointer :: h
+    real(c_double), pointer :: creepages(:, :), forces(:, :)
+    real(wp), allocatable :: pn(:, :)
+    integer :: previous_team
+    c_fast_forces = solved(handle, h)
+    if (c_fast_forces /= status_ok) return
+    if (.not. (mu > 0 .and. mu < huge(1.0_wp)) .or. n < 1) then
+      call fail(h%last, exit_bad_input, 'kcreep_fast_forces: mu must be finite and > 0, n >= 1')
+    else if (.not. c_associated(creep) .or. .not. c_associated(force)) then
+      call fail(h%last, exit_bad_input, 'kcreep_fast_forces: creep and force must not be NULL')
+    else if (.not. c_associated(pressure) .and. .not. h%result%normal_solved) then
+      call fail(h%last, exit_bad_input, 'kcreep_fast_forces: pressure is NULL and the last solve had no normal problem')
+    end if
+    if (.not. h%last%failed()) call pressure_of(h, pressure, 'kcreep_fast_forces', pn)
+    if (.not. h%last%failed()) then
+      call c_f_pointer(creep, creepages, [3, int(n)])
+      if (.not. all(creepages == creepages .and. abs(creepages) < huge(1.0_wp))) &
+        call fail(h%last, exit_bad_input, 'kcreep_fast_forces: the creepages must be finite')
+    end if
+    if (.not. h%last%failed()) then
+      call enter_team(team_size(h%problem%solve%threads, int(h%result%patch%n, int64), cells_per_thread_iterative), &
+                      previous_team)
+      call build_fast_forces(h%result%patch, h%problem%scheme, h%result%nu, h%result%g, h%result%spin_centre, pn, &
+                             h%rolling, h%fast, h%last)
+      call leave_team(previous_team)
+    end if
+    if (h%last%failed()) then
+      c_fast_forces = finish(h)
+      return
+    end if
+    call c_f_pointer(force, forces, [3, int(n)])
+    call fast_forces_of(h%fast, mu, creepages, forces)
+    c_fast_forces = finish(h)
+  end function c_fast_forces
 
   !> The pressure for kcreep_fastsim / kcreep_rolling: mx * my values, or the
   !> normal problem's (pressure NULL); an error in h%last when not usable.

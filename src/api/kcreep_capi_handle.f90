@@ -9,7 +9,8 @@
 module kcreep_capi_handle
   use, intrinsic :: iso_c_binding, only: c_int, c_double, c_char, c_ptr, c_null_char, c_f_pointer, c_associated
   use kcreep_status, only: status_t, fail, exit_bad_input
-  use kcreep, only: problem_t, result_t, solve_cache_t, wheel_rail_setup_t, wheel_rail_row_t, wheelset_row_t
+  use kcreep, only: problem_t, result_t, solve_cache_t, wheel_rail_setup_t, wheel_rail_row_t, wheelset_row_t, &
+                    rolling_state_t, fast_forces_t
   implicit none
   private
   public :: handle_t, status_ok, status_no_result, begin, solved, finish, from_c, to_c, output_array
@@ -27,6 +28,10 @@ module kcreep_capi_handle
     !> namelist's ellipse with mx, my
     logical :: ellipse_grid_given = .false.
     type(status_t) :: last
+    !> kcreep_rolling / kcreep_fast_forces on the solved patch: the exact solver's set-up and
+    !> last solutions (warm starts across calls) and the fast force model; both emptied by a solve
+    type(rolling_state_t) :: rolling
+    type(fast_forces_t) :: fast
     ! kcreep_wheel_rail: profiles and track (kcreep_set_profiles, kcreep_set_track), the last table
     type(wheel_rail_setup_t) :: wheel_rail
     type(wheel_rail_row_t), allocatable :: wheel_rail_rows(:)

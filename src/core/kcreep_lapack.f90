@@ -20,22 +20,6 @@ module kcreep_lapack
       real(real64), intent(inout) :: b(ldb, *)
       integer, intent(out) :: info
     end subroutine dgetrs
-    subroutine dgbtrf(m, n, kl, ku, ab, ldab, ipiv, info)
-      import :: real64
-      integer, intent(in) :: m, n, kl, ku, ldab
-      real(real64), intent(inout) :: ab(ldab, *)
-      integer, intent(out) :: ipiv(*)
-      integer, intent(out) :: info
-    end subroutine dgbtrf
-    subroutine dgbtrs(trans, n, kl, ku, nrhs, ab, ldab, ipiv, b, ldb, info)
-      import :: real64
-      character(len=1), intent(in) :: trans
-      integer, intent(in) :: n, kl, ku, nrhs, ldab, ldb
-      real(real64), intent(in) :: ab(ldab, *)
-      integer, intent(in) :: ipiv(*)
-      real(real64), intent(inout) :: b(ldb, *)
-      integer, intent(out) :: info
-    end subroutine dgbtrs
     subroutine dgecon(norm, n, a, lda, anorm, rcond, work, iwork, info)
       import :: real64
       character(len=1), intent(in) :: norm

@@ -53,17 +53,22 @@ contains
   end function source_flexibilities
 
   !> FASTSIM on result%patch with pressure pn (mx, my) for every creepage and requested
-  !> source; points ordered by creepage, then source. maps: allocated when request%maps.
+  !> source, the spin about result%spin_centre; points ordered by creepage, then source.
+  !> maps: allocated when request%maps. Mz is about the spin centre (as the exact solver's).
   pure subroutine creep_curve(result, pn, request, points, maps)
     type(result_t), intent(in) :: result
     real(real64), intent(in) :: pn(:, :)
     type(creep_request_t), intent(in) :: request
     type(creep_point_t), allocatable, intent(out) :: points(:)
     type(creep_map_t), allocatable, intent(out) :: maps(:)
-    real(real64) :: flex(3, size(source_names))
+    real(real64) :: flex(3, size(source_names)), x0, y0
     integer :: k, s, n
     associate (p => result%patch)
       flex = source_flexibilities(result, request)
+      ! spin about the spin centre, as the coefficients and L were solved (and the exact
+      ! rolling solver spins): the patch moved so that the spin centre is the origin
+      x0 = p%x0 - result%spin_centre(1)
+      y0 = p%y0 - result%spin_centre(2)
       allocate (points(size(request%creepages, 2) * count(request%sources)))
       if (request%maps) then
         allocate (maps(size(points)))
@@ -79,11 +84,11 @@ contains
           points(n)%source = s
           if (request%maps) then
             allocate (maps(n)%px(p%mx, p%my), maps(n)%py(p%mx, p%my), maps(n)%state(p%mx, p%my))
-            call fastsim_forces(p%inside, pn, p%dx, p%dy, p%x0, p%y0, flex(:, s), request%mu, &
+            call fastsim_forces(p%inside, pn, p%dx, p%dy, x0, y0, flex(:, s), request%mu, &
                                 request%creepages(:, k), result%c, request%rule, points(n)%force, &
                                 maps(n)%px, maps(n)%py, maps(n)%state)
           else
-            call fastsim_forces(p%inside, pn, p%dx, p%dy, p%x0, p%y0, flex(:, s), request%mu, &
+            call fastsim_forces(p%inside, pn, p%dx, p%dy, x0, y0, flex(:, s), request%mu, &
                                 request%creepages(:, k), result%c, request%rule, points(n)%force)
           end if
         end do

@@ -4,27 +4,30 @@
 !> slip at x + spin_shift dx), so that at small creepage the forces are
 !> -f (xi, eta, phi) with kcreep's coefficients of the same grid.
 !>
-!> Points are solved in the order given, each started from the better (the
-!> smaller ||F||) of the previous point's tractions and the full-adhesion
-!> tractions of its creepage (when the unit tractions are known) projected
-!> onto the traction bound.
+!> Points are solved in the order given, each started from the best (the
+!> smallest ||F||) of the previous point's tractions, the secant through the
+!> previous two, and the full-adhesion tractions of its creepage (when the
+!> unit tractions are known) projected onto the traction bound. A caller's
+!> rolling_state_t carries the set-up and the previous points across calls
+!> (a time integration calling once per step).
 module kcreep_rolling_curve
   use, intrinsic :: iso_fortran_env, only: real64, int64
   use kcreep_status, only: status_t, fail, exit_bad_input, exit_numerical
   use kcreep_strings, only: itoa, rtoa
+  use kcreep_threads, only: team_size, enter_team, leave_team, solve_started, solve_ended, &
+                            cells_per_thread_iterative
   use kcreep_patch, only: patch_t
   use kcreep_assembly, only: scheme_t, operator_table_t, build_operator_table, rigid_creepage
   use kcreep_fastsim_forces, only: fastsim_result_t
   use kcreep_creep_curve, only: creep_map_t
-  use kcreep_threads, only: team_size, enter_team, leave_team, solve_started, solve_ended, &
-                            cells_per_thread_iterative
   use kcreep_rolling_solve, only: rolling_solver_t, rolling_options_t, rolling_info_t, create_rolling_solver, &
                                   destroy_rolling_solver, solve_rolling, rolling_residual, cell_stick, cell_slip, &
                                   default_rolling_tolerance
   implicit none
   private
   public :: rolling_request_t, rolling_point_t, rolling_curve, default_rolling_tolerance, cell_stick, cell_slip
-  public :: rolling_residual_of
+  public :: rolling_residual_of, rolling_state_t, prepare_rolling_state, release_rolling_state, solve_point, &
+            check_rolling_input
 
   type :: rolling_request_t
     real(real64) :: mu = 0                        !< friction coefficient
@@ -42,15 +45,31 @@ module kcreep_rolling_curve
     integer :: threads = 1                        !< the team the point was solved on
   end type rolling_point_t
 
+  !> What successive solves on one patch reuse (the caller keeps it, e.g. the C API's
+  !> handle): the operator set-up (FFT plans, the row blocks) and the last two solutions
+  !> per unit mu with their creepages per unit mu, the starts of the next point.
+  type :: rolling_state_t
+    logical :: ready = .false.
+    integer :: mx = 0, my = 0, n = 0
+    real(real64) :: key(9) = 0                    !< dx dy x0 y0 nu g spin_centre spin_shift
+    logical, allocatable :: inside(:, :)
+    type(patch_t) :: centred                      !< the patch with the spin centre at the origin
+    type(rolling_solver_t) :: solver
+    real(real64), allocatable :: unit_w(:, :)     !< (2n, 3) rigid slip per unit xi, eta, phi
+    integer :: kept = 0                           !< solutions kept (0 to 2, 1 the newest)
+    real(real64) :: creep1(3, 2) = 0              !< their creepages / mu
+    real(real64), allocatable :: p1(:, :)         !< (2n, 2) their tractions / mu
+  end type rolling_state_t
+
 contains
 
   !> The exact rolling forces on patch (cells' spin about spin_centre) with
   !> pressure pn (mx, my) for every creepage of request.
   !> unit_traction: (2n, 3) full-adhesion tractions per unit xi, eta, phi
   !> (result%traction), used to start; absent or NaN: not used.
-  !> The curve runs on the team kcreep_threads chooses for its n cells
-  !> (request%threads when positive), as every stage does; points%threads says.
-  subroutine rolling_curve(patch, scheme, nu, g, spin_centre, pn, request, points, maps, status, unit_traction)
+  !> state: what successive calls on the same patch reuse (the operator set-up
+  !> and the last two solutions, the start of the next call); absent: a local one.
+  subroutine rolling_curve(patch, scheme, nu, g, spin_centre, pn, request, points, maps, status, unit_traction, state)
     type(patch_t), intent(in) :: patch
     type(scheme_t), intent(in) :: scheme
     real(real64), intent(in) :: nu, g, spin_centre(2)
@@ -60,41 +79,32 @@ contains
     type(creep_map_t), allocatable, intent(out) :: maps(:)
     type(status_t), intent(inout) :: status
     real(real64), intent(in), optional :: unit_traction(:, :)
-    type(patch_t) :: centred
-    type(operator_table_t) :: table
-    type(rolling_solver_t) :: solver
-    type(rolling_options_t) :: options
-    real(real64), allocatable :: unit_w(:, :), bound(:), p(:), w(:), guess(:), f(:), q(:), x(:), y(:)
-    integer, allocatable :: state(:)
-    real(real64) :: fnorm_warm, fnorm_adh, fmax, da
-    logical :: have_unit, have_warm
-    integer :: n, k, j, c, team, previous_team
+    type(rolling_state_t), intent(inout), optional, target :: state
+    type(rolling_state_t), target :: local
+    type(rolling_state_t), pointer :: st
+    real(real64), allocatable :: bound(:), p(:), x(:), y(:)
+    integer, allocatable :: cells(:)
+    real(real64) :: da
+    logical :: have_unit
+    integer :: n, k, c, team, previous_team
     integer(int64) :: t0, t1, rate
 
     allocate (points(0), maps(0))
-    if (scheme%name /= 'backward') then
-      call fail(status, exit_bad_input, '&rolling needs &solver scheme = ''backward'' (scheme = '''// &
-                scheme%name//''')')
-      return
-    end if
-    if (size(pn, 1) /= patch%mx .or. size(pn, 2) /= patch%my) then
-      call fail(status, exit_bad_input, '&rolling: pressure of '//itoa(size(pn, 1))//' x '//itoa(size(pn, 2))// &
-                ' cells on a grid of '//itoa(patch%mx)//' x '//itoa(patch%my))
-      return
+    call check_rolling_input(patch, scheme, pn, status)
+    if (status%failed()) return
+    if (present(state)) then
+      st => state
+    else
+      st => local
     end if
     n = patch%n
-    if (any(pn(:, :) < 0 .or. pn /= pn)) then
-      call fail(status, exit_bad_input, '&rolling: the pressure is negative or not a number at some cell')
-      return
-    end if
-    ! the spin about spin_centre: the patch moved so that it is the origin
-    centred = patch
-    centred%x0 = patch%x0 - spin_centre(1)
-    centred%y0 = patch%y0 - spin_centre(2)
-    allocate (unit_w(2 * n, 3), bound(n), p(2 * n), w(2 * n), guess(2 * n), f(2 * n), q(2 * n), state(n))
-    do j = 1, 3
-      call rigid_creepage(centred, scheme, j, unit_w(:, j))
-    end do
+    ! the curve runs on the team kcreep_threads chooses for its n cells
+    ! (request%threads when positive), as every stage does; points%threads says
+    team = team_size(request%threads, int(n, int64), cells_per_thread_iterative)
+    call solve_started()
+    call enter_team(team, previous_team)
+    call prepare_rolling_state(patch, scheme, nu, g, spin_centre, st)
+    allocate (bound(n), p(2 * n), cells(n))
     do k = 1, n
       bound(k) = request%mu * pn(patch%ix(k), patch%iy(k))
     end do
@@ -103,12 +113,6 @@ contains
       if (size(unit_traction, 1) == 2 * n .and. size(unit_traction, 2) == 3) &
         have_unit = all(unit_traction == unit_traction)
     end if
-    team = team_size(request%threads, int(n, int64), cells_per_thread_iterative)
-    call solve_started()
-    call enter_team(team, previous_team)
-    call build_operator_table(centred, scheme, nu, g, table)
-    call create_rolling_solver(centred, table, solver)
-    options%tolerance = request%tolerance
     deallocate (points, maps)
     allocate (points(size(request%creepages, 2)))
     if (request%maps) then
@@ -116,30 +120,19 @@ contains
     else
       allocate (maps(0))
     end if
-    x = centred%cell_x(centred%ix)
-    y = centred%cell_y(centred%iy)
+    x = st%centred%cell_x(st%centred%ix)
+    y = st%centred%cell_y(st%centred%iy)
     da = patch%dx * patch%dy
-    have_warm = .false.
-    p = 0
     do k = 1, size(points)
       call system_clock(t0, rate)
+      points(k)%creep = request%creepages(:, k)
       points(k)%threads = team
-      associate (cr => request%creepages(:, k))
-        w = cr(1) * unit_w(:, 1) + cr(2) * unit_w(:, 2) + cr(3) * unit_w(:, 3)
-        points(k)%creep = cr
-        ! the start: the previous solution or the projected full adhesion, whichever is closer
-        fnorm_warm = huge(1.0_real64)
-        if (have_warm) call rolling_residual(solver, w, bound, p, f, q, fnorm_warm, fmax)
-        if (have_unit) then
-          guess = cr(1) * unit_traction(:, 1) + cr(2) * unit_traction(:, 2) + cr(3) * unit_traction(:, 3)
-          call project(guess)
-          call rolling_residual(solver, w, bound, guess, f, q, fnorm_adh, fmax)
-          if (fnorm_adh < fnorm_warm) p = guess
-        end if
-      end associate
-      call solve_rolling(solver, w, bound, options, p, state, points(k)%info)
-      points(k)%info%products = points(k)%info%products + merge(1, 0, have_warm) + merge(1, 0, have_unit)
-      have_warm = .true.
+      if (have_unit) then
+        call solve_point(st, request%creepages(:, k), request%mu, bound, request%tolerance, p, cells, &
+                         points(k)%info, unit_traction)
+      else
+        call solve_point(st, request%creepages(:, k), request%mu, bound, request%tolerance, p, cells, points(k)%info)
+      end if
       if (.not. points(k)%info%converged) then
         call fail(status, exit_numerical, '&rolling: Newton did not converge at (xi, eta, phi) = ('// &
                   rtoa(points(k)%creep(1))//', '//rtoa(points(k)%creep(2))//', '//rtoa(points(k)%creep(3))// &
@@ -152,7 +145,7 @@ contains
         r%fy = sum(p(n + 1:2 * n)) * da
         r%mz = sum(x * p(n + 1:2 * n) - y * p(1:n)) * da
         r%fn = sum(pn, mask=patch%inside) * da
-        r%adhesion = real(count(state == cell_stick), real64) / max(n, 1)
+        r%adhesion = real(count(cells == cell_stick), real64) / max(n, 1)
       end associate
       if (request%maps) then
         allocate (maps(k)%px(patch%mx, patch%my), maps(k)%py(patch%mx, patch%my), maps(k)%state(patch%mx, patch%my))
@@ -162,17 +155,146 @@ contains
         do c = 1, n
           maps(k)%px(patch%ix(c), patch%iy(c)) = p(c)
           maps(k)%py(patch%ix(c), patch%iy(c)) = p(n + c)
-          maps(k)%state(patch%ix(c), patch%iy(c)) = state(c)
+          maps(k)%state(patch%ix(c), patch%iy(c)) = cells(c)
         end do
       end if
       call system_clock(t1)
       points(k)%seconds = real(t1 - t0, real64) / rate
     end do
-    call destroy_rolling_solver(solver)
+    if (.not. present(state)) call release_rolling_state(local)
     call leave_team(previous_team)
     call solve_ended()
+  end subroutine rolling_curve
+
+  !> The checks of rolling_curve's input (scheme, pressure grid and values).
+  subroutine check_rolling_input(patch, scheme, pn, status)
+    type(patch_t), intent(in) :: patch
+    type(scheme_t), intent(in) :: scheme
+    real(real64), intent(in) :: pn(:, :)
+    type(status_t), intent(inout) :: status
+    if (scheme%name /= 'backward') then
+      call fail(status, exit_bad_input, '&rolling needs &solver scheme = ''backward'' (scheme = '''// &
+                scheme%name//''')')
+    else if (size(pn, 1) /= patch%mx .or. size(pn, 2) /= patch%my) then
+      call fail(status, exit_bad_input, '&rolling: pressure of '//itoa(size(pn, 1))//' x '//itoa(size(pn, 2))// &
+                ' cells on a grid of '//itoa(patch%mx)//' x '//itoa(patch%my))
+    else if (any(pn(:, :) < 0 .or. pn /= pn)) then
+      call fail(status, exit_bad_input, '&rolling: the pressure is negative or not a number at some cell')
+    end if
+  end subroutine check_rolling_input
+
+  !> The state ready for (patch, scheme, nu, g, spin_centre): kept when it was set up for
+  !> them (the solutions it holds stay as starts), else set up anew.
+  subroutine prepare_rolling_state(patch, scheme, nu, g, spin_centre, state)
+    type(patch_t), intent(in) :: patch
+    type(scheme_t), intent(in) :: scheme
+    real(real64), intent(in) :: nu, g, spin_centre(2)
+    type(rolling_state_t), intent(inout) :: state
+    type(operator_table_t) :: table
+    real(real64) :: key(9)
+    integer :: j
+    key = [patch%dx, patch%dy, patch%x0, patch%y0, nu, g, spin_centre, scheme%spin_shift]
+    if (state%ready) then
+      if (state%mx == patch%mx .and. state%my == patch%my .and. state%n == patch%n .and. all(state%key == key)) then
+        if (all(state%inside .eqv. patch%inside)) return
+      end if
+    end if
+    call release_rolling_state(state)
+    state%mx = patch%mx
+    state%my = patch%my
+    state%n = patch%n
+    state%key = key
+    state%inside = patch%inside
+    ! the spin about spin_centre: the patch moved so that it is the origin
+    state%centred = patch
+    state%centred%x0 = patch%x0 - spin_centre(1)
+    state%centred%y0 = patch%y0 - spin_centre(2)
+    allocate (state%unit_w(2 * patch%n, 3), state%p1(2 * patch%n, 2))
+    do j = 1, 3
+      call rigid_creepage(state%centred, scheme, j, state%unit_w(:, j))
+    end do
+    call build_operator_table(state%centred, scheme, nu, g, table)
+    call create_rolling_solver(state%centred, table, state%solver)
+    state%kept = 0
+    state%ready = .true.
+  end subroutine prepare_rolling_state
+
+  !> Frees what the state holds (FFT plans); the state is empty after.
+  subroutine release_rolling_state(state)
+    type(rolling_state_t), intent(inout) :: state
+    if (state%ready) call destroy_rolling_solver(state%solver)
+    state = rolling_state_t()
+  end subroutine release_rolling_state
+
+  !> One point: creepage cr at friction mu, bounds mu pn (bound), solved from the best
+  !> start (smallest ||F||) of: the state's last solution, the secant through its last two
+  !> (both scaled to mu: p(mu, c) = mu p(1, c/mu)), the projected full adhesion of cr
+  !> (unit_traction), the caller's start, and zero when there is no other. p, cells: the solution and its
+  !> stick/slip cells; the state keeps it (per unit mu) for the next point.
+  subroutine solve_point(state, cr, mu, bound, tolerance, p, cells, info, unit_traction, start)
+    type(rolling_state_t), intent(inout) :: state
+    real(real64), intent(in) :: cr(3), mu, bound(:), tolerance
+    real(real64), intent(out) :: p(:)
+    integer, intent(out) :: cells(:)
+    type(rolling_info_t), intent(out) :: info
+    real(real64), intent(in), optional :: unit_traction(:, :)
+    real(real64), intent(in), optional :: start(:)   !< one more start (tractions at mu)
+    type(rolling_options_t) :: options
+    real(real64), allocatable :: w(:), guess(:), f(:), q(:)
+    real(real64) :: best, fnorm, fmax, c1(3), d(3), alpha
+    integer :: n, starts
+    n = state%n
+    allocate (w(2 * n), guess(2 * n), f(2 * n), q(2 * n))
+    w = cr(1) * state%unit_w(:, 1) + cr(2) * state%unit_w(:, 2) + cr(3) * state%unit_w(:, 3)
+    c1 = cr / mu
+    best = huge(1.0_real64)
+    starts = 0
+    p = 0
+    if (state%kept >= 1) then
+      guess = mu * state%p1(:, 1)
+      call try(guess)
+    end if
+    if (state%kept >= 2) then
+      d = state%creep1(:, 1) - state%creep1(:, 2)
+      if (dot_product(d, d) > 0) then
+        alpha = dot_product(c1 - state%creep1(:, 1), d) / dot_product(d, d)
+        guess = mu * (state%p1(:, 1) + alpha * (state%p1(:, 1) - state%p1(:, 2)))
+        call project(guess)
+        call try(guess)
+      end if
+    end if
+    if (present(unit_traction)) then
+      guess = cr(1) * unit_traction(:, 1) + cr(2) * unit_traction(:, 2) + cr(3) * unit_traction(:, 3)
+      call project(guess)
+      call try(guess)
+    end if
+    if (present(start)) then
+      guess = start
+      call project(guess)
+      call try(guess)
+    end if
+    options%tolerance = tolerance
+    call solve_rolling(state%solver, w, bound, options, p, cells, info)
+    info%products = info%products + starts
+    if (info%converged) then
+      state%p1(:, 2) = state%p1(:, 1)
+      state%creep1(:, 2) = state%creep1(:, 1)
+      state%p1(:, 1) = p / mu
+      state%creep1(:, 1) = c1
+      state%kept = min(state%kept + 1, 2)
+    end if
 
   contains
+
+    subroutine try(start)
+      real(real64), intent(in) :: start(:)
+      call rolling_residual(state%solver, w, bound, start, f, q, fnorm, fmax)
+      starts = starts + 1
+      if (fnorm < best) then
+        best = fnorm
+        p = start
+      end if
+    end subroutine try
 
     pure subroutine project(v)
       real(real64), intent(inout) :: v(:)
@@ -187,13 +309,12 @@ contains
       end do
     end subroutine project
 
-  end subroutine rolling_curve
+  end subroutine solve_point
 
   !> The residual max|F_i| / max(mu pn) of given tractions (2n: px, py per
   !> patch cell) in the discrete rolling problem of (patch, creep, mu, pn):
   !> how far another solver's answer (CONTACT's element file) is from
-  !> satisfying the Coulomb conditions of this discretisation. On the
-  !> automatic team of kcreep_threads.
+  !> satisfying the Coulomb conditions of this discretisation.
   function rolling_residual_of(patch, scheme, nu, g, spin_centre, pn, mu, creep, traction) result(residual)
     type(patch_t), intent(in) :: patch
     type(scheme_t), intent(in) :: scheme

@@ -24,7 +24,6 @@ module kcreep_rolling_solve
   use kcreep_assembly, only: operator_table_t
   use kcreep_fft_operator, only: fft_operator_t, create_fft_operator, destroy_fft_operator, apply_fft_operator
   use kcreep_krylov, only: block_operator_t, gmres_result_t, gmres
-  use kcreep_lapack, only: dgbtrf, dgbtrs
   implicit none
   private
   public :: rolling_solver_t, rolling_options_t, rolling_info_t, create_rolling_solver, destroy_rolling_solver, &
@@ -365,7 +364,7 @@ contains
               end if
             end do
           end do
-          call dgbtrf(2 * m, 2 * m, kl, kl, row%ab, 3 * kl + 1, row%pivots, info)
+          call band_factor(2 * m, kl, row%ab, row%pivots, info)
           if (info > 0) then
             ! a singular row block (not seen; a guard): the identity there
             row%ab = 0
@@ -395,7 +394,7 @@ contains
     real(real64), intent(in) :: x(:, :)
     real(real64), intent(out) :: y(:, :)
     integer, intent(in) :: columns(:)
-    integer :: r, v, m, lo, n, info, i
+    integer :: r, v, m, lo, n, i
     if (size(columns) < 0) return
     n = self%n
     if (.not. allocated(self%b)) allocate (self%b(2 * n))
@@ -407,8 +406,7 @@ contains
           self%b(2 * i - 1) = x(lo + i - 1, v)
           self%b(2 * i) = x(n + lo + i - 1, v)
         end do
-        call dgbtrs('N', 2 * m, self%rows(r)%kl, self%rows(r)%kl, 1, self%rows(r)%ab, 3 * self%rows(r)%kl + 1, &
-                    self%rows(r)%pivots, self%b, 2 * m, info)
+        call band_solve(2 * m, self%rows(r)%kl, self%rows(r)%ab, self%rows(r)%pivots, self%b(1:2 * m))
         do i = 1, m
           y(lo + i - 1, v) = self%b(2 * i - 1)
           y(n + lo + i - 1, v) = self%b(2 * i)
@@ -416,5 +414,94 @@ contains
       end do
     end do
   end subroutine apply_rows
+
+  !> LU with partial pivoting of a band matrix with kl sub- and kl superdiagonals in
+  !> LAPACK's storage (ab(2 kl + kl + 1, n), A(i, j) = ab(2 kl + 1 + i - j, j)): LAPACK's
+  !> dgbtf2 written out, the same operations; at these sizes (kl <= 9) the BLAS calls
+  !> of LAPACK's own cost more than the arithmetic (40 % of the fast model's build went
+  !> to OpenBLAS's daxpy, dger and dtbsv on vectors of 1 to 19). info = j > 0: the
+  !> first zero pivot.
+  pure subroutine band_factor(n, kl, ab, pivots, info)
+    integer, intent(in) :: n, kl
+    real(real64), intent(inout) :: ab(:, :)
+    integer, intent(out) :: pivots(:), info
+    integer :: kv, i, j, jp, ju, km, c, sft, r
+    real(real64) :: big, t, ys
+    info = 0
+    kv = 2 * kl
+    do j = kl + 2, min(kv, n)
+      do i = kv - j + 2, kl
+        ab(i, j) = 0
+      end do
+    end do
+    ju = 1
+    do j = 1, n
+      if (j + kv <= n) ab(1:kl, j + kv) = 0
+      km = min(kl, n - j)
+      jp = 1
+      big = abs(ab(kv + 1, j))
+      do i = 2, km + 1
+        if (abs(ab(kv + i, j)) > big) then
+          big = abs(ab(kv + i, j))
+          jp = i
+        end if
+      end do
+      pivots(j) = jp + j - 1
+      if (ab(kv + jp, j) /= 0) then
+        ju = max(ju, min(j + kl + jp - 1, n))
+        if (jp /= 1) then
+          do sft = 0, ju - j
+            t = ab(kv + jp - sft, j + sft)
+            ab(kv + jp - sft, j + sft) = ab(kv + 1 - sft, j + sft)
+            ab(kv + 1 - sft, j + sft) = t
+          end do
+        end if
+        if (km > 0) then
+          ab(kv + 2:kv + 1 + km, j) = ab(kv + 2:kv + 1 + km, j) / ab(kv + 1, j)
+          do sft = 1, ju - j
+            c = j + sft
+            ys = ab(kv + 1 - sft, c)
+            if (ys /= 0) then
+              do r = 1, km
+                ab(kv + 1 + r - sft, c) = ab(kv + 1 + r - sft, c) - ab(kv + 1 + r, j) * ys
+              end do
+            end if
+          end do
+        end if
+      else if (info == 0) then
+        info = j
+      end if
+    end do
+  end subroutine band_factor
+
+  !> Solve A x = b (b in, x out) with band_factor's LU (LAPACK's dgbtrs, one right-hand side).
+  pure subroutine band_solve(n, kl, ab, pivots, b)
+    integer, intent(in) :: n, kl
+    real(real64), intent(in) :: ab(:, :)
+    integer, intent(in) :: pivots(:)
+    real(real64), intent(inout) :: b(:)
+    integer :: kd, j, l, lm, i
+    real(real64) :: t
+    kd = 2 * kl + 1
+    do j = 1, n - 1
+      lm = min(kl, n - j)
+      l = pivots(j)
+      if (l /= j) then
+        t = b(l)
+        b(l) = b(j)
+        b(j) = t
+      end if
+      if (b(j) /= 0) b(j + 1:j + lm) = b(j + 1:j + lm) - ab(kd + 1:kd + lm, j) * b(j)
+    end do
+    do j = n, 1, -1
+      if (b(j) /= 0) then
+        b(j) = b(j) / ab(kd, j)
+        t = b(j)
+        do i = j - 1, max(1, j - 2 * kl), -1
+          b(i) = b(i) - t * ab(kd + i - j, j)
+        end do
+      end if
+    end do
+  end subroutine band_solve
 
 end module kcreep_rolling_solve

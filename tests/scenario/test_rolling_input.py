@@ -45,8 +45,11 @@ kc.check({m[7] for m in maps} == {'1', '2'}, 'maps: states 1 (adhesion) and 2 (s
 rc, out, err, tab = kc.run(ell + "&rolling mu = 0.3, fn = 5e4, creepages = 1e-3 0 0,  -5e-4 2e-3 -1e-3 /\n"
                            "&fastsim mu = 0.3, fn = 5e4, creepages = 1e-3 0 0, flexibility = 'exact ellipse' /\n",
                            tmp, "both")
-lines = [l for l in out.splitlines() if 'against exact' in l]
+lines = [l for l in out.splitlines() if 'FASTSIM' in l and 'against exact' in l]
 kc.check(len(lines) == 3 and all('% of mu Fn' in l for l in lines), f'summary: FASTSIM against exact per source ({len(lines)})')
+fast = [l for l in out.splitlines() if 'fast model against exact' in l]
+kc.check(len(fast) == 1 and float(fast[0].split('=')[1].split('%')[0]) < 2,
+         f'summary: the fast force model against exact, within 2 % of mu Fn: {fast}')
 
 # --batch runs &rolling per case
 with open(os.path.join(tmp, 'b1.nml'), 'w') as f:

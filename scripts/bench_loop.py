@@ -1,0 +1,117 @@
+#!/usr/bin/env python3
+"""Benchmark of creep forces inside a multibody time step (issue 48), one thread.
+
+  scripts/bench_loop.py [--steps 200] [--points 10000] [--repeat 3] [--doc docs/performance.md]
+
+On the 20 x 20-cell Hertzian circle (316 cells, Fn = 1, mu = 0.3) along a
+slowly varying creepage history of --steps steps (xi = 2e-3 sin 3t,
+eta = 1e-3 cos 2t, phi = 0.2 sin t, t in [0, 1]), through the Python package,
+CPU time of this process (time.process_time), best of --repeat:
+  - Solver.rolling (exact), one call per step: the handle keeps the solver and
+    the last solutions (warm starts across calls);
+  - Solver.rolling, all steps in one call;
+  - Solver.fast_forces: its build (the first call on the patch), then one call
+    per step, and --points random creepages in one call;
+  - Solver.fastsim (rule 'aligned'), all steps in one call;
+  - CONTACT's 17 ms per point at this grid size (the issue's figure, not run).
+The distance from the exact forces, max |F - F_exact| / (mu Fn) with
+F = (Fx, Fy), is taken along the history. Holds /tmp/kcreep-bench.lock (one
+benchmark at a time on the machine); with --doc, writes the table into the
+section `loop-bench` of that page. Needs numpy.
+"""
+import argparse
+import fcntl
+import os
+import sys
+import time
+
+HERE = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
+
+
+def circle(np, m=20):
+    x = (np.arange(m) + 0.5) / m * 2 - 1
+    X, Y = np.meshgrid(x, x)
+    inside = X ** 2 + Y ** 2 < 1
+    p = np.where(inside, np.sqrt(np.clip(1 - X ** 2 - Y ** 2, 0, None)), 0.0)
+    d = 2.0 / m
+    return inside, p / (p.sum() * d * d), d, x[0]
+
+
+def best(f, repeat):
+    times = []
+    for _ in range(repeat):
+        t0 = time.process_time()
+        out = f()
+        times.append(time.process_time() - t0)
+    return min(times), out
+
+
+def main():
+    ap = argparse.ArgumentParser(description=__doc__.split("\n")[0], formatter_class=argparse.RawDescriptionHelpFormatter,
+                                 epilog=__doc__)
+    ap.add_argument("--steps", type=int, default=200)
+    ap.add_argument("--points", type=int, default=10000)
+    ap.add_argument("--repeat", type=int, default=3)
+    ap.add_argument("--doc", default=None)
+    args = ap.parse_args()
+    os.environ["OMP_NUM_THREADS"] = "1"
+    sys.path.insert(0, os.path.join(HERE, "python"))
+    import numpy as np
+    import kcreep
+    from kcreep.docsection import replace_section
+    mu, n = 0.3, args.steps
+    inside, p, d, x0 = circle(np)
+    t = np.linspace(0, 1, n)
+    history = np.c_[2e-3 * np.sin(3 * t), 1e-3 * np.cos(2 * t), 0.2 * np.sin(t)]
+    rng = np.random.default_rng(1)
+    random = rng.normal(size=(args.points, 3)) * [2e-3, 2e-3, 0.2]
+
+    def solver():
+        s = kcreep.Solver(threads=1, refine_grid=False, estimate_error=False, target_error=0)
+        s.solve_mask(inside, d, d, x0, x0)
+        return s
+
+    with open("/tmp/kcreep-bench.lock", "w") as lock:
+        fcntl.flock(lock, fcntl.LOCK_EX)
+        s = solver()
+        exact, _ = s.rolling(mu, history, p)
+        t_batch, _ = best(lambda: s.rolling(mu, history, p), args.repeat)
+        t_single, single = best(lambda: np.array([s.rolling(mu, [c], p)[0][0] for c in history]), args.repeat)
+        builds = []
+        for _ in range(args.repeat):
+            f = solver()
+            t0 = time.process_time()
+            f.fast_forces(mu, history[:1], p)
+            builds.append(time.process_time() - t0)
+        t_fast_single, fast = best(lambda: np.array([f.fast_forces(mu, [c], p)[0] for c in history]), args.repeat)
+        t_fast_many, _ = best(lambda: f.fast_forces(mu, random, p), args.repeat)
+        t_fastsim, (fsim, _) = best(lambda: s.fastsim(mu, history, p), args.repeat)
+
+    def distance(forces):
+        return 100 * np.hypot(*(forces - exact)[:, :2].T).max() / mu
+
+    rows = [
+        ("`Solver.rolling` (exact), one call per step (warm starts across calls)", f"{1e3 * t_single / n:.2f} ms",
+         f"{distance(single):.1e} %"),
+        ("`Solver.rolling` (exact), all steps in one call", f"{1e3 * t_batch / n:.2f} ms", "0"),
+        ("`Solver.fast_forces`, one call per step", f"{1e6 * t_fast_single / n:.1f} us", f"{distance(fast):.3f} %"),
+        (f"`Solver.fast_forces`, {args.points} random points in one call",
+         f"{1e6 * t_fast_many / args.points:.2f} us ({t_fast_many:.3f} s)", ""),
+        ("`Solver.fast_forces`, its build on the patch (first call)", f"{min(builds):.2f} s", ""),
+        ("`Solver.fastsim` (rule 'aligned'), all steps in one call", f"{1e6 * t_fastsim / n:.1f} us",
+         f"{distance(fsim):.2f} %"),
+        ("CONTACT (reference, the issue's figure)", "17 ms", "0"),
+    ]
+    text = [f"Measured by `scripts/bench_loop.py` (20 x 20-cell Hertzian circle, 316 cells, mu = 0.3, "
+            f"{n}-step slowly varying creepage history, Python, one thread, CPU time, best of {args.repeat}; "
+            f"distance: largest |F - F_exact| / (mu Fn) along the history):", "",
+            "| way | time per point | distance from exact |", "|---|---|---|"]
+    text += [f"| {a} | {b} | {c} |" for a, b, c in rows]
+    out = "\n".join(text)
+    print(out)
+    if args.doc:
+        replace_section(args.doc, "loop-bench", out)
+
+
+if __name__ == "__main__":
+    main()

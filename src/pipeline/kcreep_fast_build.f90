@@ -1,0 +1,209 @@
+!> The fast force model of a patch (kcreep_fast_model) built from exact
+!> steady-rolling solutions (kcreep_rolling_curve's solver, mu = 1) on its
+!> grid and pressure, and its forces at any friction and creepage.
+!>
+!> Build: the linear coefficients f11, f22 from two full-adhesion points set
+!> the normalisation; then every ray of the model's grid (theta <= pi/2) is
+!> solved outward in s, each point started from the ray's previous two
+!> (kcreep_rolling_curve solve_point), to the stop test build_tolerance; its
+!> s = 1 node is the full-slip force, -sum mu pn w/|w| dA. The model is the
+!> interpolant of these values; it is kept with the pressure it was built
+!> for, and rebuilt for another.
+module kcreep_fast_build
+  use, intrinsic :: iso_fortran_env, only: real64, int64
+  use kcreep_status, only: status_t, fail, exit_numerical
+  use kcreep_strings, only: itoa, rtoa
+  use kcreep_patch, only: patch_t
+  use kcreep_assembly, only: scheme_t
+  use kcreep_rolling_solve, only: rolling_info_t
+  use kcreep_fast_model, only: fast_model_t, fast_model_grid, fast_model_ray, fast_model_fit, fast_model_forces
+  use kcreep_rolling_curve, only: rolling_state_t, prepare_rolling_state, solve_point, check_rolling_input, &
+                                 default_rolling_tolerance
+  implicit none
+  private
+  public :: fast_forces_t, build_fast_forces, fast_forces_of
+
+  !> Stop test of the table's exact solves, max|F| / max(mu pn): 1e-8 moves the forces
+  !> by far less than the model's interpolation error (1e-3 of mu Fn).
+  real(real64), parameter :: build_tolerance = 1e-4_real64
+
+  type :: fast_forces_t
+    type(fast_model_t) :: model
+    real(real64), allocatable :: pn(:)     !< the pressure per patch cell it was built for
+    integer :: solves = 0                  !< exact points solved to build it
+    integer :: newton = 0                  !< their Newton steps
+    real(real64) :: seconds = 0            !< its build time
+  end type fast_forces_t
+
+contains
+
+  !> The model of (patch, scheme, nu, g, spin_centre) with pressure pn (mx, my) in fast,
+  !> kept when fast already holds it (same pressure; the state set up for the patch).
+  subroutine build_fast_forces(patch, scheme, nu, g, spin_centre, pn, state, fast, status)
+    type(patch_t), intent(in) :: patch
+    type(scheme_t), intent(in) :: scheme
+    real(real64), intent(in) :: nu, g, spin_centre(2), pn(:, :)
+    type(rolling_state_t), intent(inout) :: state
+    type(fast_forces_t), intent(inout) :: fast
+    type(status_t), intent(inout) :: status
+    real(real64), allocatable :: bound(:), p(:), x(:), y(:), v(:, :, :, :), creep(:, :), w(:)
+    real(real64), allocatable :: last_ray(:, :), row_first(:, :)
+    integer, allocatable :: cells(:)
+    type(rolling_info_t) :: info
+    real(real64) :: da, fn, area, tiny_creep, f11, f22, dir(3), k(3), a, cr(3), centre(2)
+    integer :: n, i, j, m, c, nt, np, ns, info_fit, jm
+    logical :: mirrored
+    integer(int64) :: t0, t1, rate
+
+    call check_rolling_input(patch, scheme, pn, status)
+    if (status%failed()) return
+    call prepare_rolling_state(patch, scheme, nu, g, spin_centre, state)
+    n = patch%n
+    allocate (bound(n), p(2 * n), cells(n), w(2 * n))
+    bound = [(pn(patch%ix(c), patch%iy(c)), c=1, n)]
+    if (fast%model%ready .and. allocated(fast%pn)) then
+      if (size(fast%pn) == n) then
+        if (all(fast%pn == bound)) return
+      end if
+    end if
+    call system_clock(t0, rate)
+    fast = fast_forces_t()
+    x = state%centred%cell_x(state%centred%ix)
+    y = state%centred%cell_y(state%centred%iy)
+    da = patch%dx * patch%dy
+    fn = sum(bound) * da
+    area = n * da
+    ! the linear coefficients at a creepage far inside full adhesion (|F| ~ 4e-4 Fn),
+    ! solved to the default tolerance (build_tolerance would accept zero tractions there)
+    tiny_creep = 1e-4_real64 * fn / (g * area)
+    call point([tiny_creep, 0.0_real64, 0.0_real64], tight=.true.)
+    if (status%failed()) return
+    f11 = -sum(p(1:n)) * da / tiny_creep
+    call point([0.0_real64, tiny_creep, 0.0_real64], tight=.true.)
+    if (status%failed()) return
+    f22 = -sum(p(n + 1:2 * n)) * da / tiny_creep
+    k = [abs(f11), abs(f22), abs(f22) * sqrt(area / acos(-1.0_real64))] / max(fn, tiny(1.0_real64))
+    if (.not. all(k > 0 .and. k < huge(1.0_real64))) k = 1 / sqrt(area)
+    ! the patch's centre: its pressure's centroid
+    centre = [sum(bound * x), sum(bound * y)] / max(sum(bound), tiny(1.0_real64))
+    if (.not. sum(bound) > 0) centre = [sum(x), sum(y)] / n
+    call fast_model_grid(k, centre, fast%model)
+    mirrored = mirror_symmetric(state%centred, pn)
+    nt = fast%model%nt
+    np = fast%model%np
+    ns = fast%model%ns
+    allocate (v(3, 0:nt, 0:np - 1, 1:ns), creep(3, ns - 1), last_ray(2 * n, ns - 1), row_first(2 * n, ns - 1))
+    do i = 0, nt
+      do j = 0, np - 1
+        if ((i == 0 .and. j > 0) .or. (i == nt .and. j >= np / 2)) cycle
+        ! a patch symmetric about y = 0: F(-z1, z2, z3) = (-Fx, Fy, Mz)(z1, z2, z3), the mirror
+        ! image y -> -y with the creepage's oddness; ray j is ray np/2 - j mirrored
+        jm = modulo(np / 2 - j, np)
+        if (mirrored .and. jm < j) then
+          v(1, i, j, :) = -v(1, i, jm, :)
+          v(2:3, i, j, :) = v(2:3, i, jm, :)
+          cycle
+        end if
+        call fast_model_ray(fast%model, i, j, creep, dir)
+        state%kept = 0
+        do m = 1, ns - 1
+          ! started also from the neighbouring ray's point at the same s (the previous
+          ! ray of the row, or the first ray of the previous row)
+          if (j > 0) then
+            call point(creep(:, m), last_ray(:, m))
+          else if (i > 0) then
+            call point(creep(:, m), row_first(:, m))
+          else
+            call point(creep(:, m))
+          end if
+          if (status%failed()) return
+          v(:, i, j, m) = forces(p)
+          last_ray(:, m) = p
+          if (j == 0) row_first(:, m) = p
+        end do
+        ! s = 1: full slip, the traction opposing the rigid slip everywhere
+        w = dir(1) * state%unit_w(:, 1) + dir(2) * state%unit_w(:, 2) + dir(3) * state%unit_w(:, 3)
+        do c = 1, n
+          a = hypot(w(c), w(n + c))
+          if (a > 0) then
+            p(c) = -bound(c) * w(c) / a
+            p(n + c) = -bound(c) * w(n + c) / a
+          else
+            p(c) = 0
+            p(n + c) = 0
+          end if
+        end do
+        v(:, i, j, ns) = forces(p)
+      end do
+    end do
+    do j = 1, np - 1
+      v(:, 0, j, :) = v(:, 0, 0, :)
+    end do
+    do j = np / 2, np - 1
+      v(:, nt, j, :) = -v(:, nt, j - np / 2, :)
+    end do
+    call fast_model_fit(fast%model, v, info_fit)
+    if (info_fit /= 0) then
+      call fail(status, exit_numerical, 'fast force model: the interpolant could not be fitted (LAPACK info '// &
+                itoa(info_fit)//')')
+      return
+    end if
+    fast%pn = bound
+    call system_clock(t1)
+    fast%seconds = real(t1 - t0, real64) / rate
+
+  contains
+
+    !> The exact solution p at creepage cr (mu = 1).
+    subroutine point(cr_in, start, tight)
+      real(real64), intent(in) :: cr_in(3)
+      real(real64), intent(in), optional :: start(:)
+      logical, intent(in), optional :: tight
+      real(real64) :: tolerance
+      cr = cr_in
+      tolerance = build_tolerance
+      if (present(tight)) tolerance = default_rolling_tolerance
+      call solve_point(state, cr, 1.0_real64, bound, tolerance, p, cells, info, start=start)
+      fast%solves = fast%solves + 1
+      fast%newton = fast%newton + info%newton
+      if (.not. info%converged) call fail(status, exit_numerical, 'fast force model: Newton did not converge at '// &
+                                          '(xi, eta, phi)/mu = ('//rtoa(cr(1))//', '//rtoa(cr(2))//', '// &
+                                          rtoa(cr(3))//'): residual '//rtoa(info%residual))
+    end subroutine point
+
+    function forces(t) result(f)
+      real(real64), intent(in) :: t(:)
+      real(real64) :: f(3)
+      f = [sum(t(1:n)), sum(t(n + 1:2 * n)), sum(x * t(n + 1:2 * n) - y * t(1:n))] * da
+    end function forces
+
+  end subroutine build_fast_forces
+
+  !> Whether the patch (spin centre at the origin) and its pressure pn (mx, my) are their own
+  !> mirror images in y -> -y (Hertzian ellipses about their centre): the grid's rows
+  !> symmetric about y = 0 within 1e-9 of a cell, the same cells and pressures (to 1e-12 of
+  !> the largest) in rows iy and my + 1 - iy. The backward scheme's operator and the rigid
+  !> slip (xi - phi y, eta + phi x) keep the mirror (x, the rolling direction, is unchanged).
+  pure logical function mirror_symmetric(centred, pn) result(yes)
+    type(patch_t), intent(in) :: centred
+    real(real64), intent(in) :: pn(:, :)
+    integer :: iy, my
+    my = centred%my
+    yes = abs(2 * centred%y0 + (my - 1) * centred%dy) <= 1e-9_real64 * centred%dy
+    if (.not. yes) return
+    do iy = 1, my / 2
+      yes = all(centred%inside(:, iy) .eqv. centred%inside(:, my + 1 - iy))
+      if (yes) yes = all(abs(pn(:, iy) - pn(:, my + 1 - iy)) <= 1e-12_real64 * maxval(abs(pn)))
+      if (.not. yes) return
+    end do
+  end function mirror_symmetric
+
+  !> Forces (3, n) (Fx, Fy, Mz) of the creepages creep(3, n) at friction mu on the model.
+  pure subroutine fast_forces_of(fast, mu, creep, force)
+    type(fast_forces_t), intent(in) :: fast
+    real(real64), intent(in) :: mu, creep(:, :)
+    real(real64), intent(out) :: force(:, :)
+    call fast_model_forces(fast%model, mu, creep, force)
+  end subroutine fast_forces_of
+
+end module kcreep_fast_build
