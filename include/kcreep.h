@@ -169,6 +169,11 @@ int kcreep_wheel_rail(kcreep_handle handle, int n_shifts, const double *shifts, 
 #define KCREEP_WHEEL_RAIL_COLUMN_NAMES "shift yaw patch fn delta y_rail y_wheel r_wheel area length width " \
   "c11 c22 c23 c33 err11 err22 err23 verdict l1 l2 l3 spin"
 int kcreep_get_wheel_rail(kcreep_handle handle, int length, double *table);
+/* Row `row` (0-based) of source's last kcreep_wheel_rail table becomes
+ * handle's solved patch (grid, pressure, coefficients, material), so
+ * kcreep_fastsim, kcreep_rolling and kcreep_get_results act on that row's
+ * patch and pressure; handle and source may be the same. */
+int kcreep_take_wheel_rail_row(kcreep_handle handle, kcreep_handle source, int row);
 
 /* The wheelset (docs/wheel_rail.md, Wheelset; the program's &wheel_rail
  * wheelset = .true.): both wheels of a rigid wheelset on the handle's profiles

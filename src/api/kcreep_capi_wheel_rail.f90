@@ -1,6 +1,7 @@
 !> The C API's wheel-rail calls: kcreep_set_profiles, kcreep_set_track,
 !> kcreep_wheel_rail and kcreep_get_wheel_rail; the wheelset's
-!> kcreep_set_left_profiles, kcreep_wheelset and kcreep_get_wheelset
+!> kcreep_set_left_profiles, kcreep_wheelset and kcreep_get_wheelset;
+!> kcreep_take_wheel_rail_row (a row's patch as a handle's solved patch)
 !> (include/kcreep.h).
 module kcreep_capi_wheel_rail
   use, intrinsic :: iso_c_binding, only: c_int, c_double, c_ptr, c_f_pointer, c_associated
@@ -306,5 +307,33 @@ contains
       end associate
     end do
   end function c_get_wheelset
+
+  !> Row `row` (0-based) of source's last kcreep_wheel_rail table becomes
+  !> handle's solved patch: its grid, pressure, coefficients and material, as
+  !> if handle had just solved it, so kcreep_fastsim, kcreep_rolling and
+  !> kcreep_get_results act on it (handle and source may be the same; the
+  !> solver settings stay handle's own).
+  integer(c_int) function c_take_wheel_rail_row(handle, source, row) bind(c, name='kcreep_take_wheel_rail_row')
+    type(c_ptr), value :: handle, source
+    integer(c_int), value :: row
+    type(handle_t), pointer :: h, s
+    nullify (s)
+    c_take_wheel_rail_row = begin(handle, h)
+    if (c_take_wheel_rail_row /= status_ok) return
+    if (c_associated(source)) call c_f_pointer(source, s)   ! source's own last error kept
+    if (.not. c_associated(source)) then
+      call fail(h%last, int(status_no_result), 'kcreep_take_wheel_rail_row: source is a null handle')
+    else if (.not. s%wheel_rail_done) then
+      call fail(h%last, int(status_no_result), 'kcreep_take_wheel_rail_row: source has no table: call '// &
+                'kcreep_wheel_rail (successfully) on it first')
+    else if (row < 0 .or. row >= size(s%wheel_rail_rows)) then
+      call fail(h%last, exit_bad_input, 'kcreep_take_wheel_rail_row: row = '//itoa(int(row))//' (allowed: 0 to '// &
+                itoa(size(s%wheel_rail_rows) - 1)//')')
+    else
+      h%result = s%wheel_rail_rows(row + 1)%result
+      h%solved = .true.
+    end if
+    c_take_wheel_rail_row = finish(h)
+  end function c_take_wheel_rail_row
 
 end module kcreep_capi_wheel_rail
