@@ -199,30 +199,27 @@ class ContactTable:
         with one n x 3 array per patch. Each row's forces on its own patch and
         pressure, interpolated as at(): exact=False the fast model
         (fast_forces), exact=True exact rolling (Solver.rolling)."""
-        terms = self._terms(shift)
-        per_patch = isinstance(creepages, (list, tuple)) and len(creepages) == len(terms) and \
-            np.ndim(creepages[0]) == 2
-        out = []
-        for k, patch in enumerate(terms):
-            creep = np.atleast_2d(np.asarray(creepages[k] if per_patch else creepages, dtype=np.float64))
-            f = 0.0
-            for r, wt in patch:
-                s = self.solver(r)
-                f = f + wt * (s.rolling(mu, creep)[0] if exact else fast_forces(s, mu, creep))
-            out.append(np.asarray(f))
-        return out
+        if exact:
+            return self._combine(shift, creepages, lambda r, c: self.solver(r).rolling(mu, c)[0])
+        return self._combine(shift, creepages, lambda r, c: fast_forces(self.solver(r), mu, c))
+
+    def fastsim_forces(self, shift, mu, creepages):
+        """As forces(), with FASTSIM (Solver.fastsim, rule 'aligned') on each row."""
+        return self._combine(shift, creepages, lambda r, c: self.solver(r).fastsim(mu, c)[0])
 
     def linear_forces(self, shift, creepages):
-        """Kalker's linear theory on every patch: -f (xi, eta, phi) with each
-        row's full creep-force matrix f (Result.f), interpolated as forces()."""
+        """As forces(), with Kalker's linear theory: -f (xi, eta, phi), each
+        row's full creep-force matrix f (Result.f)."""
+        return self._combine(shift, creepages, lambda r, c: -c @ self.matrix(r).T)
+
+    def _combine(self, shift, creepages, evaluate):
         terms = self._terms(shift)
         per_patch = isinstance(creepages, (list, tuple)) and len(creepages) == len(terms) and \
             np.ndim(creepages[0]) == 2
         out = []
         for k, patch in enumerate(terms):
             creep = np.atleast_2d(np.asarray(creepages[k] if per_patch else creepages, dtype=np.float64))
-            f = sum(wt * self.matrix(r) for r, wt in patch)
-            out.append(-creep @ f.T)
+            out.append(np.asarray(sum(wt * evaluate(r, creep) for r, wt in patch)))
         return out
 
     def matrix(self, row):
