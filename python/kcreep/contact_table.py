@@ -11,14 +11,16 @@ Each row's patch and pressure are kept on a Solver of their own
 (kcreep_take_wheel_rail_row), so FASTSIM, exact rolling and the fast force
 model run on that row's patch without solving it again. Between two rows a
 patch's columns and forces are the linear interpolation of the two rows'
-(continuous in the shift); docs/mbs.md says what is interpolated and how
+(continuous in the shift; the pairing and weights are the C API's
+kcreep_wheel_rail_at); docs/mbs.md says what is interpolated and how
 intervals are flagged.
 """
 import bisect
+import ctypes
 
 import numpy as np
 
-from .library import KcreepError, Solver, WHEEL_RAIL_COLUMNS
+from .library import KcreepError, Solver, WHEEL_RAIL_COLUMNS, _lib
 
 #: the default bound on the estimated interpolation error between two rows:
 #: the fast force model's target, 1 % of mu Fn (issue 48), applied to Fn,
@@ -58,6 +60,11 @@ class ContactTable:
         self._solvers = [None] * n_rows
         self._g, self._nu, self._threads = g, nu, threads
         self._rows_at = [np.flatnonzero(self.table["shift"] == s).tolist() for s in shifts]
+        # room for kcreep_wheel_rail_at: every patch of two neighbouring rows
+        self._capacity = 2 * max(len(r) for r in self._rows_at)
+        self._buffer = np.empty((self._capacity, len(self.columns)))
+        self._rows = np.empty((self._capacity, 2), dtype=np.intc)
+        self._weights = np.empty((self._capacity, 2))
         self._tracks = self._match()
         self.flags = self._check_intervals()
         #: which fast model forces(exact=False) uses: 'fast_forces' or 'fastsim'
@@ -66,35 +73,21 @@ class ContactTable:
     # -- patches across rows -------------------------------------------------------------------
     def _match(self):
         """Tracks: one dict {shift index: row} per patch followed across the
-        shifts. Neighbouring shifts' patches are paired by the `kind` column
-        when the table has one, else (and among equal kinds) nearest y_rail
-        first, when the two lie within half their widths plus the shift step."""
-        col = {c: k for k, c in enumerate(self.columns)}
-        v = self._values
-        tracks, open_ = [], {}
-        for i, rows in enumerate(self._rows_at):
-            pairs = []
-            for r in rows:
-                for t, prev in open_.items():
-                    if "kind" in col and v[r, col["kind"]] != v[prev, col["kind"]]:
-                        continue
-                    dy = abs(v[r, col["y_rail"]] - v[prev, col["y_rail"]])
-                    gate = 0.5 * (v[r, col["width"]] + v[prev, col["width"]]) + (self.shifts[i] - self.shifts[i - 1])
-                    if dy <= gate:
-                        pairs.append((dy, r, t))
-            new_open, used_r, used_t = {}, set(), set()
-            for dy, r, t in sorted(pairs):
-                if r in used_r or t in used_t:
-                    continue
-                used_r.add(r)
-                used_t.add(t)
-                tracks[t][i] = r
-                new_open[t] = r
-            for r in rows:
-                if r not in used_r:
-                    tracks.append({i: r})
-                    new_open[len(tracks) - 1] = r
-            open_ = new_open
+        shifts, from the C API's pairing of neighbouring rows
+        (kcreep_wheel_rail_at at each interval's middle)."""
+        track_of, tracks = {}, []
+        for i in range(self.shifts.size - 1):
+            _, rows, _ = self._at(0.5 * (self.shifts[i] + self.shifts[i + 1]))
+            for a, b in rows:
+                if a >= 0 and a not in track_of:
+                    track_of[a] = len(tracks)
+                    tracks.append({i: a})
+                if b >= 0:
+                    t = track_of[a] if a >= 0 else len(tracks)
+                    if t == len(tracks):
+                        tracks.append({})
+                    tracks[t][i + 1] = b
+                    track_of[b] = t
         return tracks
 
     def _check_intervals(self):
@@ -150,42 +143,35 @@ class ContactTable:
         s = self.shifts
         if not (s[0] <= shift <= s[-1]):
             raise KcreepError(2, f"ContactTable: shift = {shift} (allowed: {s[0]} to {s[-1]} mm, the table's range)")
-        i = min(max(bisect.bisect_right(s, shift) - 1, 0), s.size - 2)
-        return i, (shift - s[i]) / (s[i + 1] - s[i])
+        return min(max(bisect.bisect_right(s, shift) - 1, 0), s.size - 2)
+
+    def _at(self, shift):
+        """kcreep_wheel_rail_at: the patches' values (patches x columns), rows
+        (patches x 2, -1 none) and weights (patches x 2)."""
+        self._interval(shift)
+        n = ctypes.c_int()
+        self._source._check(_lib.kcreep_wheel_rail_at(self._source._handle, float(shift), self._capacity,
+                                                      self._buffer.ctypes.data, self._rows.ctypes.data,
+                                                      self._weights.ctypes.data, ctypes.byref(n)))
+        k = n.value
+        return self._buffer[:k].copy(), self._rows[:k].copy(), self._weights[:k].copy()
 
     def _terms(self, shift):
-        """The patches at shift in order of y_rail: per patch a list of
-        (row, weight), weights summing to 1 for a patch at both ends and to
-        the fraction of the way for one at one end only (it fades in or out
-        with its rows' values: Fn and the forces go to 0 continuously)."""
-        i, w = self._interval(shift)
-        out = []
-        for track in self._tracks:
-            terms = [(track[j], wt) for j, wt in ((i, 1 - w), (i + 1, w)) if j in track and wt > 0]
-            if terms:
-                out.append(terms)
-        y = self.columns.index("y_rail")
-        out.sort(key=lambda terms: sum(wt * self._values[r, y] for r, wt in terms) /
-                 sum(wt for _, wt in terms))
-        return out
+        """Per patch at shift (at()'s order) its (row, weight) terms."""
+        _, rows, weights = self._at(shift)
+        return [[(int(r), float(w)) for r, w in zip(rr, ww) if r >= 0] for rr, ww in zip(rows, weights)]
 
     def at(self, shift):
         """Every patch at shift (mm): one dict per patch keyed by the table's
-        columns, interpolated linearly between the neighbouring rows (at a row
-        exactly that row's values; 'shift' the given shift, 'patch' and
-        'verdict' the nearer row's; a patch present at one end only keeps
-        that row's values with fn scaled by its weight)."""
+        columns, interpolated linearly between the neighbouring rows
+        (kcreep_wheel_rail_at: at a row exactly that row's values; 'shift' the
+        given shift, 'patch' and 'verdict' the nearer row's; a patch present
+        at one end only keeps that row's values with fn scaled by its weight)."""
+        values, _, _ = self._at(shift)
         out = []
-        for terms in self._terms(shift):
-            weight = sum(wt for _, wt in terms)
-            values = sum(wt * self._values[r] for r, wt in terms) / weight
-            nearest = max(terms, key=lambda rw: rw[1])[0]
-            d = dict(zip(self.columns, values.tolist()))
-            d["fn"] *= weight
-            d["shift"] = float(shift)
-            for name in ("patch", "verdict", "kind"):
-                if name in d:
-                    d[name] = int(self._values[nearest, self.columns.index(name)])
+        for v in values:
+            d = dict(zip(self.columns, v.tolist()))
+            d["patch"], d["verdict"] = int(d["patch"]), int(d["verdict"])
             out.append(d)
         return out
 

@@ -88,6 +88,8 @@ _signatures = {
     "kcreep_wheel_rail": ([_h, _i, _p, _d, _d, _d, ctypes.POINTER(_i)], _i),
     "kcreep_get_wheel_rail": ([_h, _i, _p], _i),
     "kcreep_take_wheel_rail_row": ([_h, _h, _i], _i),
+    "kcreep_wheel_rail_at": ([_h, _d, _i, _p, _p, _p, ctypes.POINTER(_i)], _i),
+    "kcreep_wheel_rail_forces": ([_h, _d, _d, _i, _i, _p, _i, _p], _i),
     "kcreep_set_left_profiles": ([_h, ctypes.c_char_p, ctypes.c_char_p], _i),
     "kcreep_wheelset": ([_h, _i, _p, _d, _d, ctypes.POINTER(_i)], _i),
     "kcreep_get_wheelset": ([_h, _i, _p], _i),

@@ -9,11 +9,12 @@ module kcreep_capi_wheel_rail
   use kcreep_status, only: fail, exit_bad_input
   use kcreep_strings, only: itoa, rtoa
   use kcreep, only: problem_t, kcreep_wheel_rail, wheel_rail_setup_t, check_wheel_rail_setup, max_wheel_rail_shifts, &
-                    default_target_error, kcreep_wheelset
+                    default_target_error, kcreep_wheelset, wheel_rail_row_t
   use kcreep_profile_file, only: read_profile_file
   use kcreep_capi_handle, only: handle_t, status_ok, status_no_result, begin, finish, from_c, output_array
   implicit none
   private
+  public :: row_values, wheel_rail_column_count
 
   !> The wheel-rail table's columns (KCREEP_WHEEL_RAIL_COLUMNS in kcreep.h).
   integer, parameter :: wheel_rail_column_count = 23
@@ -182,13 +183,17 @@ contains
     c_get_wheel_rail = output_array(h, table, n, 'kcreep_get_wheel_rail: table', values)
     if (c_get_wheel_rail /= status_ok) return
     do r = 1, size(h%wheel_rail_rows)
-      associate (w => h%wheel_rail_rows(r))
-        values((r - 1) * wheel_rail_column_count + 1:r * wheel_rail_column_count) = &
-          [w%shift, w%yaw, real(w%patch, wp), w%fn, w%delta, w%y_rail, w%y_wheel, w%r_wheel, w%area, w%length, &
-           w%width, w%c, w%err, real(w%result%verdict_flags, wp), w%l, w%spin]
-      end associate
+      values((r - 1) * wheel_rail_column_count + 1:r * wheel_rail_column_count) = row_values(h%wheel_rail_rows(r))
     end do
   end function c_get_wheel_rail
+
+  !> A row as the C table's columns (KCREEP_WHEEL_RAIL_COLUMN_NAMES), the verdict as its bits.
+  pure function row_values(w) result(values)
+    type(wheel_rail_row_t), intent(in) :: w
+    real(wp) :: values(wheel_rail_column_count)
+    values = [w%shift, w%yaw, real(w%patch, wp), w%fn, w%delta, w%y_rail, w%y_wheel, w%r_wheel, w%area, w%length, &
+              w%width, w%c, w%err, real(w%result%verdict_flags, wp), w%l, w%spin]
+  end function row_values
 
   !> The wheelset's left profiles (as kcreep_set_profiles, its mirror flags
   !> and smoothing): NULL or "" for either keeps the right one mirrored.

@@ -84,6 +84,27 @@ mid = table.forces(-2.0, MU, [[1e-3, 5e-4, 0]], exact=True)[0]
 ends = [table.forces(s, MU, [[1e-3, 5e-4, 0]], exact=True)[0] for s in (-4.0, 0.0)]
 kc.check(np.allclose(mid, 0.5 * (ends[0] + ends[1]), rtol=1e-12, atol=1e-9), "forces between rows: the rows' mean")
 
+# the C API's kcreep_wheel_rail_forces: the rows' forces weighted as at(), the same as Python's per-row solvers
+import ctypes  # noqa: E402
+from kcreep.library import _lib  # noqa: E402
+src = table._source
+creep2 = np.ascontiguousarray([[1e-3, 5e-4, 1e-5], [-2e-3, 1e-3, 0.0]])
+for exact in (0, 1):
+    out = np.empty((1, 2, 3))
+    code = _lib.kcreep_wheel_rail_forces(src._handle, -1.3, MU, 2, 1, creep2.ctypes.data, exact, out.ctypes.data)
+    ref = table.fastsim_forces(-1.3, MU, creep2)[0] if exact == 0 else table.forces(-1.3, MU, creep2, exact=True)[0]
+    # measured: FASTSIM identical, exact rolling 1e-11 apart (its Newton's rounding)
+    kc.check(code == 0 and np.allclose(out[0], ref, rtol=1e-9, atol=1e-6),
+             f"C forces (exact={exact}) at -1.3 mm are Python's ({code})")
+code = _lib.kcreep_wheel_rail_forces(src._handle, -1.3, MU, 2, 2, creep2.ctypes.data, 0, out.ctypes.data)
+kc.check(code == 2, "C forces with n_patches = 2 where the shift has 1 refused")
+values, n = np.empty((1, len(table.columns))), ctypes.c_int()
+code = _lib.kcreep_wheel_rail_at(src._handle, -1.3, 0, values.ctypes.data, None, None, ctypes.byref(n))
+kc.check(code == 2, "C at() with capacity 0 refused")
+code = _lib.kcreep_wheel_rail_at(src._handle, -1.3, 1, values.ctypes.data, None, None, ctypes.byref(n))
+kc.check(code == 0 and n.value == 1 and np.allclose(values[0], list(table.at(-1.3)[0].values())),
+         "C at() (rows, weights NULL) is Python's")
+
 # the fast model at a row within 1 % of mu Fn of the exact path (issue 48)
 if hasattr(Solver, "fast_forces"):
     rng = np.random.default_rng(48)
