@@ -155,6 +155,10 @@ def main():
     step = 1.0 if a.check else 0.5
     shifts = np.arange(-9.0, 9.0 + step / 2, step)
     limit = 8.5   # mm: a run ends here (the table's range +-9 mm)
+    if not (np.any(np.isclose(shifts, a.amplitude)) and 0 < a.amplitude <= limit):
+        print(f"wheelset_hunting: --amplitude = {a.amplitude:g} mm (allowed: a table shift, 0 to {limit:g} mm in "
+              f"{step:g} mm steps)", file=sys.stderr)
+        sys.exit(2)
     # the table once: coarse shift step, target 1e-2, at most ~1000 cells a level
     table = kcreep.ContactTable(WHEEL, RAIL, shifts, g=G, nu=NU, vertical_force=LOAD, target_error=1e-2,
                                 cell_budget=1000.0, threads=1)
@@ -164,8 +168,6 @@ def main():
 
     # kinematic wavelength: free wheelset (no springs), small speed
     amp = a.amplitude
-    if not np.any(np.isclose(table.shifts, amp)):
-        sys.exit(f"wheelset_hunting: --amplitude {amp} is not a table shift ({step:g} mm steps)")
     ws_table = kcreep.wheelset(WHEEL, RAIL, table.shifts[(table.shifts >= 0) & (table.shifts <= amp + 1e-9)], g=G,
                                nu=NU, vertical_force=LOAD, threads=1, smoothing=-1.0)
     lambda_eq = ws_table["lambda_eq"][-1]
