@@ -171,7 +171,9 @@ class ContactTable:
         out = []
         for v in values:
             d = dict(zip(self.columns, v.tolist()))
-            d["patch"], d["verdict"] = int(d["patch"]), int(d["verdict"])
+            for name in ("patch", "verdict", "kind"):
+                if name in d:
+                    d[name] = int(d[name])
             out.append(d)
         return out
 

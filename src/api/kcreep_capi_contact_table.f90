@@ -12,7 +12,8 @@ module kcreep_capi_contact_table
   use kcreep, only: wheel_rail_row_t, creep_request_t, creep_point_t, creep_map_t, creep_curve, &
                     rolling_request_t, rolling_point_t, rolling_curve
   use kcreep_capi_handle, only: handle_t, status_ok, status_no_result, begin, finish
-  use kcreep_capi_wheel_rail, only: row_values, wheel_rail_column_count
+  use kcreep_capi_wheel_rail, only: row_values, wheel_rail_column_count, column_shift, column_patch, column_fn, &
+                                    column_verdict
   implicit none
   private
 
@@ -60,10 +61,10 @@ contains
         do k = 1, 2
           if (term_rows(k, p) > 0) out = out + term_weights(k, p) / weight * row_values(h%wheel_rail_rows(term_rows(k, p)))
         end do
-        out(1) = shift
-        out(3) = h%wheel_rail_rows(nearest)%patch
-        out(4) = out(4) * weight
-        out(19) = h%wheel_rail_rows(nearest)%result%verdict_flags
+        out(column_shift) = shift
+        out(column_patch) = h%wheel_rail_rows(nearest)%patch
+        out(column_fn) = out(column_fn) * weight
+        out(column_verdict) = h%wheel_rail_rows(nearest)%result%verdict_flags
       end associate
     end do
     if (c_associated(rows)) then

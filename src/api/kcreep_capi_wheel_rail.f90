@@ -14,10 +14,12 @@ module kcreep_capi_wheel_rail
   use kcreep_capi_handle, only: handle_t, status_ok, status_no_result, begin, finish, from_c, output_array
   implicit none
   private
-  public :: row_values, wheel_rail_column_count
+  public :: row_values, wheel_rail_column_count, column_shift, column_patch, column_fn, column_verdict
 
   !> The wheel-rail table's columns (KCREEP_WHEEL_RAIL_COLUMNS in kcreep.h).
   integer, parameter :: wheel_rail_column_count = 23
+  !> Where row_values puts the columns kcreep_wheel_rail_at sets itself.
+  integer, parameter :: column_shift = 1, column_patch = 3, column_fn = 4, column_verdict = 19
   !> The wheelset table's columns (KCREEP_WHEELSET_COLUMNS in kcreep.h).
   integer, parameter :: wheelset_column_count = 9
 
