@@ -95,7 +95,8 @@ class ContactTable:
         interpolable within the tolerance ([] when it is): a patch that
         appears or vanishes, or a quantity whose linear interpolation error,
         estimated as h^2 / 8 times its second divided difference at either end
-        of the interval, exceeds the tolerance."""
+        of the interval (for C11, C22, C23 less the rows' own errNN), exceeds
+        the tolerance."""
         col = {c: k for k, c in enumerate(self.columns)}
         v, s = self._values, self.shifts
         total = np.array([v[rows, col["fn"]].sum() for rows in self._rows_at])
