@@ -179,6 +179,27 @@ int kcreep_wheel_rail(kcreep_handle handle, int n_shifts, const double *shifts, 
 #define KCREEP_WHEEL_RAIL_COLUMN_NAMES "shift yaw patch fn delta y_rail y_wheel r_wheel area length width " \
   "c11 c22 c23 c33 err11 err22 err23 verdict l1 l2 l3 spin kind turn"
 int kcreep_get_wheel_rail(kcreep_handle handle, int length, double *table);
+/* Row `row` (0-based) of source's last kcreep_wheel_rail table becomes
+ * handle's solved patch (grid, pressure, coefficients, material), so
+ * kcreep_fastsim, kcreep_rolling and kcreep_get_results act on that row's
+ * patch and pressure; handle and source may be the same. */
+int kcreep_take_wheel_rail_row(kcreep_handle handle, kcreep_handle source, int row);
+/* The last table held for a time loop (docs/mbs.md): every patch at any
+ * shift (mm) in its range, interpolated between the neighbouring rows, its
+ * patches paired nearest y_rail first (within half their widths plus the
+ * step; a patch without a partner fades with its weight), in order of y_rail.
+ * kcreep_wheel_rail_at: values[p * KCREEP_WHEEL_RAIL_COLUMNS + k] (the
+ * nearer row's patch and verdict), rows[2 p + 0..1] (0-based, -1: none) and
+ * weights[2 p + 0..1] (rows, weights may be NULL), capacity the patches the
+ * arrays hold, *n_patches the patches at shift. kcreep_wheel_rail_forces: n
+ * creepages of each of the n_patches patches, creep[(p n + k) 3 + 0..2] =
+ * (xi, eta, phi), force[(p n + k) 3 + 0..2] = (Fx, Fy, Mz), each row's forces
+ * on its own patch and pressure weighted likewise; exact 0: FASTSIM (rule
+ * aligned), 1: exact rolling. */
+int kcreep_wheel_rail_at(kcreep_handle handle, double shift, int capacity, double *values, int *rows,
+                         double *weights, int *n_patches);
+int kcreep_wheel_rail_forces(kcreep_handle handle, double shift, double mu, int n, int n_patches,
+                             const double *creep, int exact, double *force);
 
 /* The wheelset (docs/wheel_rail.md, Wheelset; the program's &wheel_rail
  * wheelset = .true.): both wheels of a rigid wheelset on the handle's profiles

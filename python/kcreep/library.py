@@ -88,6 +88,9 @@ _signatures = {
     "kcreep_set_track": ([_h, ctypes.c_char_p, _d, _d, _d, _d, _d, _d], _i),
     "kcreep_wheel_rail": ([_h, _i, _p, _d, _d, _d, ctypes.POINTER(_i)], _i),
     "kcreep_get_wheel_rail": ([_h, _i, _p], _i),
+    "kcreep_take_wheel_rail_row": ([_h, _h, _i], _i),
+    "kcreep_wheel_rail_at": ([_h, _d, _i, _p, _p, _p, ctypes.POINTER(_i)], _i),
+    "kcreep_wheel_rail_forces": ([_h, _d, _d, _i, _i, _p, _i, _p], _i),
     "kcreep_set_left_profiles": ([_h, ctypes.c_char_p, ctypes.c_char_p], _i),
     "kcreep_wheelset": ([_h, _i, _p, _d, _d, ctypes.POINTER(_i)], _i),
     "kcreep_get_wheelset": ([_h, _i, _p], _i),
@@ -275,6 +278,12 @@ class Solver:
         self._check(_lib.kcreep_get_wheelset(self._handle, values.size, values.ctypes.data))
         values = values.reshape(rows.value, n)
         return {name: values[:, k].copy() for k, name in enumerate(WHEELSET_COLUMNS)}
+
+    def take_wheel_rail_row(self, source, row):
+        """Row `row` (0-based) of the Solver source's last wheel_rail table
+        becomes this Solver's solved patch (grid, pressure, coefficients), so
+        fastsim and rolling run on it (kcreep_take_wheel_rail_row)."""
+        self._check(_lib.kcreep_take_wheel_rail_row(self._handle, source._handle, int(row)))
 
     def rolling(self, mu, creepages, pressure=None):
         """Exact steady rolling with friction mu on the last solved patch

@@ -1,6 +1,7 @@
 !> The C API's wheel-rail calls: kcreep_set_profiles, kcreep_set_track,
 !> kcreep_wheel_rail and kcreep_get_wheel_rail; the wheelset's
-!> kcreep_set_left_profiles, kcreep_wheelset and kcreep_get_wheelset
+!> kcreep_set_left_profiles, kcreep_wheelset and kcreep_get_wheelset;
+!> kcreep_take_wheel_rail_row (a row's patch as a handle's solved patch)
 !> (include/kcreep.h).
 module kcreep_capi_wheel_rail
   use, intrinsic :: iso_c_binding, only: c_int, c_double, c_ptr, c_f_pointer, c_associated
@@ -8,14 +9,17 @@ module kcreep_capi_wheel_rail
   use kcreep_status, only: fail, exit_bad_input
   use kcreep_strings, only: itoa, rtoa
   use kcreep, only: problem_t, kcreep_wheel_rail, wheel_rail_setup_t, check_wheel_rail_setup, max_wheel_rail_shifts, &
-                    default_target_error, kcreep_wheelset
+                    default_target_error, kcreep_wheelset, wheel_rail_row_t, fast_forces_t
   use kcreep_profile_file, only: read_profile_file
   use kcreep_capi_handle, only: handle_t, status_ok, status_no_result, begin, finish, from_c, output_array
   implicit none
   private
+  public :: row_values, wheel_rail_column_count, column_shift, column_patch, column_fn, column_verdict
 
   !> The wheel-rail table's columns (KCREEP_WHEEL_RAIL_COLUMNS in kcreep.h).
   integer, parameter :: wheel_rail_column_count = 25
+  !> Where row_values puts the columns kcreep_wheel_rail_at sets itself.
+  integer, parameter :: column_shift = 1, column_patch = 3, column_fn = 4, column_verdict = 19
   !> The wheelset table's columns (KCREEP_WHEELSET_COLUMNS in kcreep.h).
   integer, parameter :: wheelset_column_count = 9
 
@@ -181,14 +185,18 @@ contains
     c_get_wheel_rail = output_array(h, table, n, 'kcreep_get_wheel_rail: table', values)
     if (c_get_wheel_rail /= status_ok) return
     do r = 1, size(h%wheel_rail_rows)
-      associate (w => h%wheel_rail_rows(r))
-        values((r - 1) * wheel_rail_column_count + 1:r * wheel_rail_column_count) = &
-          [w%shift, w%yaw, real(w%patch, wp), w%fn, w%delta, w%y_rail, w%y_wheel, w%r_wheel, w%area, w%length, &
-           w%width, w%c, w%err, real(w%result%verdict_flags, wp), w%l, w%spin, merge(1.0_wp, 0.0_wp, w%kind == 'flange'), &
-           w%turn]
-      end associate
+      values((r - 1) * wheel_rail_column_count + 1:r * wheel_rail_column_count) = row_values(h%wheel_rail_rows(r))
     end do
   end function c_get_wheel_rail
+
+  !> A row as the C table's columns (KCREEP_WHEEL_RAIL_COLUMN_NAMES), the verdict as its bits.
+  pure function row_values(w) result(values)
+    type(wheel_rail_row_t), intent(in) :: w
+    real(wp) :: values(wheel_rail_column_count)
+    values = [w%shift, w%yaw, real(w%patch, wp), w%fn, w%delta, w%y_rail, w%y_wheel, w%r_wheel, w%area, w%length, &
+              w%width, w%c, w%err, real(w%result%verdict_flags, wp), w%l, w%spin, &
+              merge(1.0_wp, 0.0_wp, w%kind == 'flange'), w%turn]
+  end function row_values
 
   !> The wheelset's left profiles (as kcreep_set_profiles, its mirror flags
   !> and smoothing): NULL or "" for either keeps the right one mirrored.
@@ -307,5 +315,35 @@ contains
       end associate
     end do
   end function c_get_wheelset
+
+  !> Row `row` (0-based) of source's last kcreep_wheel_rail table becomes
+  !> handle's solved patch: its grid, pressure, coefficients and material, as
+  !> if handle had just solved it, so kcreep_fastsim, kcreep_rolling and
+  !> kcreep_get_results act on it (handle and source may be the same; the
+  !> solver settings stay handle's own).
+  integer(c_int) function c_take_wheel_rail_row(handle, source, row) bind(c, name='kcreep_take_wheel_rail_row')
+    type(c_ptr), value :: handle, source
+    integer(c_int), value :: row
+    type(handle_t), pointer :: h, s
+    nullify (s)
+    c_take_wheel_rail_row = begin(handle, h)
+    if (c_take_wheel_rail_row /= status_ok) return
+    if (c_associated(source)) call c_f_pointer(source, s)   ! source's own last error kept
+    if (.not. c_associated(source)) then
+      call fail(h%last, int(status_no_result), 'kcreep_take_wheel_rail_row: source is a null handle')
+    else if (.not. s%wheel_rail_done) then
+      call fail(h%last, int(status_no_result), 'kcreep_take_wheel_rail_row: source has no table: call '// &
+                'kcreep_wheel_rail (successfully) on it first')
+    else if (row < 0 .or. row >= size(s%wheel_rail_rows)) then
+      call fail(h%last, exit_bad_input, 'kcreep_take_wheel_rail_row: row = '//itoa(int(row))//' (allowed: 0 to '// &
+                itoa(size(s%wheel_rail_rows) - 1)//')')
+    else
+      h%result = s%wheel_rail_rows(row + 1)%result
+      h%solved = .true.
+      ! the fast model belongs to the last solved patch (the rolling state checks its own patch)
+      h%fast = fast_forces_t()
+    end if
+    c_take_wheel_rail_row = finish(h)
+  end function c_take_wheel_rail_row
 
 end module kcreep_capi_wheel_rail

@@ -268,6 +268,10 @@ contains
       if (.not. (step < 0)) exit            ! no progress left (round-off)
       lambda = lambda - step
     end do
+    if (.not. (r > 0)) then                  ! g so small that p underflowed: the radial projection
+      px = qx; py = qy
+      r = sqrt(qx**2 + qy**2)
+    end if
     px = px * (g / r)                        ! on the bound to round-off
     py = py * (g / r)
   end subroutine aligned_slip
