@@ -43,10 +43,12 @@ class ContactTable:
     patch, pressure and force model held for repeated use. g, nu, the table's
     target_error (the program's default 1e-3), threads and **placement as
     kcreep.wheel_rail (vertical_force or approach, yaw, side, gauge_width, ...).
-    tolerance: the bound of the interpolation check (FLAG_TOLERANCE)."""
+    tolerance: the bound of the interpolation check (FLAG_TOLERANCE).
+    fast_model: what forces(exact=False) uses, 'fast_forces' (the library's
+    fast model, the default) or 'fastsim'."""
 
     def __init__(self, wheel_file, rail_file, shifts, *, g, nu, target_error=1e-3, threads=0,
-                 cell_budget=0.0, tolerance=FLAG_TOLERANCE, **placement):
+                 cell_budget=0.0, tolerance=FLAG_TOLERANCE, fast_model=None, **placement):
         shifts = np.unique(np.asarray(shifts, dtype=np.float64))
         if shifts.size < 2:
             raise KcreepError(2, f"ContactTable: shifts = {shifts.tolist()} (allowed: at least 2 distinct values)")
@@ -70,7 +72,10 @@ class ContactTable:
         self._tracks = self._match()
         self.flags = self._check_intervals()
         #: which fast model forces(exact=False) uses: 'fast_forces' or 'fastsim'
-        self.fast_model = "fast_forces" if hasattr(Solver, "fast_forces") else "fastsim"
+        # (the fast model's build costs seconds a row: 24 s on a 1000-cell S1002 tread row, one thread)
+        self.fast_model = fast_model or ("fast_forces" if hasattr(Solver, "fast_forces") else "fastsim")
+        if self.fast_model not in ("fast_forces", "fastsim"):
+            raise KcreepError(2, f"ContactTable: fast_model = {fast_model!r} (allowed: 'fast_forces', 'fastsim')")
 
     # -- patches across rows -------------------------------------------------------------------
     def _match(self):
@@ -199,6 +204,8 @@ class ContactTable:
         (fast_forces), exact=True exact rolling (Solver.rolling)."""
         if exact:
             return self._combine(shift, creepages, lambda r, c: self.solver(r).rolling(mu, c)[0])
+        if self.fast_model == "fastsim":
+            return self.fastsim_forces(shift, mu, creepages)
         return self._combine(shift, creepages, lambda r, c: fast_forces(self.solver(r), mu, c))
 
     def fastsim_forces(self, shift, mu, creepages):
