@@ -10,7 +10,9 @@ program test_error_control
   use kcreep_status, only: status_t
   use kcreep_strings, only: itoa
   use unit_checks, only: checker_t
-  use kcreep_level_ladder, only: ellipse_base_levels
+  use kcreep_level_ladder, only: ellipse_base_levels, run_shape_levels
+  use kcreep_problem, only: problem_t, result_t, default_problem
+  use kcreep_refine_constants, only: base_levels
   implicit none
   type(checker_t) :: t
   integer :: mx, my, trial, i, covered, base(5)
@@ -103,6 +105,18 @@ program test_error_control
   call t%check(abs(single_grid_estimate(1.01_real64, 1.02_real64, 0.001_real64) - (0.02_real64 / 1.01_real64 + 0.001_real64)) &
                < 1e-15_real64, 'single_grid_estimate: 2 |f(h) - f(2h)| / f(h) + area error')
 
+  ! --- a contact area's ladder stops when the normal grid's part alone misses the target
+  call t%check(levels_done([9e-4_real64, 9e-4_real64, 1e-3_real64], [2e-3_real64, 0.0_real64, 0.0_real64], &
+                           coefficient_targets(1e-3_real64), [.true., .true., .true.]), &
+               'levels_done: C11''s normal grid misses the target, the levels'' own part meets it')
+  call t%check(.not. levels_done([1.1e-3_real64, 9e-4_real64, 1e-3_real64], [2e-3_real64, 0.0_real64, 0.0_real64], &
+                                 coefficient_targets(1e-3_real64), [.true., .true., .true.]), &
+               'levels_done: not while the levels'' own part misses it')
+  call t%check(.not. levels_done([5e-4_real64, 9e-4_real64, 1e-3_real64], [2e-3_real64, 5e-4_real64, 0.0_real64], &
+                                 coefficient_targets(1e-3_real64), [.true., .true., .true.]), &
+               'levels_done: not while a coefficient finer levels can bring within the target misses it combined')
+  call ladder_beyond_normal_grid()
+
   ! --- a shape's levels: f0 + K h is recovered exactly
   f8 = 4.11_real64 + 1.06_real64 * h8
   call shape_level_estimate(h8, f8, limit, rel)
@@ -153,6 +167,28 @@ program test_error_control
   call t%finish()
 
 contains
+
+  !> A circle's ladder with an other_error above the target: it stops one
+  !> level past the base ladder (its own estimate meets the target from the
+  !> first fit on), says why, and keeps the other_error in its estimate
+  !> (before: it climbed to the cell budget, 148 cells across at 20,000
+  !> cells, for nothing).
+  subroutine ladder_beyond_normal_grid()
+    type(problem_t) :: problem
+    type(result_t) :: result
+    type(status_t) :: st
+    real(real64), parameter :: other(3) = [2e-3_real64, 2e-3_real64, 7e-3_real64]
+    problem = default_problem()
+    problem%nu = 0.28_real64
+    problem%cell_budget = 20000
+    call ellipse_patch(1.0_real64, 1.0_real64, 20, 20, problem%patch, st)
+    call run_shape_levels(problem, result, st, other_error=other)
+    call t%check(.not. st%failed(), 'ladder with a normal grid''s estimate above the target runs')
+    call t%check(max(result%mx, result%my) <= next_level(base_levels(size(base_levels))) + 1, &
+                 'it stops one level past the base ('//itoa(max(result%mx, result%my))//' cells across)')
+    call t%check(all(result%err >= other), 'its estimate keeps the normal grid''s part')
+    call t%check(any(index(result%warnings, 'normal grid''s own estimate') > 0), 'it says why it stopped')
+  end subroutine ladder_beyond_normal_grid
 
   !> Standard normal deviate (Box-Muller on a 64-bit linear congruential generator).
   real(real64) function gaussian()
