@@ -193,8 +193,8 @@ contains
       if (present(region)) then
         if (level > region_level_cap(problem)) then
           why = 'error control: stopped at '//itoa(levels(size(levels)))//' cells across, the finest level '// &
-                'a contact area takes at the default cell budget (what --estimate-memory counts; &solver '// &
-                'cell_budget lets it go on, and the estimate then counts the whole budget)'
+                'of a contact area when no cell budget is given (the limit --estimate-memory counts; &solver '// &
+                'cell_budget lifts it, and the estimate then counts the whole budget)'
           return
         end if
         patch_cells = region_cells(region, level, cell_shape)
