@@ -76,7 +76,7 @@ contains
     problem = problem_of(cfg, patch)
     problem%solve%memory_limit = memory_limit_bytes()
     if (cfg%wheel_rail_on) then
-      call kcreep_wheel_rail_memory_need(problem, size(cfg%wheel_rail%shifts), bytes, method, status)
+      call kcreep_wheel_rail_memory_need(problem, cfg%wheel_rail, bytes, method, status)
     else
       call kcreep_memory_need(problem, bytes, method, status)
     end if

@@ -19,7 +19,7 @@ module kcreep
   use kcreep_assembly, only: scheme_t, n_load_cases, load_case_names
   use kcreep_solver_options, only: solver_options_t, validate_solver_options
   use kcreep_dense, only: refine_modes
-  use kcreep_solve_memory, only: process_bytes, wheel_rail_shift_bytes, wheel_rail_cell_bytes, &
+  use kcreep_solve_memory, only: process_bytes, normal_cell_bytes, wheel_rail_shift_bytes, wheel_rail_cell_bytes, &
                                  wheel_rail_row_cell_bytes
   use kcreep_threads, only: team_size, enter_team, leave_team, cells_per_thread_iterative, solve_started, &
                             solve_ended, max_threads, serial_blas, run_team
@@ -44,13 +44,14 @@ module kcreep
   use kcreep_equivalent_ellipse, only: equivalent_ellipse_t, equivalent_ellipses
   use kcreep_extrapolation, only: run_extrapolated, memory_need
   use kcreep_error_run, only: run_controlled, controlled_finest_patch
-  use kcreep_gap_levels, only: normal_grid_cells
+  use kcreep_gap_levels, only: normal_grid_cells, gap_levels_need
+  use kcreep_level_ladder, only: region_level_cap
   use kcreep_refine_estimate, only: default_target_error, nominal_ellipse_cells, level_cell_budget
   use kcreep_normal_influence, only: compliance_from_e_nu, combined_g_nu_from_e_nu
   use kcreep_table_run, only: run_table, table_meets_target
   use kcreep_wheel_rail_run, only: wheel_rail_base_cells => base_cells
   use kcreep_wheel_rail_run, only: wheel_rail_setup_t, wheel_rail_row_t, run_wheel_rail, wheel_rail_columns, &
-                                   check_wheel_rail_setup, max_wheel_rail_shifts, most_shifts_at_once
+                                   check_wheel_rail_setup, max_wheel_rail_shifts, most_shifts_at_once, wheel_rail_needs
   use kcreep_wheelset, only: wheelset_row_t, wheelset_columns, run_wheelset
   implicit none
   private
@@ -219,8 +220,7 @@ contains
     type(patch_t) :: bound
     integer :: level
     integer(int64) :: need
-    !> the normal solve's ~21 doubles per grid cell (measured: 166 MiB at 1000 x 1000, scripts/bench/bench_normal.sh)
-    integer(int64), parameter :: normal_cell_bytes = 168
+    real(real64) :: cells
 
     bytes = 0
     method = 'table'
@@ -241,7 +241,16 @@ contains
       end associate
       if (status%failed()) return
       bounded%extrapolate = .false.
-      if (problem%target_error > 0 .and. problem%refine_grid) then
+      if (problem%target_error > 0 .and. problem%refine_grid .and. region_level_cap(problem) < huge(1) .and. &
+          problem%solve%method /= 'dense') then
+        ! error control with its levels held to region_level_cap: the normal
+        ! problems solved as the run solves them, the ladder's finest level
+        ! counted from the contact area found (kcreep_gap_levels gap_levels_need)
+        call gap_levels_need(problem, need, cells, status)
+        bytes = process_bytes + need
+        method = 'iterative'
+        return
+      else if (problem%target_error > 0 .and. problem%refine_grid) then
         ! error control (kcreep_gap_levels): the normal problem again on a
         ! fine grid of at most normal_grid_cells, then the levels
         bytes = max(bytes, normal_cell_bytes * int(normal_grid_cells(problem), int64))
@@ -258,21 +267,40 @@ contains
     bytes = bytes + need + process_bytes
   end subroutine kcreep_memory_need
 
-  !> Bytes a wheel/rail table (&wheel_rail) of `shifts` shifts needs at its
-  !> peak, and its solve path there: that of one patch, a gap first solved on
-  !> at most wheel_rail_base_cells x wheel_rail_base_cells cells of its
-  !> potential contact area (kcreep_wheel_rail_run), under error control then
-  !> on its fine normal grid and levels (kcreep_memory_need), for each shift
-  !> the table may run at once (most_shifts_at_once).
-  subroutine kcreep_wheel_rail_memory_need(problem, shifts, bytes, method, status)
+  !> Bytes the wheel/rail table of setup (&wheel_rail) needs at its peak,
+  !> and its solve path there, for the most shifts it may run at once
+  !> (most_shifts_at_once). Under error control with the levels held to
+  !> region_level_cap (no cell budget given, the default target or looser):
+  !> the geometry and normal problems of every shift run as the table runs
+  !> them, and each patch's finest level counted from its contact area
+  !> (wheel_rail_needs): the largest shifts at once, and what the earlier
+  !> rows keep. Otherwise: one patch, a gap first solved on at most
+  !> wheel_rail_base_cells x wheel_rail_base_cells cells, under error
+  !> control its levels up to the cell budget (kcreep_solve_memory).
+  subroutine kcreep_wheel_rail_memory_need(problem, setup, bytes, method, status)
     type(problem_t), intent(in) :: problem
-    integer, intent(in) :: shifts
+    type(wheel_rail_setup_t), intent(in) :: setup
     integer(int64), intent(out) :: bytes
     character(len=:), allocatable, intent(out) :: method
     type(status_t), intent(inout) :: status
     type(problem_t) :: patch_problem
     integer(int64) :: budget
-    integer :: at_once
+    real(real64), allocatable :: shift_bytes(:), shift_cells(:)
+    integer :: at_once, shifts, k
+    shifts = size(setup%shifts)
+    at_once = most_shifts_at_once(problem%solve%threads, shifts)
+    if (problem%target_error > 0 .and. region_level_cap(problem) < huge(1) .and. &
+        problem%solve%method /= 'dense') then
+      call wheel_rail_needs(setup, problem, shift_bytes, shift_cells, status)
+      if (status%failed()) return
+      bytes = process_bytes + int(wheel_rail_row_cell_bytes * sum(shift_cells), int64)
+      do k = 1, at_once
+        bytes = bytes + int(maxval(shift_bytes), int64)
+        shift_bytes(maxloc(shift_bytes, 1)) = -1
+      end do
+      method = 'iterative'
+      return
+    end if
     patch_problem = problem
     patch_problem%normal%active = .true.
     patch_problem%normal%force_given = .true.
@@ -282,7 +310,6 @@ contains
     if (status%failed()) return
     call kcreep_memory_need(patch_problem, bytes, method, status)
     if (status%failed()) return
-    at_once = most_shifts_at_once(problem%solve%threads, shifts)
     if (problem%target_error > 0 .and. problem%refine_grid) then
       ! the levels up to the cell budget, as measured (kcreep_solve_memory)
       budget = int(cell_budget_or(problem, level_cell_budget(problem%target_error)), int64)

@@ -44,7 +44,7 @@ module kcreep_wheel_rail_geometry
   implicit none
   private
   public :: track_t, contact_t, plane_gap_t, place_track, clearance, find_contacts, plane_of, plane_gap_value, &
-            plane_gap_grid, wheel_surface, search_step, refine_minimum
+            plane_gap_grid, wheel_surface, search_step, refine_minimum, check_profile_ends
 
   !> Lateral step of the contact search (mm).
   real(real64), parameter :: search_step = 0.02_real64
@@ -418,5 +418,39 @@ contains
     end function value_at
 
   end subroutine refine_minimum
+
+  !> A contact whose interpenetration reaches the end of a profile (the last
+  !> point the file gives) is refused: the surface beyond is unknown.
+  subroutine check_profile_ends(wheel_name, rail_name, track, ys, d, contacts, where, status)
+    character(len=*), intent(in) :: wheel_name, rail_name   !< the files, for the message
+    type(track_t), intent(in) :: track
+    real(real64), intent(in) :: ys(:), d(:)
+    type(contact_t), intent(in) :: contacts(:)
+    character(len=*), intent(in) :: where
+    type(status_t), intent(inout) :: status
+    integer :: j, k, side
+    real(real64) :: y_end
+    character(len=:), allocatable :: name
+    do j = 1, size(contacts)
+      do side = -1, 1, 2
+        if (side < 0) then
+          k = nint((contacts(j)%y_lo - ys(1)) / search_step)
+        else
+          k = nint((contacts(j)%y_hi - ys(1)) / search_step) + 2
+        end if
+        if (k >= 1 .and. k <= size(d)) then
+          if (d(k) < no_surface) cycle
+        end if
+        y_end = merge(contacts(j)%y_lo, contacts(j)%y_hi, side < 0)
+        name = wheel_name
+        if (abs(envelope_at(track%rail, y_end + side * search_step)) >= no_surface) name = rail_name
+        call fail(status, exit_bad_input, where//'the contact at y = '//rtoa(contacts(j)%y)// &
+                  ' mm (track) reaches the end of '//name//' at y = '//rtoa(y_end)// &
+                  ' mm (track): the surface beyond its last point is '// &
+                  'unknown (a profile measured too short, or a wrong rail_mirror, wheel_mirror or placement)')
+        return
+      end do
+    end do
+  end subroutine check_profile_ends
 
 end module kcreep_wheel_rail_geometry

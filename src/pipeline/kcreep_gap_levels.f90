@@ -27,7 +27,7 @@
 !> and 2 times the size, or NaN and a warning when the coarser grid would have
 !> fewer than min_estimate_cells cells across the contact area.
 module kcreep_gap_levels
-  use, intrinsic :: iso_fortran_env, only: real64
+  use, intrinsic :: iso_fortran_env, only: real64, int64
   use, intrinsic :: ieee_arithmetic, only: ieee_value, ieee_quiet_nan
   use kcreep_status, only: status_t
   use kcreep_strings, only: itoa, rtoa
@@ -41,14 +41,15 @@ module kcreep_gap_levels
   use kcreep_run, only: run_case, solve_cache_t
   use kcreep_verdict, only: message_length
   use kcreep_region, only: region_t, sampled_region, region_pressure, contact_diameter, level_size, contour_area
-  use kcreep_level_ladder, only: run_shape_levels
+  use kcreep_level_ladder, only: run_shape_levels, region_finest_cells
+  use kcreep_solve_memory, only: normal_solve_bytes, region_patch_bytes
   use kcreep_staircase_normalisation, only: moment_reference_t, contour_reference, aspect_slopes
   use kcreep_table_interpolation, only: table_coefficients, table_ratio_range, table_nu_range
   use kcreep_refine_constants
   use kcreep_refine_estimate, only: min_estimate_cells, default_target_error, level_cell_budget
   implicit none
   private
-  public :: run_gap_patch, gap_single_estimate, normal_grid_cells
+  public :: run_gap_patch, gap_single_estimate, normal_grid_cells, gap_levels_need
 
   real(real64), parameter :: pi = acos(-1.0_real64)
 
@@ -164,11 +165,74 @@ contains
     type(problem_t), intent(in) :: problem
     type(result_t), intent(out) :: result
     type(status_t), intent(inout) :: status
-    type(patch_t) :: first, fine, coarse, located, moved
-    type(normal_result_t) :: nres, fine_normal, coarse_normal, located_normal, moved_normal
+    type(patch_t) :: fine, coarse, moved
+    type(normal_result_t) :: fine_normal, coarse_normal, moved_normal
     type(region_t) :: region, coarse_region, moved_region
-    real(real64) :: wide(4), box(4), target, max_cells, shape(2), m(2)
+    real(real64) :: box(4)
     real(real64) :: cell(2)   !< the fine normal grid's cell sizes in x and y
+
+    call fine_contact_area(problem, coarse, coarse_normal, fine, fine_normal, box, cell, status)
+    if (status%failed()) return
+    region = sampled_region(fine, fine_normal%pressure, status)
+    if (status%failed()) return
+    coarse_region = sampled_region(coarse, coarse_normal%pressure, status, moments_only=.true.)
+    if (status%failed()) return
+    ! the fine grid once more, moved by half a cell in x and y: how far its
+    ! placement alone moves the contact area (normal_grid_estimate); the
+    ! fine pressure starts it
+    call contact_area_on(problem, box + [cell(1), cell(1), cell(2), cell(2)] / 2, cell, moved, moved_normal, status, &
+                         fine, fine_normal%pressure)
+    if (status%failed()) return
+    moved_region = sampled_region(moved, moved_normal%pressure, status, moments_only=.true.)
+    if (status%failed()) return
+    call run_shape_levels(problem, result, status, region, &
+                          normal_grid_estimate(region, coarse_region, moved_region, problem%nu))
+    if (status%failed()) return
+    call store_normal(fine_normal, fine, result)
+    ! the pressure at the finest level's cells, scaled to the normal force
+    ! found (sampling the interpolated pressure moves its sum by about 1e-4)
+    result%pressure = region_pressure(region, result%patch)
+    result%pressure = result%pressure * (fine_normal%fn / (sum(result%pressure) * result%patch%dx * result%patch%dy))
+    result%bbox = region%reference%cells_box()
+  end subroutine run_gap_levels
+
+  !> What run_gap_levels needs at its peak, from its contact area on the
+  !> fine normal grid (the normal problem solved as run_gap_levels solves
+  !> it, the levels not): bytes beside the program's own
+  !> (kcreep_solve_memory region_patch_bytes: the larger of the given grid's
+  !> normal solve and the ladder's finest level at region_level_cap with the
+  !> fine normal grid) and that level's grid cells.
+  subroutine gap_levels_need(problem, bytes, box_cells, status)
+    type(problem_t), intent(in) :: problem
+    integer(int64), intent(out) :: bytes
+    real(real64), intent(out) :: box_cells
+    type(status_t), intent(inout) :: status
+    type(patch_t) :: fine, coarse
+    type(normal_result_t) :: fine_normal, coarse_normal
+    type(region_t) :: region
+    real(real64) :: box(4), cell(2), contact_cells
+    bytes = 0
+    box_cells = 0
+    call fine_contact_area(problem, coarse, coarse_normal, fine, fine_normal, box, cell, status)
+    if (status%failed()) return
+    region = sampled_region(fine, fine_normal%pressure, status)
+    if (status%failed()) return
+    call region_finest_cells(problem, region, box_cells, contact_cells)
+    bytes = max(normal_solve_bytes(real(problem%normal%gap%mx, real64) * problem%normal%gap%my), &
+                region_patch_bytes(real(fine%mx, real64) * fine%my, box_cells, contact_cells))
+  end subroutine gap_levels_need
+
+  !> The contact area on the given grid, on a coarse grid of cells 2 cell
+  !> over box, and on the fine grid of cells `cell` over box.
+  subroutine fine_contact_area(problem, coarse, coarse_normal, fine, fine_normal, box, cell, status)
+    type(problem_t), intent(in) :: problem
+    type(patch_t), intent(out) :: coarse, fine
+    type(normal_result_t), intent(out) :: coarse_normal, fine_normal
+    real(real64), intent(out) :: box(4), cell(2)
+    type(status_t), intent(inout) :: status
+    type(patch_t) :: first, located
+    type(normal_result_t) :: nres, located_normal
+    real(real64) :: wide(4), target, max_cells, shape(2), m(2)
 
     ! the contact area on the given grid: its size, where it is, and its
     ! length / width (second moments), which sets the cells' shape
@@ -197,29 +261,7 @@ contains
     end if
     ! the coarse pressure starts the fine solve (fewer CG steps)
     call contact_area_on(problem, box, cell, fine, fine_normal, status, coarse, coarse_normal%pressure)
-    if (status%failed()) return
-    region = sampled_region(fine, fine_normal%pressure, status)
-    if (status%failed()) return
-    coarse_region = sampled_region(coarse, coarse_normal%pressure, status, moments_only=.true.)
-    if (status%failed()) return
-    ! the fine grid once more, moved by half a cell in x and y: how far its
-    ! placement alone moves the contact area (normal_grid_estimate); the
-    ! fine pressure starts it
-    call contact_area_on(problem, box + [cell(1), cell(1), cell(2), cell(2)] / 2, cell, moved, moved_normal, status, &
-                         fine, fine_normal%pressure)
-    if (status%failed()) return
-    moved_region = sampled_region(moved, moved_normal%pressure, status, moments_only=.true.)
-    if (status%failed()) return
-    call run_shape_levels(problem, result, status, region, &
-                          normal_grid_estimate(region, coarse_region, moved_region, problem%nu))
-    if (status%failed()) return
-    call store_normal(fine_normal, fine, result)
-    ! the pressure at the finest level's cells, scaled to the normal force
-    ! found (sampling the interpolated pressure moves its sum by about 1e-4)
-    result%pressure = region_pressure(region, result%patch)
-    result%pressure = result%pressure * (fine_normal%fn / (sum(result%pressure) * result%patch%dx * result%patch%dy))
-    result%bbox = region%reference%cells_box()
-  end subroutine run_gap_levels
+  end subroutine fine_contact_area
 
   !> The contact area of the normal problem on cells of sizes h(1) x h(2)
   !> over box; from_patch, from_pressure: a coarser solution to start from.

@@ -36,7 +36,7 @@ module kcreep_level_ladder
   use kcreep_extrapolation, only: refined_patch
   implicit none
   private
-  public :: run_shape_levels, ellipse_base_levels, finest_split
+  public :: run_shape_levels, ellipse_base_levels, finest_split, region_level_cap, region_finest_cells
 
   real(real64), parameter :: pi = acos(-1.0_real64)
 
@@ -56,7 +56,6 @@ contains
     type(region_t), intent(in), optional :: region
     real(real64), intent(in), optional :: other_error(3)
     type(problem_t) :: level_problem
-    type(moment_reference_t) :: ref
     integer, allocatable :: levels(:)              !< cells across, or the split k (the ladder)
     real(real64), allocatable :: fnorm(:, :, :)    !< (3, 3, level) each level's f
     real(real64), allocatable :: guess(:, :)       !< the last level's tractions on this level's cells
@@ -89,11 +88,7 @@ contains
       if (.not. problem%solve%tolerance_given) level_problem%solve%tolerance = &
         min(level_problem%solve%tolerance, split_tolerance_share * problem%target_error)
     else if (present(region)) then
-      ref = contour_reference(region)
-      ! cells as much longer along the area's longer axis as it is long, up
-      ! to max_cell_aspect; collocation is not put on long cells
-      if (problem%scheme%name == 'backward') &
-        cell_shape = min(max([ref%semi_a / ref%semi_b, ref%semi_b / ref%semi_a], 1.0_real64), max_cell_aspect)
+      cell_shape = region_cell_shape(problem, region)
       levels = distinct_levels(nint(base_levels * min(1.0_real64, sqrt(budget / region_cells(region, &
                                                                     base_levels(size(base_levels)), cell_shape)))))
     else
@@ -211,6 +206,12 @@ contains
         return
       end if
       if (present(region)) then
+        if (level > region_level_cap(problem)) then
+          why = 'error control: stopped at '//itoa(levels(size(levels)))//' cells across, the finest level '// &
+                'of a contact area when no cell budget is given (the limit --estimate-memory counts; &solver '// &
+                'cell_budget lifts it, and the estimate then counts the whole budget)'
+          return
+        end if
         patch_cells = region_cells(region, level, cell_shape)
       else
         call ellipse_level_grid(problem%patch%semi_a, problem%patch%semi_b, level, mx, my, long_in_y)
@@ -244,6 +245,50 @@ contains
     real(real64), intent(in) :: budget
     k = max(split_min_levels, min(max_split, floor(sqrt(budget / max(n, 1)))))
   end function finest_split
+
+  !> The finest level a contact area's ladder may take (cells across):
+  !> region_max_level when the caller gave no cell budget and the target is
+  !> the default or looser, else no limit but the budget's.
+  pure integer function region_level_cap(problem) result(level)
+    type(problem_t), intent(in) :: problem
+    level = huge(1)
+    if (.not. problem%cell_budget > 0 .and. problem%target_error >= default_target_error) level = region_max_level
+  end function region_level_cap
+
+  !> The grid cells (its bounding box) and the cells inside of the finest
+  !> level a contact area's ladder may reach: at region_level_cap, or the
+  !> budget's when that is the smaller (what kcreep_solve_memory counts).
+  pure subroutine region_finest_cells(problem, region, box_cells, contact_cells)
+    type(problem_t), intent(in) :: problem
+    type(region_t), intent(in) :: region
+    real(real64), intent(out) :: box_cells, contact_cells
+    real(real64) :: shape(2), at_cap
+    integer :: cap
+    box_cells = cell_budget_or(problem, level_cell_budget(problem%target_error))
+    contact_cells = box_cells
+    cap = region_level_cap(problem)
+    if (cap == huge(1)) return
+    shape = region_cell_shape(problem, region)
+    at_cap = region_cells(region, cap, shape)
+    if (at_cap < box_cells) then
+      box_cells = at_cap
+      contact_cells = contour_area(region) * (cap / region%diameter)**2 / product(shape)
+    end if
+  end subroutine region_finest_cells
+
+  !> A contact area's level cells, length in x and y in units of the square
+  !> cell: as much longer along the area's longer axis as it is long, up to
+  !> max_cell_aspect; collocation is not put on long cells.
+  pure function region_cell_shape(problem, region) result(cell_shape)
+    type(problem_t), intent(in) :: problem
+    type(region_t), intent(in) :: region
+    real(real64) :: cell_shape(2)
+    type(moment_reference_t) :: ref
+    cell_shape = 1
+    if (problem%scheme%name /= 'backward') return
+    ref = contour_reference(region)
+    cell_shape = min(max([ref%semi_a / ref%semi_b, ref%semi_b / ref%semi_a], 1.0_real64), max_cell_aspect)
+  end function region_cell_shape
 
   !> What a contact area's level of `cells` across counts against the budget:
   !> the cells of its grid (the area's bounding box), not only its patch

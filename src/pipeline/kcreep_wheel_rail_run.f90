@@ -24,19 +24,21 @@ module kcreep_wheel_rail_run
   use kcreep_strings, only: itoa, rtoa
   use kcreep_profile, only: profile_t, make_profile, no_surface, check_flange_side, envelope_at
   use kcreep_wheel_rail_geometry, only: track_t, contact_t, plane_gap_t, place_track, clearance, find_contacts, &
-                                        plane_of, plane_gap_value, plane_gap_grid, search_step, refine_minimum
+                                        plane_of, plane_gap_value, plane_gap_grid, search_step, refine_minimum, &
+                                        check_profile_ends
   use kcreep_gap, only: gap_t, outside_gap
   use kcreep_problem, only: problem_t, result_t, add_warning
   use kcreep_normal_solve, only: normal_result_t, solve_normal
   use kcreep_normal_influence, only: compliance_from_g_nu
   use kcreep_error_run, only: run_controlled
+  use kcreep_gap_levels, only: gap_levels_need
   use kcreep_threads, only: team_size, enter_team, leave_team, solve_started, solve_ended, cpus_allowed, &
                             cells_per_thread_iterative
   implicit none
   private
   public :: base_cells
   public :: wheel_rail_setup_t, wheel_rail_row_t, prepare_track, run_wheel_rail, wheel_rail_columns, &
-            check_wheel_rail_setup, max_wheel_rail_shifts, most_shifts_at_once
+            check_wheel_rail_setup, max_wheel_rail_shifts, most_shifts_at_once, wheel_rail_needs
   public :: wheel_state_t, rows_at_shift
 
   real(real64), parameter :: pi = acos(-1.0_real64)
@@ -267,6 +269,32 @@ contains
     rows = [(at_shift(i)%rows, i=1, last)]
   end subroutine run_wheel_rail
 
+  !> What each shift of the table needs at its peak under error control
+  !> (bytes beside the program's own: kcreep_gap_levels gap_levels_need of
+  !> its patches, solved one after another, the largest) and the grid cells
+  !> of its patches' finest levels (what its rows keep): the geometry and
+  !> the normal problems run as the table runs them, the levels not.
+  subroutine wheel_rail_needs(setup, base, bytes, cells, status)
+    type(wheel_rail_setup_t), intent(in) :: setup
+    type(problem_t), intent(in) :: base
+    real(real64), allocatable, intent(out) :: bytes(:), cells(:)
+    type(status_t), intent(inout) :: status
+    type(track_t) :: track
+    type(wheel_rail_row_t), allocatable :: rows(:)
+    real(real64) :: sgn, need(2)
+    integer :: i
+    allocate (bytes(size(setup%shifts)), cells(size(setup%shifts)), source=0.0_real64)
+    call prepare_track(setup, track, status)
+    if (status%failed()) return
+    sgn = merge(-1.0_real64, 1.0_real64, setup%side == 'left')
+    do i = 1, size(setup%shifts)
+      call rows_at_shift(setup, base, track, sgn, i, rows, status, need=need)
+      if (status%failed()) return
+      bytes(i) = need(1)
+      cells(i) = need(2)
+    end do
+  end subroutine wheel_rail_needs
+
   !> The most shifts a table of `shifts` runs at once (each needs a patch's
   !> memory): `threads` when given (&solver threads), else the CPUs this
   !> process may use; run_wheel_rail takes fewer on a busy machine.
@@ -280,7 +308,9 @@ contains
   !> The rows of shift i: its contacts, the approach (given, or found for the
   !> vertical force), then each patch under error control.
   !> With wheel: only the wheel's state after the approach (no solves, no rows).
-  subroutine rows_at_shift(setup, base, track, sgn, i, rows, status, wheel)
+  !> With need: no rows, only what the patches' solves under error control
+  !> need (gap_levels_need: the most bytes, the sum of the finest grids' cells).
+  subroutine rows_at_shift(setup, base, track, sgn, i, rows, status, wheel, need)
     type(wheel_rail_setup_t), intent(in) :: setup
     type(problem_t), intent(in) :: base
     type(track_t), intent(in) :: track
@@ -289,6 +319,7 @@ contains
     type(wheel_rail_row_t), allocatable, intent(out) :: rows(:)
     type(status_t), intent(inout) :: status
     type(wheel_state_t), intent(out), optional :: wheel
+    real(real64), intent(out), optional :: need(2)
     real(real64), allocatable :: ys(:), d(:), xs(:)
     type(contact_t), allocatable :: contacts(:), refs(:)
     type(gap_t), allocatable :: grids(:)
@@ -300,8 +331,11 @@ contains
     type(wheel_rail_row_t) :: row
     type(problem_t) :: problem
     character(len=:), allocatable :: where
+    integer(int64) :: bytes
+    real(real64) :: cells
 
     allocate (rows(0), notes(0))
+    if (present(need)) need = 0
     shift = sgn * setup%shifts(i)
     yaw = sgn * setup%yaw
     where = '&wheel_rail shift = '//rtoa(setup%shifts(i))//' mm: '
@@ -322,7 +356,7 @@ contains
       if (status%failed()) return
       allocate (forces(size(refs)), source=0.0_real64)
     end if
-    call check_profile_ends(setup, track, ys, d, refs, where, status)
+    call check_profile_ends(setup%wheel_name, setup%rail_name, track, ys, d, refs, where, status)
     if (status%failed()) return
     if (present(wheel)) then
       wheel%height = w0 + dz
@@ -343,6 +377,15 @@ contains
       problem%normal%approach = dz * cos(refs(k)%delta)
       problem%refine_grid = .true.
       if (setup%force_given .and. .not. forces(k) > 0) cycle    ! touches, carries nothing
+      if (present(need)) then
+        call gap_levels_need(problem, bytes, cells, status)
+        if (status%failed()) then
+          status%message = where//'patch '//itoa(k)//': '//status%message
+          return
+        end if
+        need = [max(need(1), real(bytes, real64)), need(2) + cells]
+        cycle
+      end if
       call run_controlled(problem, row%result, status)
       if (status%failed()) then
         status%message = where//'patch '//itoa(size(rows) + 1)//': '//status%message
@@ -638,39 +681,5 @@ contains
     end function rail_y
 
   end subroutine rows_at_shift
-
-  !> A contact whose interpenetration reaches the end of a profile (the last
-  !> point the file gives) is refused: the surface beyond is unknown.
-  subroutine check_profile_ends(setup, track, ys, d, contacts, where, status)
-    type(wheel_rail_setup_t), intent(in) :: setup
-    type(track_t), intent(in) :: track
-    real(real64), intent(in) :: ys(:), d(:)
-    type(contact_t), intent(in) :: contacts(:)
-    character(len=*), intent(in) :: where
-    type(status_t), intent(inout) :: status
-    integer :: j, k, side
-    real(real64) :: y_end
-    character(len=:), allocatable :: name
-    do j = 1, size(contacts)
-      do side = -1, 1, 2
-        if (side < 0) then
-          k = nint((contacts(j)%y_lo - ys(1)) / search_step)
-        else
-          k = nint((contacts(j)%y_hi - ys(1)) / search_step) + 2
-        end if
-        if (k >= 1 .and. k <= size(d)) then
-          if (d(k) < no_surface) cycle
-        end if
-        y_end = merge(contacts(j)%y_lo, contacts(j)%y_hi, side < 0)
-        name = setup%wheel_name
-        if (abs(envelope_at(track%rail, y_end + side * search_step)) >= no_surface) name = setup%rail_name
-        call fail(status, exit_bad_input, where//'the contact at y = '//rtoa(contacts(j)%y)// &
-                  ' mm (track) reaches the end of '//name//' at y = '//rtoa(y_end)// &
-                  ' mm (track): the surface beyond its last point is '// &
-                  'unknown (a profile measured too short, or a wrong rail_mirror, wheel_mirror or placement)')
-        return
-      end do
-    end do
-  end subroutine check_profile_ends
 
 end module kcreep_wheel_rail_run

@@ -146,6 +146,15 @@ module kcreep_refine_constants
   !> (112, 128, 148, 172, ...).
   real(real64), parameter :: next_level_growth = 1.15_real64
   integer, parameter :: base_levels(5) = [56, 64, 72, 84, 96]
+  !> The finest level a contact area's ladder (kcreep_gap_levels) takes when
+  !> the caller gave no cell budget and the target is the default or looser
+  !> (kcreep_level_ladder region_level_cap): four levels past the base. A
+  !> limit, so that --estimate-memory can count a patch's finest level from
+  !> its contact area (kcreep_solve_memory) rather than the whole cell
+  !> budget; a row stopped there ends `uncertain`. S1002 on UIC60, the 17
+  !> shifts -6 to 10 mm at the default target: 11 rows stopped at 96 cells
+  !> across, one each at 112, 128 and 148, two at 172.
+  integer, parameter :: region_max_level = 172
   !> The base levels of a long ellipse are scaled down to its cell budget, to
   !> no fewer than this. Such a run ends `uncertain` (kcreep_level_ladder):
   !> below base_levels(1) the levels bend with L h^2, and on the S1002 flange

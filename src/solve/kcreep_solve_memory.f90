@@ -41,13 +41,30 @@ module kcreep_solve_memory
   implicit none
   private
   public :: iterative_bytes, dense_bytes, table_bytes, process_bytes, counted_iterations
-  public :: wheel_rail_shift_bytes, wheel_rail_cell_bytes, wheel_rail_row_cell_bytes
+  public :: wheel_rail_shift_bytes, wheel_rail_cell_bytes, wheel_rail_row_cell_bytes, normal_cell_bytes, &
+             normal_solve_bytes, region_patch_bytes
 
   !> The program's own resident set before any solve (code, libraries,
   !> OpenBLAS and FFTW state): B of the fit above (a 10 x 10 grid: 13.1 MB).
   integer(int64), parameter :: process_bytes = 11000000_int64
 
-  !> A shift of a wheel/rail table under error control, at its peak: the
+  !> A contact area under error control (kcreep_gap_levels) at its peak,
+  !> the ladder's finest level, beside the program's own: a fixed part, per
+  !> cell of the fine normal grid (its pressure and region are kept), per
+  !> cell of the level's grid (its bounding box: operator table, FFT grids)
+  !> and per cell inside (GMRES's basis over its unknowns). Evidence: peak
+  !> RSS (/usr/bin/time -v, one thread) of S1002 on UIC60 at each of the 17
+  !> shifts -6 to 10 mm alone, default target (finest levels 96 to 172
+  !> cells across, grids of 9,801 to 68,112 cells, 7,147 to 52,284 inside,
+  !> fine normal grids 13,221 to 58,380 cells; peaks 37.5 to 167.8 MB): a
+  !> least-squares fit 14.65 MB + 246 B per normal cell + 490 B per grid
+  !> cell + 2,115 B per cell inside is within 1 % of every peak. The
+  !> constants are those plus about 10 %.
+  integer(int64), parameter :: region_fixed_bytes = 4000000_int64
+  real(real64), parameter :: region_normal_cell_bytes = 270, region_grid_cell_bytes = 540
+  real(real64), parameter :: region_contact_cell_bytes = 2330
+  !> A shift of a wheel/rail table under error control with a cell budget
+  !> given or a target below the default (no region_level_cap), at its peak: the
   !> fixed part and the bytes per cell of the level cell budget B (the
   !> ladder's finest grid, the contact area's box, has at most B cells);
   !> each earlier shift's rows keep wheel_rail_row_cell_bytes per budget
@@ -65,7 +82,15 @@ module kcreep_solve_memory
   !> finest-grid cells in all, 46 bytes per cell.
   integer(int64), parameter :: wheel_rail_shift_bytes = 12000000_int64
   integer(int64), parameter :: wheel_rail_cell_bytes = 2700
+  !> Each earlier row of a wheel/rail table keeps this per grid cell of its
+  !> finest level (its tractions and pressure). Evidence: the 17 shifts -6
+  !> to 10 mm at the default target: 181 MB at the peak, 168 MB for the
+  !> largest shift (9 mm, 68,112 cells) alone: 13 MB kept for 15 earlier
+  !> rows of 283,721 finest-grid cells in all, 46 bytes per cell.
   integer(int64), parameter :: wheel_rail_row_cell_bytes = 60
+  !> The normal solve's ~21 doubles per grid cell (measured: 166 MiB at
+  !> 1000 x 1000, scripts/bench/bench_normal.sh).
+  integer(int64), parameter :: normal_cell_bytes = 168
   !> Bytes per grid cell besides the basis: operator table (table_bytes) and
   !> the FFT operator's and circulant preconditioner's grids and spectra.
   real(real64), parameter :: grid_cell_bytes = 775
@@ -79,6 +104,21 @@ module kcreep_solve_memory
   real(real64), parameter :: default_tolerance = 1e-11_real64
 
 contains
+
+  !> The normal solve on a grid of `cells` cells (beside the program's own).
+  pure integer(int64) function normal_solve_bytes(cells)
+    real(real64), intent(in) :: cells
+    normal_solve_bytes = normal_cell_bytes * int(cells, int64)
+  end function normal_solve_bytes
+
+  !> A contact area's ladder at its finest level of grid_cells cells,
+  !> contact_cells inside, beside its fine normal grid of normal_cells
+  !> (beside the program's own).
+  pure integer(int64) function region_patch_bytes(normal_cells, grid_cells, contact_cells)
+    real(real64), intent(in) :: normal_cells, grid_cells, contact_cells
+    region_patch_bytes = region_fixed_bytes + int(region_normal_cell_bytes * normal_cells + &
+                         region_grid_cell_bytes * grid_cells + region_contact_cell_bytes * contact_cells, int64)
+  end function region_patch_bytes
 
   !> The operator table: about 40 reals per grid cell.
   pure integer(int64) function table_bytes(patch)

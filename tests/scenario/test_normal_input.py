@@ -172,21 +172,34 @@ proc = subprocess.run([kc.KCREEP, "--estimate-memory", "est.nml"], cwd=folder, c
 # one line 'FILE BYTES PATH'
 kc.check(proc.returncode == 0 and int(proc.stdout.split()[-2]) > 0,
          f"--estimate-memory of a gap case: exit {proc.returncode}, {proc.stdout.strip()} bytes")
-# ... under error control it bounds the fine normal grid and the levels: at
-# least 200,000 normal cells x 120 bytes + a full grid of the 160,000-cell
-# budget (was the given grid only: input/wheel_rail.nml 45 MB against a
-# 107 MB peak); a wheel/rail table is estimated as one such patch (was 0, 'table')
+# ... under error control it solves the normal problems as the run does and counts
+# the ladder's finest level at the limit the run holds it to (region_max_level
+# across the contact area, kcreep_solve_memory region_patch_bytes): at least the
+# run's peak RSS, and well below the whole cell budget it counted before (>200 MB;
+# measured 90.7 MB against a 33.5 MB peak, one thread); a wheel/rail table likewise
+# (shift 0: 89.9 MB against 46.7 MB)
+def peak_rss(name):
+    out = subprocess.run([sys.executable, "-c", "import resource, subprocess, sys; "
+                          "subprocess.run(sys.argv[1:], capture_output=True, check=True); "
+                          "print(resource.getrusage(resource.RUSAGE_CHILDREN).ru_maxrss * 1024)",
+                          kc.KCREEP, name], cwd=folder, capture_output=True, text=True)
+    return int(out.stdout.strip() or 0)
+
+
 rows = [ln for ln in proc.stdout.splitlines() if ln.strip()]
-kc.check(int(rows[0].split()[-2]) > 2e8 and rows[0].split()[-1] == "iterative",
-         f"--estimate-memory of a gap under error control: {rows[0]}")
+rss = peak_rss("est.nml")
+kc.check(0 < rss <= int(rows[0].split()[-2]) < 2e8 and rows[0].split()[-1] == "iterative",
+         f"--estimate-memory of a gap under error control: {rows[0]}, peak {rss} B")
 shared = os.path.join(kc.REPO, "..", "shared", "profiles")
 if os.path.isdir(shared):
     with open(os.path.join(folder, "wr.nml"), "w") as f:
         f.write(f"&wheel_rail wheel_file = '{shared}/MBench_S1002_v3.prw', rail_file = '{shared}/MBench_UIC60_v3.prr', "
                 "shifts = 0, vertical_force = 80000 /\n&material g = 82000, nu = 0.28 /\n")
     proc = subprocess.run([kc.KCREEP, "--estimate-memory", "wr.nml"], cwd=folder, capture_output=True, text=True)
-    kc.check(proc.returncode == 0 and int(proc.stdout.split()[-2]) > 2e8 and proc.stdout.split()[-1] == "iterative",
-             f"--estimate-memory of a wheel/rail table: {proc.stdout.strip()}")
+    rss = peak_rss("wr.nml")
+    kc.check(proc.returncode == 0 and 0 < rss <= int(proc.stdout.split()[-2]) < 2e8
+             and proc.stdout.split()[-1] == "iterative",
+             f"--estimate-memory of a wheel/rail table: {proc.stdout.strip()}, peak {rss} B")
 
 # 5. bad input
 GOOD = "&patch shape='gap' /\n&material g=1, nu=0.25 /\n"

@@ -10,7 +10,7 @@ program test_error_control
   use kcreep_status, only: status_t
   use kcreep_strings, only: itoa
   use unit_checks, only: checker_t
-  use kcreep_level_ladder, only: ellipse_base_levels, run_shape_levels
+  use kcreep_level_ladder, only: ellipse_base_levels, run_shape_levels, region_level_cap
   use kcreep_problem, only: problem_t, result_t, default_problem
   use kcreep_refine_constants, only: base_levels
   implicit none
@@ -19,6 +19,7 @@ program test_error_control
   real(real64) :: limit, rel, h(4), f(4), nan
   real(real64) :: h8(8), f8(8), a_s, b_s, fn(3, 3), fm(3, 3), fc(3, 3), tm(3, 3), slopes(4)
   type(patch_t) :: patch, moved
+  type(problem_t) :: problem
   type(status_t) :: status
   integer(kind=8) :: seed
 
@@ -43,6 +44,19 @@ program test_error_control
   call t%check(next_level(48) == 56 .and. next_level(64) == 72 .and. next_level(96) == 112, &
                'next levels of 48, 64, 96: 56, 72, 112')
   call t%check(next_level(8) == 12, 'next level grows by at least 4 cells')
+  ! a contact area's ladder stops at region_max_level (what --estimate-memory
+  ! counts) at the default target and looser with no cell budget given; a
+  ! budget given or a tighter target leaves only the budget's limit
+  problem%target_error = 1e-3_real64
+  call t%check(region_level_cap(problem) == 172 .and. next_level(next_level(next_level(next_level(96)))) == 172, &
+               'contact-area ladder held to 172 cells across (four levels past 96) at the default target')
+  problem%target_error = 1e-2_real64
+  call t%check(region_level_cap(problem) == 172, 'and at a looser target')
+  problem%cell_budget = 40000
+  call t%check(region_level_cap(problem) == huge(1), 'no level limit with a cell budget given')
+  problem%cell_budget = 0
+  problem%target_error = 1e-4_real64
+  call t%check(region_level_cap(problem) == huge(1), 'no level limit below the default target')
   ! a long ellipse far beyond a small budget: the scaled base levels stay
   ! distinct (they were all clamped to 32 and the fit f0 + K h gave NaN)
   base = ellipse_base_levels(50.0_real64, 1.0_real64, 2000.0_real64, .false.)
