@@ -169,25 +169,38 @@ contains
     integer :: r, n
     c_get_wheel_rail = begin(handle, h)
     if (c_get_wheel_rail /= status_ok) return
-    if (.not. h%wheel_rail_done) then
-      call fail(h%last, int(status_no_result), 'kcreep_get_wheel_rail: no table: call kcreep_wheel_rail '// &
-                '(successfully) first')
-      c_get_wheel_rail = finish(h)
-      return
-    end if
-    n = size(h%wheel_rail_rows) * wheel_rail_column_count
-    if (length < n) then
-      call fail(h%last, exit_bad_input, 'kcreep_get_wheel_rail: length = '//itoa(int(length))//' (the table has '// &
-                itoa(n)//' values)')
-      c_get_wheel_rail = finish(h)
-      return
-    end if
-    c_get_wheel_rail = output_array(h, table, n, 'kcreep_get_wheel_rail: table', values)
+    n = 0
+    if (h%wheel_rail_done) n = size(h%wheel_rail_rows) * wheel_rail_column_count
+    c_get_wheel_rail = table_output(h, h%wheel_rail_done, n, length, table, 'kcreep_get_wheel_rail', &
+                                    'kcreep_wheel_rail', values)
     if (c_get_wheel_rail /= status_ok) return
     do r = 1, size(h%wheel_rail_rows)
       values((r - 1) * wheel_rail_column_count + 1:r * wheel_rail_column_count) = row_values(h%wheel_rail_rows(r))
     end do
   end function c_get_wheel_rail
+
+  !> The checks and the output array of a kcreep_get_* table call (getter):
+  !> a table made by maker (done), length holding its n values.
+  integer(c_int) function table_output(h, done, n, length, table, getter, maker, values) result(code)
+    type(handle_t), intent(inout) :: h
+    logical, intent(in) :: done
+    integer, intent(in) :: n
+    integer(c_int), intent(in) :: length
+    type(c_ptr), intent(in) :: table
+    character(len=*), intent(in) :: getter, maker
+    real(c_double), pointer, intent(out) :: values(:)
+    nullify (values)
+    if (.not. done) then
+      call fail(h%last, int(status_no_result), getter//': no table: call '//maker//' (successfully) first')
+    else if (length < n) then
+      call fail(h%last, exit_bad_input, getter//': length = '//itoa(int(length))//' (the table has '// &
+                itoa(n)//' values)')
+    else
+      code = output_array(h, table, n, getter//': table', values)
+      return
+    end if
+    code = finish(h)
+  end function table_output
 
   !> A row as the C table's columns (KCREEP_WHEEL_RAIL_COLUMN_NAMES), the verdict as its bits.
   pure function row_values(w) result(values)
@@ -293,20 +306,10 @@ contains
     integer :: r, n
     c_get_wheelset = begin(handle, h)
     if (c_get_wheelset /= status_ok) return
-    if (.not. h%wheelset_done) then
-      call fail(h%last, int(status_no_result), 'kcreep_get_wheelset: no table: call kcreep_wheelset '// &
-                '(successfully) first')
-      c_get_wheelset = finish(h)
-      return
-    end if
-    n = size(h%wheelset_rows) * wheelset_column_count
-    if (length < n) then
-      call fail(h%last, exit_bad_input, 'kcreep_get_wheelset: length = '//itoa(int(length))//' (the table has '// &
-                itoa(n)//' values)')
-      c_get_wheelset = finish(h)
-      return
-    end if
-    c_get_wheelset = output_array(h, table, n, 'kcreep_get_wheelset: table', values)
+    n = 0
+    if (h%wheelset_done) n = size(h%wheelset_rows) * wheelset_column_count
+    c_get_wheelset = table_output(h, h%wheelset_done, n, length, table, 'kcreep_get_wheelset', 'kcreep_wheelset', &
+                                  values)
     if (c_get_wheelset /= status_ok) return
     do r = 1, size(h%wheelset_rows)
       associate (w => h%wheelset_rows(r))
