@@ -126,6 +126,17 @@ def run(text, folder, name="case", expect_ok=True, files=None):
     return proc.returncode, proc.stdout, proc.stderr, table
 
 
+def circle_profile(radius, half, convex_down, step=0.25):
+    """A circular profile as a two-column file's text: y from -half to half
+    (mm), z = radius - sqrt(radius^2 - y^2), negated for a wheel (convex_down)."""
+    rows = []
+    for k in range(int(round(2 * half / step)) + 1):
+        y = -half + k * step
+        z = radius - math.sqrt(radius * radius - y * y)
+        rows.append(f"{y:.10f} {(-z if convex_down else z):.12f}")
+    return "\n".join(rows) + "\n"
+
+
 def read_table(path):
     """Rows of a kcreep table as dicts (numbers as float where they parse)."""
     return table.read(path)

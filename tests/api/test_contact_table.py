@@ -29,13 +29,7 @@ import kcreep  # noqa: E402
 from kcreep.library import Solver  # noqa: E402
 
 
-def circle(radius, half, convex_down, step=0.25):
-    rows = []
-    for k in range(int(round(2 * half / step)) + 1):
-        y = -half + k * step
-        z = radius - math.sqrt(radius * radius - y * y)
-        rows.append(f"{y:.10f} {(-z if convex_down else z):.12f}")
-    return "\n".join(rows) + "\n"
+circle = kc.circle_profile
 
 
 # a crowned wheel (profile radius 300 mm) on a 300 mm rail crown (one Hertzian patch a shift)

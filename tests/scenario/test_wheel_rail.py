@@ -35,15 +35,7 @@ source = os.path.abspath(sys.argv[2])
 profiles = os.path.abspath(os.path.join(source, "..", "shared", "profiles"))
 
 
-def circle(radius, half, convex_down, step=0.25):
-    """Points y z of a circular arc touching z = 0 at y = 0 (z down)."""
-    rows = []
-    n = int(round(2 * half / step))
-    for k in range(n + 1):
-        y = -half + k * step
-        z = radius - math.sqrt(radius * radius - y * y)
-        rows.append(f"{y:.10f} {(-z if convex_down else z):.12f}")
-    return "\n".join(rows) + "\n"
+circle = kc.circle_profile   # points y z of a circular arc touching z = 0 at y = 0 (z down)
 
 
 def hertz(rx, ry, force, compliance):
