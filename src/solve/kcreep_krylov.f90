@@ -51,17 +51,22 @@ module kcreep_krylov
 contains
 
   !> Solve A x = b column by column to ||b - A x||_2 <= tol ||b||_2; x in: start, out: solution.
-  subroutine gmres(a, precond, b, x, tol, restart, max_iterations, result)
+  !> estimate_ends: a column ends when GMRES's own residual estimate meets tol, without the
+  !> product that checks it (an inexact Newton step's caller, which measures its own
+  !> residual next, needs no more); restarts still begin from the true residual.
+  subroutine gmres(a, precond, b, x, tol, restart, max_iterations, result, estimate_ends)
     class(block_operator_t), intent(inout) :: a, precond
     real(real64), intent(in) :: b(:, :)
     real(real64), intent(inout) :: x(:, :)
     real(real64), intent(in) :: tol
     integer, intent(in) :: restart, max_iterations
     type(gmres_result_t), intent(out) :: result
+    logical, intent(in), optional :: estimate_ends
     real(real64), allocatable :: v(:, :, :), h(:, :, :), g(:, :), cs(:, :), sn(:, :), y(:)
     real(real64), allocatable :: r(:, :), bnorm(:), work(:, :), z(:, :)
     integer, allocatable :: cols(:), jend(:)
     logical, allocatable :: active(:), in_cycle(:)
+    logical :: trust
     integer :: nn, nv, m, j, i, c, col, na
     real(real64) :: beta, hnew, t, wnorm
     integer(int64) :: c0, c1, c2, c3, rate
@@ -80,7 +85,16 @@ contains
     end do
     where (bnorm == 0) bnorm = 1
     active = .true.
-    call residual([(c, c=1, nv)])
+    trust = .false.
+    if (present(estimate_ends)) trust = estimate_ends
+    ! a zero start's residual is b itself (A 0 = 0 exactly): no product for it
+    do c = 1, nv
+      if (all(x(:, c) == 0)) then
+        r(:, c) = b(:, c)
+        result%relative_residual(c) = norm2(r(:, c)) / bnorm(c)
+      end if
+    end do
+    call residual(pack([(c, c=1, nv)], [(any(x(:, c) /= 0), c=1, nv)]))
 
     do
       ! columns done: converged, or out of iterations
@@ -182,6 +196,17 @@ contains
           x(:, cols(i)) = x(:, cols(i)) + z(:, i)
         end do
       end if
+      if (trust) then
+        ! columns whose estimate met tol end on it; the others restart from the true residual
+        do i = 1, na
+          c = cols(i)
+          if (abs(g(jend(c) + 1, c)) <= tol * bnorm(c)) then
+            result%relative_residual(c) = abs(g(jend(c) + 1, c)) / bnorm(c)
+            jend(c) = 0
+          end if
+        end do
+        cols = pack(cols, jend(cols) > 0)
+      end if
       call residual(cols)
     end do
 
@@ -209,12 +234,12 @@ contains
   subroutine project(v, w, h)
     real(real64), intent(in), contiguous :: v(:, :), w(:)
     real(real64), intent(out) :: h(:)
-    real(real64), allocatable :: partial(:, :)
+    real(real64) :: partial(size(v, 2), (size(w) + row_block - 1) / row_block)
     integer :: b, k, nb
 
-    nb = (size(w) + row_block - 1) / row_block
-    allocate (partial(size(v, 2), nb))
-    !$omp parallel do schedule(static)
+    nb = size(partial, 2)
+    ! one block (short vectors: the rolling solver's): no parallel region to enter
+    !$omp parallel do schedule(static) if(nb > 1)
     do b = 1, nb
       call block_products(v, w, b, partial(:, b))
     end do
@@ -257,11 +282,10 @@ contains
   !> no scaling against overflow needed).
   real(real64) function norm(w)
     real(real64), intent(in), contiguous :: w(:)
-    real(real64), allocatable :: partial(:)
+    real(real64) :: partial((size(w) + row_block - 1) / row_block)
     integer :: b, nb
-    nb = (size(w) + row_block - 1) / row_block
-    allocate (partial(nb))
-    !$omp parallel do schedule(static)
+    nb = size(partial)
+    !$omp parallel do schedule(static) if(nb > 1)
     do b = 1, nb
       partial(b) = block_dot(w, w, b)
     end do
@@ -290,7 +314,7 @@ contains
     integer :: b, k, i, lo, hi, nk
     real(real64) :: a1, a2, a3, a4
     nk = size(a)
-    !$omp parallel do private(k, i, lo, hi, a1, a2, a3, a4) schedule(static)
+    !$omp parallel do private(k, i, lo, hi, a1, a2, a3, a4) schedule(static) if(size(w) > row_block)
     do b = 1, (size(w) + row_block - 1) / row_block
       lo = (b - 1) * row_block + 1
       hi = min(b * row_block, size(w))
