@@ -88,7 +88,7 @@ with tempfile.TemporaryDirectory() as tmp:
         maps = maps_of(os.path.join(tmp, f'{patch}.rollmap'))
         check(len(rows) == 24 and len(maps) == 24, f'{patch}: 24 rows and 24 maps')
         worst_res = max(row[11] for row in rows)
-        check(worst_res <= 1e-10, f'{patch}: residual max|F|/max(mu pn) {worst_res:.1e} <= 1e-10 at every point')
+        check(worst_res <= 1e-7, f'{patch}: residual max|F|/max(mu pn) {worst_res:.1e} <= 1e-7 (the default tolerance) at every point')
         for c, row, m in zip(cases, rows, maps):
             k = int(c['case'])
             mufn = float(c['mu']) * float(c['FN'])

@@ -31,7 +31,7 @@ t = tab[0]
 kc.close(r[0][3], -t['f11'] * 1e-7, 2e-4, 'xi = 1e-7: Fx = -f11 xi')
 kc.close(r[1][4], -t['f23'] * 1e-8, 2e-4, 'phi = 1e-8: Fy = -f23 phi')
 kc.close(r[1][5], -t['f33'] * 1e-8, 2e-4, 'phi = 1e-8: Mz = -f33 phi')
-kc.check(all(row[11] <= 1e-10 for row in r), 'residual column <= the default tolerance 1e-10')
+kc.check(all(row[11] <= 1e-7 for row in r), 'residual column <= the default tolerance 1e-7')
 kc.check(r[2][3] < 0 and 0 < r[2][7] < 1 and abs(r[2][8]) < 1, f'xi = 2e-3: partial slip (adhesion {r[2][7]})')
 kc.check(all(abs(row[9]) <= 1 + 1e-12 and abs(row[8]) <= 1 + 1e-12 for row in r), '|F| <= mu Fn')
 kc.check('exact rolling: 8 creepage points' in out and 'rolling table: good.roll' in out, 'summary lines')

@@ -87,7 +87,7 @@ if len(rolled) == len(POINTS) * len(table):
             # the table prints spin to 7 digits, the rolling table to 16
             kc.close(p["phi"], given[2] + r["spin"], 1e-6, f"shift {s} {given}: phi = the given phi + spin")
             kc.close(p["fn"], r["fn"], 1e-8, f"shift {s} {given}: fn = the patch's normal force")
-            kc.check(p["residual"] <= 1e-10, f"shift {s} {given}: residual {p['residual']:.2e} <= tolerance 1e-10")
+            kc.check(p["residual"] <= 1e-7, f"shift {s} {given}: residual {p['residual']:.2e} <= tolerance 1e-7")
             kc.check(math.hypot(p["fx"], p["fy"]) <= MU * p["fn"] * (1 + 1e-9), f"shift {s} {given}: |F| <= mu fn")
         kc.close(creep[i]["phi"], rows[0]["phi"], 1e-15, f"shift {s}: FASTSIM ran at the same phi")
         if abs(r["delta"]) < 0.2:
