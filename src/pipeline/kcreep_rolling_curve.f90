@@ -226,11 +226,12 @@ contains
     state = rolling_state_t()
   end subroutine release_rolling_state
 
-  !> One point: creepage cr at friction mu, bounds mu pn (bound), solved from the best
-  !> start (smallest ||F||) of: the state's last solution, the secant through its last two
-  !> (both scaled to mu: p(mu, c) = mu p(1, c/mu)), the projected full adhesion of cr
-  !> (unit_traction), the caller's start, and zero when there is no other. p, cells: the solution and its
-  !> stick/slip cells; the state keeps it (per unit mu) for the next point.
+  !> One point: creepage cr at friction mu, bounds mu pn (bound), solved from the caller's
+  !> start when given, else from the best (smallest ||F||) of: the state's last solution,
+  !> the secant through its last two (both scaled to mu: p(mu, c) = mu p(1, c/mu)), the
+  !> projected full adhesion of cr (unit_traction), and zero when there is no other.
+  !> p, cells: the solution and its stick/slip cells; the state keeps it (per unit mu)
+  !> for the next point.
   subroutine solve_point(state, cr, mu, bound, tolerance, p, cells, info, unit_traction, start)
     type(rolling_state_t), intent(inout) :: state
     real(real64), intent(in) :: cr(3), mu, bound(:), tolerance
@@ -238,7 +239,7 @@ contains
     integer, intent(out) :: cells(:)
     type(rolling_info_t), intent(out) :: info
     real(real64), intent(in), optional :: unit_traction(:, :)
-    real(real64), intent(in), optional :: start(:)   !< one more start (tractions at mu)
+    real(real64), intent(in), optional :: start(:)   !< the start (tractions at mu)
     type(rolling_options_t) :: options
     real(real64), allocatable :: w(:), guess(:), f(:), q(:)
     real(real64) :: best, fnorm, fmax, c1(3), d(3), alpha
@@ -250,11 +251,16 @@ contains
     best = huge(1.0_real64)
     starts = 0
     p = 0
-    if (state%kept >= 1) then
+    if (present(start)) then
+      ! the caller's start is the start (the fast model's build: its neighbours' solutions
+      ! extrapolated, the best start at 88 % of its points): no residual spent on others
+      p = start
+      call project(p)
+    else if (state%kept >= 1) then
       guess = mu * state%p1(:, 1)
       call try(guess)
     end if
-    if (state%kept >= 2) then
+    if (state%kept >= 2 .and. .not. present(start)) then
       d = state%creep1(:, 1) - state%creep1(:, 2)
       if (dot_product(d, d) > 0) then
         alpha = dot_product(c1 - state%creep1(:, 1), d) / dot_product(d, d)
@@ -263,13 +269,8 @@ contains
         call try(guess)
       end if
     end if
-    if (present(unit_traction)) then
+    if (present(unit_traction) .and. .not. present(start)) then
       guess = cr(1) * unit_traction(:, 1) + cr(2) * unit_traction(:, 2) + cr(3) * unit_traction(:, 3)
-      call project(guess)
-      call try(guess)
-    end if
-    if (present(start)) then
-      guess = start
       call project(guess)
       call try(guess)
     end if
