@@ -16,6 +16,7 @@ module kcreep_capi_contact_table
                                     column_verdict
   implicit none
   private
+  public :: table_terms
 
 contains
 
@@ -196,8 +197,9 @@ contains
 
   !> The patches at shift (within the rows' range): the rows of the nearest
   !> table shifts below (a) and above (b), weights 1 - t and t (t the
-  !> fraction of the way); a's and b's patches paired nearest y_rail first
-  !> when within half their widths plus the step, a patch without a partner
+  !> fraction of the way); a's and b's patches of the same kind (tread, flange)
+  !> paired nearest y_rail first when within half their widths plus the step
+  !> (a tread patch never continues as a flange patch), a patch without a partner
   !> alone with its own weight (it fades out or in). Zero weights dropped;
   !> patches in order of their weighted y_rail.
   pure subroutine table_terms(all_rows, shift, rows, weights)
@@ -232,6 +234,7 @@ contains
         if (pair(i) /= 0) cycle
         do j = 1, size(b)
           if (used_b(j)) cycle
+          if (all_rows(a(i))%kind /= all_rows(b(j))%kind) cycle
           dy = abs(all_rows(a(i))%y_rail - all_rows(b(j))%y_rail)
           gate = 0.5_wp * (all_rows(a(i))%width + all_rows(b(j))%width) + (sb - sa)
           if (dy <= gate .and. dy < best) then
