@@ -18,7 +18,9 @@
 !>
 !> Nodes: theta on nt intervals from the pole to the equator, lambda on np
 !> points, s on ns intervals; the rays of theta <= pi/2 are solved (the
-!> others by oddness), s = 1 is the full-slip force. Interpolant: tensor
+!> others by oddness; on the short rings near the pole every second or
+!> fourth, the rest interpolated, fast_model_ring_stride), s = 1 is the
+!> full-slip force. Interpolant: tensor
 !> cubic B-splines interpolating the nodes: periodic in theta over the
 !> doubled circle [0, 2 pi) (a point (theta, lambda) with theta > pi is
 !> (2 pi - theta, lambda + pi), so each meridian pair is one periodic great
@@ -31,6 +33,7 @@ module kcreep_fast_model
   private
   public :: fast_model_t, fast_model_grid, fast_model_ray, fast_model_fit, fast_model_forces
   public :: fast_model_theta_intervals, fast_model_lambda_points, fast_model_s_intervals
+  public :: fast_model_ring_stride, fast_model_fill_ring
 
   real(real64), parameter :: pi = acos(-1.0_real64)
 
@@ -55,6 +58,45 @@ module kcreep_fast_model
   end type fast_model_t
 
 contains
+
+  !> Every how many azimuths ring i (polar angle theta_i = i pi / (2 nt)) is solved: rings
+  !> near the spin pole are short (circumference sin theta_i), so they are sampled in
+  !> proportion, np / stride >= np sin theta_i with stride a power of 2 (a subset of the
+  !> ring's nodes), at least 8 a ring; the other nodes by trigonometric interpolation
+  !> (fast_model_fill_ring). The arc between solved rays then stays at most the equator's.
+  pure integer function fast_model_ring_stride(model, i) result(stride)
+    type(fast_model_t), intent(in) :: model
+    integer, intent(in) :: i
+    real(real64) :: needed
+    stride = 1
+    if (i <= 0 .or. i >= model%nt) return
+    needed = model%np * sin(0.5_real64 * pi * i / model%nt)
+    do while (mod(model%np, 2 * stride) == 0 .and. model%np / (2 * stride) >= max(8.0_real64, needed))
+      stride = 2 * stride
+    end do
+  end function fast_model_ring_stride
+
+  !> Ring values v(3, 0:np - 1, ns) given at every stride-th azimuth: the others by the
+  !> trigonometric interpolant of those (k = np / stride even: sum_j v_j sin(k x / 2)
+  !> cot(x / 2) / k, x the angle from node j).
+  pure subroutine fast_model_fill_ring(model, stride, v)
+    type(fast_model_t), intent(in) :: model
+    integer, intent(in) :: stride
+    real(real64), intent(inout) :: v(:, 0:, :)
+    real(real64) :: x, weight
+    integer :: j, l, k
+    if (stride <= 1) return
+    k = model%np / stride
+    do j = 0, model%np - 1
+      if (mod(j, stride) == 0) cycle
+      v(:, j, :) = 0
+      do l = 0, model%np - 1, stride
+        x = 2 * pi * (j - l) / model%np
+        weight = sin(0.5_real64 * k * x) / (k * tan(0.5_real64 * x))
+        v(:, j, :) = v(:, j, :) + weight * v(:, l, :)
+      end do
+    end do
+  end subroutine fast_model_fill_ring
 
   !> An empty model with the grid's sizes: scales k (> 0), the patch's centre (about the
   !> spin centre).

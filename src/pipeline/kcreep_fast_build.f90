@@ -19,7 +19,8 @@ module kcreep_fast_build
   use kcreep_patch, only: patch_t
   use kcreep_assembly, only: scheme_t
   use kcreep_rolling_solve, only: rolling_info_t
-  use kcreep_fast_model, only: fast_model_t, fast_model_grid, fast_model_ray, fast_model_fit, fast_model_forces
+  use kcreep_fast_model, only: fast_model_t, fast_model_grid, fast_model_ray, fast_model_fit, fast_model_forces, &
+                               fast_model_ring_stride, fast_model_fill_ring
   use kcreep_rolling_curve, only: rolling_state_t, prepare_rolling_state, solve_point, check_rolling_input, &
                                  default_rolling_tolerance
   implicit none
@@ -57,7 +58,7 @@ contains
     integer, allocatable :: cells(:)
     type(rolling_info_t) :: info
     real(real64) :: da, fn, area, tiny_creep, f11, f22, dir(3), k(3), a, cr(3), centre(2)
-    integer :: n, i, j, m, c, nt, np, ns, info_fit, jm
+    integer :: n, i, j, m, c, nt, np, ns, info_fit, jm, stride
     logical :: mirrored
     integer(int64) :: t0, t1, rate
 
@@ -101,8 +102,9 @@ contains
     allocate (v(3, 0:nt, 0:np - 1, 1:ns), creep(3, ns - 1), last_ray(2 * n, ns - 1), row_first(2 * n, ns - 1), &
               here(2 * n, ns - 1))
     do i = 0, nt
+      stride = fast_model_ring_stride(fast%model, i)
       do j = 0, np - 1
-        if ((i == 0 .and. j > 0) .or. (i == nt .and. j >= np / 2)) cycle
+        if ((i == 0 .and. j > 0) .or. (i == nt .and. j >= np / 2) .or. mod(j, stride) /= 0) cycle
         ! a patch symmetric about y = 0: F(-z1, z2, z3) = (-Fx, Fy, Mz)(z1, z2, z3), the mirror
         ! image y -> -y with the creepage's oddness; ray j is ray np/2 - j mirrored
         jm = modulo(np / 2 - j, np)
@@ -148,6 +150,7 @@ contains
         end do
         v(:, i, j, ns) = forces(p)
       end do
+      call fast_model_fill_ring(fast%model, stride, v(:, i, :, :))
     end do
     do j = 1, np - 1
       v(:, 0, j, :) = v(:, 0, 0, :)
