@@ -19,7 +19,7 @@ and 'separate' (L1, L2, L3 on their terms), which are the same on pure creepage 
 - On patches with L3 > 0 the default and plain FASTSIM give the same forces on pure creepage
   (1e-12 of mu Fn).
 Combined creepages are not held to the 3 % here: the default is the better rule on average
-(docs/fastsim.md section 7) but loses to plain FASTSIM by more than 3 % at some combined points
+(docs/fastsim.md, "Against the exact solver") but loses to plain FASTSIM by more than 3 % at some combined points
 of most patches (lab/notes/fastsim_trials.md).
 
 usage: /usr/bin/python3 test_fastsim_plain.py KCREEP SOURCE_DIR   (needs numpy)
