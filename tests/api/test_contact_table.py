@@ -77,7 +77,10 @@ for k in (0, 1):
              f"({100 * e11:.2f} %, {100 * e22:.2f} %)")
 mid = table.forces(-2.0, MU, [[1e-3, 5e-4, 0]], exact=True)[0]
 ends = [table.forces(s, MU, [[1e-3, 5e-4, 0]], exact=True)[0] for s in (-4.0, 0.0)]
-kc.check(np.allclose(mid, 0.5 * (ends[0] + ends[1]), rtol=1e-12, atol=1e-9), "forces between rows: the rows' mean")
+# the same exact solves from other starts: within 1e-6 of mu Fn (both stop at the residual
+# 1e-7, the default; measured: 6e-13 of mu Fn)
+gap = np.abs(mid - 0.5 * (ends[0] + ends[1]))[0, :2].max() / (MU * FORCE)
+kc.check(gap <= 1e-6, f"forces between rows: the rows' mean ({gap:.1e} of mu Fn)")
 
 # the C API's kcreep_wheel_rail_forces: the rows' forces weighted as at(), the same as Python's per-row solvers
 import ctypes  # noqa: E402
@@ -88,9 +91,11 @@ for exact in (0, 1):
     out = np.empty((1, 2, 3))
     code = _lib.kcreep_wheel_rail_forces(src._handle, -1.3, MU, 2, 1, creep2.ctypes.data, exact, out.ctypes.data)
     ref = table.fastsim_forces(-1.3, MU, creep2)[0] if exact == 0 else table.forces(-1.3, MU, creep2, exact=True)[0]
-    # measured: FASTSIM identical, exact rolling 1e-11 apart (its Newton's rounding)
-    kc.check(code == 0 and np.allclose(out[0], ref, rtol=1e-9, atol=1e-6),
-             f"C forces (exact={exact}) at -1.3 mm are Python's ({code})")
+    # FASTSIM identical; exact rolling from other starts within 1e-6 of mu Fn (both stop at
+    # the residual 1e-7; measured: 3e-10 of mu Fn)
+    gap = np.abs(out[0] - ref)[:, :2].max() / (MU * FORCE)
+    kc.check(code == 0 and gap <= (1e-6 if exact else 1e-12),
+             f"C forces (exact={exact}) at -1.3 mm are Python's ({code}; {gap:.1e} of mu Fn)")
 code = _lib.kcreep_wheel_rail_forces(src._handle, -1.3, MU, 2, 2, creep2.ctypes.data, 0, out.ctypes.data)
 kc.check(code == 2, "C forces with n_patches = 2 where the shift has 1 refused")
 values, n = np.empty((1, len(table.columns))), ctypes.c_int()
