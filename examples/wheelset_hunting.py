@@ -11,7 +11,7 @@ quantities mirrored back. Prints
     kinematic wavelength at amplitude A mm: L m (Klingel: K m)
     critical speed: V km/h (fast model), V2 km/h (FASTSIM), V3 km/h (linear Kalker)
 
-(--check: FASTSIM stands in for the fast model, whose build takes about 14 s
+(--check: FASTSIM stands in for the fast model, whose build takes about 10 s
 a row of this table on one thread) and draws the motion and the limit cycle
 (wheelset_hunting.png).
 docs/mbs.md says what the model leaves out.
@@ -164,7 +164,7 @@ def main():
     # the table once: coarse shift step, target 1e-2, at most ~1000 cells a level
     table = kcreep.ContactTable(WHEEL, RAIL, shifts, g=G, nu=NU, vertical_force=LOAD, target_error=1e-2,
                                 cell_budget=1000.0, threads=1,
-                                # --check: FASTSIM for the fast model, whose build costs about 14 s a
+                                # --check: FASTSIM for the fast model, whose build costs about 10 s a
                                 # row here (one thread), minutes for the table's 19 rows
                                 fast_model="fastsim" if a.check else None)
     flagged = [f"{table.shifts[i]:g}..{table.shifts[i + 1]:g}" for i, f in enumerate(table.flags) if f]

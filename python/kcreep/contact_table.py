@@ -72,7 +72,7 @@ class ContactTable:
         self._tracks = self._match()
         self.flags = self._check_intervals()
         #: which fast model forces(exact=False) uses: 'fast_forces' or 'fastsim'
-        # (the fast model's build costs seconds a row: 14 s on a 1000-cell S1002 tread row, one thread)
+        # (the fast model's build costs seconds a row: 10 s on a 1000-cell S1002 tread row, one thread)
         self.fast_model = fast_model or ("fast_forces" if hasattr(Solver, "fast_forces") else "fastsim")
         if self.fast_model not in ("fast_forces", "fastsim"):
             raise KcreepError(2, f"ContactTable: fast_model = {fast_model!r} (allowed: 'fast_forces', 'fastsim')")
