@@ -9,7 +9,7 @@
 !>     sweep_spacing = 'linear'                  ! or 'log'
 !>     pressure = 'auto', pressure_input_file = '', fn = 1    ! as &fastsim
 !>     maps = .false.                            ! traction and stick/slip map of every point
-!>     tolerance = 1e-10                         ! Newton stops at max|F| <= tolerance * max(mu pn)
+!>     tolerance = 1e-7                          ! Newton stops at max|F| <= tolerance * max(mu pn)
 !>   /
 module kcreep_nml_rolling
   use, intrinsic :: iso_fortran_env, only: real64, iostat_end
