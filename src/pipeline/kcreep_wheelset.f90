@@ -226,13 +226,15 @@ contains
   end subroutine run_wheelset
 
   !> The first k whose computation (rows_at_shift at shift sgns(k) shifts(k),
-  !> yaw sgns(k) yaw) is that of shift y on side sgn: the same shift and the
-  !> same side, either side at zero yaw; else 0.
+  !> yaw sgns(k) yaw) is that of shift y on side sgn: the same shift (within
+  !> 1e-9 mm, as sorted_unique takes the shifts: the table's 0.3 and the
+  !> negated -0.30000000000000004 are one) and the same side, either side at
+  !> zero yaw; else 0.
   pure integer function same_as(shifts, sgns, y, sgn, zero_yaw) result(k)
     real(real64), intent(in) :: shifts(:), sgns(:), y, sgn
     logical, intent(in) :: zero_yaw
     do k = 1, size(shifts)
-      if (sgns(k) * shifts(k) == sgn * y .and. (sgns(k) == sgn .or. zero_yaw)) return
+      if (abs(sgns(k) * shifts(k) - sgn * y) <= 1e-9_real64 .and. (sgns(k) == sgn .or. zero_yaw)) return
     end do
     k = 0
   end function same_as
