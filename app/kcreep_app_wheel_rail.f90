@@ -6,7 +6,7 @@ module kcreep_app_wheel_rail
   use, intrinsic :: iso_fortran_env, only: real64, int64, output_unit, error_unit
   use kcreep_status, only: status_t
   use kcreep_strings, only: rtoa, itoa
-  use kcreep, only: problem_t, patch_t, wheel_rail_row_t, kcreep_wheel_rail, kcreep_wheelset, wheelset_row_t, &
+  use kcreep, only: problem_t, patch_t, wheel_rail_row_t, kcreep_wheel_rail, kcreep_wheelset, wheelset_row_t, wheel_state_t, &
                     creep_request_t, creep_point_t, &
                     creep_map_t, creep_curve, result_t, rolling_request_t, rolling_point_t, rolling_curve
   use kcreep_namelist, only: config_t, problem_of
@@ -65,6 +65,7 @@ contains
     type(patch_t) :: none
     type(rolling_point_t), allocatable :: rolled(:)
     type(wheelset_row_t), allocatable :: wheelset(:)
+    type(wheel_state_t), allocatable :: states(:)
     character(len=line_length) :: buf
     integer :: k, j, team
     real(real64) :: t0, t1
@@ -82,9 +83,9 @@ contains
     base%solve%memory_limit = memory_limit_bytes()
     call system_clock(clock0, clock_rate)
     call cpu_time(t0)
-    call kcreep_wheel_rail(cfg%wheel_rail, base, wr%rows, status, team)
+    call kcreep_wheel_rail(cfg%wheel_rail, base, wr%rows, status, team, states)
     if (cfg%wheel_rail%wheelset .and. .not. status%failed()) then
-      call kcreep_wheelset(cfg%wheel_rail, base, wheelset, status)
+      call kcreep_wheelset(cfg%wheel_rail, base, wheelset, status, states)
       if (.not. status%failed()) wr%wheelset = wheelset_lines(wheelset, cfg%wheel_rail)
     end if
     if (status%failed()) return

@@ -51,7 +51,8 @@ module kcreep
   use kcreep_table_run, only: run_table, table_meets_target
   use kcreep_wheel_rail_run, only: wheel_rail_base_cells => base_cells
   use kcreep_wheel_rail_run, only: wheel_rail_setup_t, wheel_rail_row_t, run_wheel_rail, wheel_rail_columns, &
-                                   check_wheel_rail_setup, max_wheel_rail_shifts, most_shifts_at_once, wheel_rail_needs
+                                   wheel_state_t, check_wheel_rail_setup, max_wheel_rail_shifts, &
+                                   most_shifts_at_once, wheel_rail_needs
   use kcreep_wheelset, only: wheelset_row_t, wheelset_columns, run_wheelset
   implicit none
   private
@@ -74,7 +75,7 @@ module kcreep
             verdict_ill_conditioned, verdict_inaccurate, verdict_uncertain, verdict_words
   public :: kcreep_wheel_rail, wheel_rail_setup_t, wheel_rail_row_t, wheel_rail_columns, check_wheel_rail_setup, &
             max_wheel_rail_shifts, default_target_error
-  public :: kcreep_wheelset, wheelset_row_t, wheelset_columns
+  public :: kcreep_wheelset, wheelset_row_t, wheelset_columns, wheel_state_t
 
   character(len=*), parameter :: kcreep_version = '0.2.0'
   !> The same as one number: 10000 major + 100 minor + patch.
@@ -160,13 +161,15 @@ contains
   !> shift and patch. base carries the material, the solver settings, the
   !> target error and the normal solver's options; its patch is not used.
   !> setup is checked first (profiles given, check_wheel_rail_setup). team:
-  !> the shifts that ran at once (one per thread).
-  subroutine kcreep_wheel_rail(setup, base, rows, status, team)
+  !> the shifts that ran at once (one per thread). states: each shift's wheel
+  !> state, for kcreep_wheelset of the same setup and base.
+  subroutine kcreep_wheel_rail(setup, base, rows, status, team, states)
     type(wheel_rail_setup_t), intent(in) :: setup
     type(problem_t), intent(in) :: base
     type(wheel_rail_row_t), allocatable, intent(out) :: rows(:)
     type(status_t), intent(inout) :: status
     integer, intent(out), optional :: team
+    type(wheel_state_t), allocatable, intent(out), optional :: states(:)
     if (present(team)) team = 1
     if (.not. (allocated(setup%wheel_y) .and. allocated(setup%rail_y))) then
       call fail(status, exit_bad_input, 'wheel/rail: no wheel or rail profile given')
@@ -177,7 +180,7 @@ contains
       allocate (rows(0))
       return
     end if
-    call run_wheel_rail(setup, base, rows, status, team)
+    call run_wheel_rail(setup, base, rows, status, team, states)
   end subroutine kcreep_wheel_rail
 
   !> The wheelset table of setup (docs/wheel_rail.md, Wheelset): per shift
@@ -185,11 +188,14 @@ contains
   !> wheelset's roll and vertical position and the equivalent conicity at
   !> amplitude |shift|; the left wheel mirrored, on setup's left profiles if
   !> given. Needs vertical_force; setup checked as for kcreep_wheel_rail.
-  subroutine kcreep_wheelset(setup, base, table, status)
+  !> states: kcreep_wheel_rail's of the same setup and base (its shifts'
+  !> wheel states are then not computed again).
+  subroutine kcreep_wheelset(setup, base, table, status, states)
     type(wheel_rail_setup_t), intent(in) :: setup
     type(problem_t), intent(in) :: base
     type(wheelset_row_t), allocatable, intent(out) :: table(:)
     type(status_t), intent(inout) :: status
+    type(wheel_state_t), intent(in), optional :: states(:)
     type(wheel_rail_setup_t) :: checked
     checked = setup
     checked%wheelset = .true.
@@ -202,7 +208,7 @@ contains
       allocate (table(0))
       return
     end if
-    call run_wheelset(checked, base, table, status)
+    call run_wheelset(checked, base, table, status, states)
   end subroutine kcreep_wheelset
 
   !> Bytes kcreep_solve(problem) needs at its peak and the solve path it takes

@@ -115,9 +115,17 @@ contains
   elemental real(real64) function wheel_surface(track_wheel, r_nom, origin, shift, yaw, w, x, y) result(z)
     type(envelope_t), intent(in) :: track_wheel
     real(real64), intent(in) :: r_nom, origin, shift, yaw, w, x, y
+    z = wheel_surface_yawed(track_wheel, r_nom, origin, shift, sin(yaw), cos(yaw), w, x, y)
+  end function wheel_surface
+
+  !> wheel_surface with the yaw's sine and cosine given.
+  elemental real(real64) function wheel_surface_yawed(track_wheel, r_nom, origin, shift, sin_yaw, cos_yaw, w, x, y) &
+    result(z)
+    type(envelope_t), intent(in) :: track_wheel
+    real(real64), intent(in) :: r_nom, origin, shift, sin_yaw, cos_yaw, w, x, y
     real(real64) :: t, u, zw, r
-    t = -x * sin(yaw) + (y - shift) * cos(yaw)
-    u = x * cos(yaw) + (y - shift) * sin(yaw)
+    t = -x * sin_yaw + (y - shift) * cos_yaw
+    u = x * cos_yaw + (y - shift) * sin_yaw
     zw = envelope_at(track_wheel, t - origin)
     if (zw <= -no_surface) then
       z = -no_surface
@@ -129,7 +137,7 @@ contains
       return
     end if
     z = w - r_nom + sqrt((r - u) * (r + u))
-  end function wheel_surface
+  end function wheel_surface_yawed
 
   !> The vertical clearance d(y) = z_rail - lowest wheel point at wheel height 0,
   !> on the grid y(k) = y_first + (k - 1) search_step over the rail; xs: where
@@ -286,39 +294,56 @@ contains
   elemental real(real64) function plane_gap_value(plane, xi, s) result(h)
     type(plane_gap_t), intent(in) :: plane
     real(real64), intent(in) :: xi, s
-    real(real64) :: p(3), sd, cd, lr, lw
-    logical :: ok_r, ok_w
-    if (s < plane%s_lo .or. s > plane%s_hi) then
-      h = outside_gap
-      return
-    end if
-    sd = sin(plane%delta)
-    cd = cos(plane%delta)
-    p = plane%p0 + [xi, s * cd, -s * sd]
-    call root(.true., lr, ok_r)
-    call root(.false., lw, ok_w)
-    if (ok_r .and. ok_w) then
+    real(real64) :: trig(4), lr
+    logical :: ok_r
+    h = outside_gap
+    if (s < plane%s_lo .or. s > plane%s_hi) return
+    trig = plane_trig(plane)
+    call plane_root(plane, trig, .true., xi, s, lr, ok_r)
+    if (ok_r) h = wheel_gap(plane, trig, xi, s, lr)
+  end function plane_gap_value
+
+  !> sin and cos of the plane's tilt and of the yaw.
+  pure function plane_trig(plane) result(trig)
+    type(plane_gap_t), intent(in) :: plane
+    real(real64) :: trig(4)
+    trig = [sin(plane%delta), cos(plane%delta), sin(plane%yaw), cos(plane%yaw)]
+  end function plane_trig
+
+  !> The gap at (xi, s) given the rail's lambda there, lr (outside_gap where the wheel misses).
+  pure real(real64) function wheel_gap(plane, trig, xi, s, lr) result(h)
+    type(plane_gap_t), intent(in) :: plane
+    real(real64), intent(in) :: trig(4), xi, s, lr
+    real(real64) :: lw
+    logical :: ok_w
+    call plane_root(plane, trig, .false., xi, s, lw, ok_w)
+    if (ok_w) then
       h = lr - lw
     else
       h = outside_gap
     end if
+  end function wheel_gap
 
-  contains
-
-    !> lambda where p + lambda n meets the rail (rail) or the wheel (Newton, difference quotients).
-    pure subroutine root(rail, lambda, ok)
-      logical, intent(in) :: rail
-      real(real64), intent(out) :: lambda
-      logical, intent(out) :: ok
-      real(real64) :: f0, f1, step
-      real(real64), parameter :: eps = 1e-4_real64
-      integer :: it
+  !> lambda where the point (xi, s) of the plane moved by lambda along its
+  !> normal meets the rail (rail; straight along x: xi does not matter) or
+  !> the wheel (Newton, difference quotients). trig: plane_trig.
+  pure subroutine plane_root(plane, trig, rail, xi, s, lambda, ok)
+    type(plane_gap_t), intent(in) :: plane
+    real(real64), intent(in) :: trig(4), xi, s
+    logical, intent(in) :: rail
+    real(real64), intent(out) :: lambda
+    logical, intent(out) :: ok
+    real(real64) :: p(3), f0, f1, step
+    real(real64), parameter :: eps = 1e-4_real64
+    integer :: it
+    associate (sd => trig(1), cd => trig(2))
+      p = plane%p0 + [xi, s * cd, -s * sd]
       lambda = 0
       ok = .false.
       do it = 1, 30
-        f0 = residual(rail, lambda)
+        f0 = residual(lambda)
         if (abs(f0) >= 1e20_real64) return
-        f1 = residual(rail, lambda + eps)
+        f1 = residual(lambda + eps)
         if (abs(f1) >= 1e20_real64) return
         if (f1 == f0) return
         step = -f0 * eps / (f1 - f0)
@@ -326,21 +351,22 @@ contains
         lambda = lambda + step
         if (abs(step) < 1e-12_real64) exit
       end do
-      ok = abs(residual(rail, lambda)) < 1e-9_real64
-    end subroutine root
+      ok = abs(residual(lambda)) < 1e-9_real64
+    end associate
+
+  contains
 
     !> surface z minus the line's z at lambda
-    pure real(real64) function residual(rail, lambda) result(f)
-      logical, intent(in) :: rail
+    pure real(real64) function residual(lambda) result(f)
       real(real64), intent(in) :: lambda
       real(real64) :: y, z, zs
-      y = p(2) + lambda * sd
-      z = p(3) + lambda * cd
+      y = p(2) + lambda * trig(1)
+      z = p(3) + lambda * trig(2)
       if (rail) then
         zs = envelope_at(plane%rail, y)
       else
-        zs = wheel_surface(plane%wheel, plane%r_nom, plane%wheel_origin, plane%shift, plane%yaw, &
-                           plane%wheel_height, p(1), y)
+        zs = wheel_surface_yawed(plane%wheel, plane%r_nom, plane%wheel_origin, plane%shift, trig(3), trig(4), &
+                                 plane%wheel_height, p(1), y)
       end if
       if (abs(zs) >= no_surface) then
         f = 1e30_real64
@@ -349,15 +375,18 @@ contains
       end if
     end function residual
 
-  end function plane_gap_value
+  end subroutine plane_root
 
-  !> The gap at the cell centres of a grid in the plane (x = xi, y = s).
+  !> The gap at the cell centres of a grid in the plane (x = xi, y = s):
+  !> plane_gap_value at each, the rail's root once per line of s.
   pure subroutine plane_gap_grid(plane, mx, my, dx, dy, x0, y0, gap)
     type(plane_gap_t), intent(in) :: plane
     integer, intent(in) :: mx, my
     real(real64), intent(in) :: dx, dy, x0, y0
     type(gap_t), intent(out) :: gap
     integer :: ix, iy
+    real(real64) :: trig(4), s, lr
+    logical :: ok_r
     gap%mx = mx
     gap%my = my
     gap%dx = dx
@@ -365,9 +394,15 @@ contains
     gap%x0 = x0
     gap%y0 = y0
     allocate (gap%h(mx, my))
+    trig = plane_trig(plane)
     do iy = 1, my
+      s = y0 + (iy - 1) * dy
+      gap%h(:, iy) = outside_gap
+      if (s < plane%s_lo .or. s > plane%s_hi) cycle
+      call plane_root(plane, trig, .true., x0, s, lr, ok_r)
+      if (.not. ok_r) cycle
       do ix = 1, mx
-        gap%h(ix, iy) = plane_gap_value(plane, x0 + (ix - 1) * dx, y0 + (iy - 1) * dy)
+        gap%h(ix, iy) = wheel_gap(plane, trig, x0 + (ix - 1) * dx, s, lr)
       end do
     end do
   end subroutine plane_gap_grid

@@ -121,6 +121,7 @@ module kcreep_wheel_rail_run
     type(wheel_rail_row_t), allocatable :: rows(:)
     type(status_t) :: status
     logical :: skipped = .false.   !< not run: an earlier shift failed
+    type(wheel_state_t) :: wheel   !< the wheel's state (run_wheel_rail's states)
   end type shift_rows_t
 
 contains
@@ -204,12 +205,15 @@ contains
   end subroutine prepare_track
 
   !> The table: base carries the material, the solver settings and the target.
-  subroutine run_wheel_rail(setup, base, rows, status, shifts_at_once)
+  !> states: each shift's wheel state (rows_at_shift's wheel), as the
+  !> wheelset of the same setup and base takes it (kcreep_wheelset).
+  subroutine run_wheel_rail(setup, base, rows, status, shifts_at_once, states)
     type(wheel_rail_setup_t), intent(in) :: setup
     type(problem_t), intent(in) :: base
     type(wheel_rail_row_t), allocatable, intent(out) :: rows(:)
     type(status_t), intent(inout) :: status
     integer, intent(out), optional :: shifts_at_once   !< the team: shifts run at once, one per thread
+    type(wheel_state_t), allocatable, intent(out), optional :: states(:)   !< per shift of setup
     type(track_t) :: track
     type(shift_rows_t), allocatable :: at_shift(:)
     type(problem_t) :: row_base
@@ -247,7 +251,8 @@ contains
       !$omp atomic read
       at_shift(i)%skipped = failed
       if (at_shift(i)%skipped) cycle
-      call rows_at_shift(setup, row_base, track, sgn, i, at_shift(i)%rows, at_shift(i)%status)
+      call rows_at_shift(setup, row_base, track, sgn, i, at_shift(i)%rows, at_shift(i)%status, &
+                         wheel=at_shift(i)%wheel, and_rows=.true.)
       if (at_shift(i)%status%failed()) then
         !$omp atomic write
         failed = .true.
@@ -267,6 +272,7 @@ contains
       end if
     end do
     rows = [(at_shift(i)%rows, i=1, last)]
+    if (present(states)) states = at_shift(1:last)%wheel
   end subroutine run_wheel_rail
 
   !> What each shift of the table needs at its peak under error control
@@ -307,10 +313,11 @@ contains
 
   !> The rows of shift i: its contacts, the approach (given, or found for the
   !> vertical force), then each patch under error control.
-  !> With wheel: only the wheel's state after the approach (no solves, no rows).
+  !> With wheel: the wheel's state after the approach; the rows too only with
+  !> and_rows = .true. (else no solves, no rows).
   !> With need: no rows, only what the patches' solves under error control
   !> need (gap_levels_need: the most bytes, the sum of the finest grids' cells).
-  subroutine rows_at_shift(setup, base, track, sgn, i, rows, status, wheel, need)
+  subroutine rows_at_shift(setup, base, track, sgn, i, rows, status, wheel, need, and_rows)
     type(wheel_rail_setup_t), intent(in) :: setup
     type(problem_t), intent(in) :: base
     type(track_t), intent(in) :: track
@@ -320,6 +327,7 @@ contains
     type(status_t), intent(inout) :: status
     type(wheel_state_t), intent(out), optional :: wheel
     real(real64), intent(out), optional :: need(2)
+    logical, intent(in), optional :: and_rows
     real(real64), allocatable :: ys(:), d(:), xs(:)
     type(contact_t), allocatable :: contacts(:), refs(:)
     type(gap_t), allocatable :: grids(:)
@@ -364,7 +372,8 @@ contains
       wheel%delta = pack(refs%delta, forces > 0)
       wheel%r_wheel = pack([(rolling_radius(refs(k), hmins(k)), k = 1, size(refs))], forces > 0)
       wheel%y = pack(refs%y, forces > 0)
-      return
+      if (.not. present(and_rows)) return
+      if (.not. and_rows) return
     end if
     do k = 1, size(refs)
       problem = base

@@ -63,21 +63,26 @@ module kcreep_wheelset
 contains
 
   !> The wheelset table of setup (checked, profiles read) for the shifts of setup.
-  subroutine run_wheelset(setup, base, table, status)
+  !> states: the wheel states of setup's own table (run_wheel_rail of setup
+  !> and base), which are not computed again.
+  subroutine run_wheelset(setup, base, table, status, states)
     type(wheel_rail_setup_t), intent(in) :: setup
     type(problem_t), intent(in) :: base
     type(wheelset_row_t), allocatable, intent(out) :: table(:)
     type(status_t), intent(inout) :: status
+    type(wheel_state_t), intent(in), optional :: states(:)   !< per shift of setup
     type(wheel_rail_setup_t) :: both, left
     type(track_t) :: right_track, left_track
-    type(wheel_point_t), allocatable :: right_at(:), left_at(:)
-    real(real64), allocatable :: ys(:), dr(:)
+    type(wheel_point_t), allocatable :: right_at(:), left_at(:), points(:)
+    real(real64), allocatable :: ys(:), dr(:), ones(:)
+    logical :: own_left
     integer :: i, k, n
 
     allocate (table(0))
     ! the shifts and their negatives, ascending: Delta r over [-A, A] for every A = |shift|
     ys = sorted_unique([setup%shifts, -setup%shifts])
     n = size(ys)
+    allocate (ones(n), source=1.0_real64)
     both = setup
     both%shifts = ys
     left = both
@@ -91,14 +96,29 @@ contains
       left%rail_z = setup%left_rail_z
       left%rail_name = setup%left_rail_name
     end if
+    own_left = allocated(setup%left_wheel_y) .or. allocated(setup%left_rail_y)
     call prepare_track(both, right_track, status)
     if (status%failed()) return
-    call prepare_track(left, left_track, status)
+    ! Each wheel state is one rows_at_shift of a track at the shift sgn y and
+    ! yaw sgn yaw (sgn -1: the left wheel, mirrored). On the right profiles
+    ! the left wheel's state at y is the same computation as the right
+    ! wheel's at -y when the yaw is zero, and the table's own states are
+    ! those of its side: each computation is made once.
+    if (own_left) then
+      call wheel_points(both, right_track, ys, ones, right_at)
+    else
+      call wheel_points(both, right_track, [ys, ys], [ones, -ones], points)
+      if (status%failed()) return
+      right_at = points(1:n)
+      left_at = points(n + 1:2 * n)
+    end if
     if (status%failed()) return
-    call wheel_points(both, right_track, 1.0_real64, right_at)
-    if (status%failed()) return
-    call wheel_points(left, left_track, -1.0_real64, left_at)
-    if (status%failed()) return
+    if (own_left) then
+      call prepare_track(left, left_track, status)
+      if (status%failed()) return
+      call wheel_points(left, left_track, ys, -ones, left_at, own=.true.)
+      if (status%failed()) return
+    end if
     dr = right_at%r - left_at%r
     deallocate (table)
     allocate (table(size(setup%shifts)))
@@ -120,19 +140,49 @@ contains
 
   contains
 
-    !> Each shift's load-weighted wheel values on one side (sgn -1: the left).
-    subroutine wheel_points(side_setup, track, sgn, points)
+    !> The load-weighted wheel values of one track at the wheelset's shifts
+    !> y(j) on the side sgns(j) (-1: the left wheel, its own right-side
+    !> configuration at shift -y(j), yaw -yaw). Equal computations (the same
+    !> shift sgn y and, unless the yaw is zero, the same side) are made once,
+    !> and the table's states taken where they are the same computation (not
+    !> on the left wheel's own profiles: own).
+    subroutine wheel_points(side_setup, track, y, sgns, points, own)
       type(wheel_rail_setup_t), intent(in) :: side_setup
       type(track_t), intent(in) :: track
-      real(real64), intent(in) :: sgn
+      real(real64), intent(in) :: y(:), sgns(:)
       type(wheel_point_t), allocatable, intent(out) :: points(:)
-      type(wheel_state_t) :: state
+      logical, intent(in), optional :: own
+      type(wheel_rail_setup_t) :: run_setup
+      type(wheel_state_t), allocatable :: state(:), computed(:)
       type(wheel_rail_row_t), allocatable :: none(:)
       type(status_t), allocatable :: at(:)
       type(problem_t) :: row_base
-      integer :: j, team, stage_team, previous_team
-      allocate (points(n), at(n))
-      team = min(team_size(base%solve%threads, int(n, int64), 1), n)
+      real(real64), allocatable :: run_sgn(:), table_sgn(:)
+      integer, allocatable :: from_table(:), run_of(:)
+      integer :: j, m, runs, team, stage_team, previous_team
+      m = size(y)
+      allocate (points(m), state(m), from_table(m), run_of(m), run_sgn(m))
+      run_setup = side_setup
+      run_setup%shifts = y
+      if (present(states) .and. .not. present(own)) then
+        allocate (table_sgn(size(states)), source=merge(-1.0_real64, 1.0_real64, setup%side == 'left'))
+      else
+        allocate (table_sgn(0))
+      end if
+      runs = 0
+      do j = 1, m
+        from_table(j) = same_as(setup%shifts(1:size(table_sgn)), table_sgn, y(j), sgns(j), setup%yaw == 0)
+        run_of(j) = 0
+        if (from_table(j) > 0) cycle
+        run_of(j) = same_as(run_setup%shifts(1:runs), run_sgn(1:runs), y(j), sgns(j), setup%yaw == 0)
+        if (run_of(j) > 0) cycle
+        runs = runs + 1
+        run_of(j) = runs
+        run_sgn(runs) = sgns(j)
+        run_setup%shifts(runs) = y(j)   ! rows_at_shift: shift sgn * shifts(i)
+      end do
+      allocate (computed(runs), at(runs))
+      team = min(team_size(base%solve%threads, int(runs, int64), 1), max(runs, 1))
       row_base = base
       if (team > 1) then
         row_base%solve%threads = 1
@@ -141,33 +191,53 @@ contains
       stage_team = 1
       call solve_started()
       call enter_team(stage_team, previous_team)
-      !$omp parallel do num_threads(team) schedule(dynamic, 1) default(shared) private(j, state, none)
-      do j = 1, n
-        call rows_at_shift(side_setup, row_base, track, sgn, j, none, at(j), state)
-        if (at(j)%failed()) cycle
-        if (size(state%fn) == 0) then
-          call fail(at(j), exit_bad_input, '&wheel_rail wheelset: shift = '//rtoa(ys(j))// &
-                    ' mm: no loaded contact')
-          cycle
-        end if
-        points(j)%r = sum(state%fn * state%r_wheel) / sum(state%fn)
-        points(j)%delta = sum(state%fn * state%delta) / sum(state%fn)
-        points(j)%y = sum(state%fn * state%y) / sum(state%fn)
-        points(j)%height = state%height
+      !$omp parallel do num_threads(team) schedule(dynamic, 1) default(shared) private(j, none)
+      do j = 1, runs
+        call rows_at_shift(run_setup, row_base, track, run_sgn(j), j, none, at(j), computed(j))
       end do
       !$omp end parallel do
       call leave_team(previous_team)
       call solve_ended()
-      do j = 1, n
-        if (at(j)%failed()) then
-          status = at(j)
-          if (sgn < 0) status%message = 'left wheel: '//status%message
+      do j = 1, m
+        if (run_of(j) > 0) then
+          if (at(run_of(j))%failed()) then
+            status = at(run_of(j))
+            if (sgns(j) < 0) status%message = 'left wheel: '//status%message
+            return
+          end if
+          state(j) = computed(run_of(j))
+        else
+          state(j) = states(from_table(j))
+        end if
+        if (size(state(j)%fn) == 0) then
+          call fail(status, exit_bad_input, '&wheel_rail wheelset: shift = '//rtoa(y(j))//' mm: no loaded contact')
+          if (sgns(j) < 0) status%message = 'left wheel: '//status%message
           return
         end if
+        points(j)%r = sum(state(j)%fn * state(j)%r_wheel) / sum(state(j)%fn)
+        points(j)%delta = sum(state(j)%fn * state(j)%delta) / sum(state(j)%fn)
+        points(j)%y = sum(state(j)%fn * state(j)%y) / sum(state(j)%fn)
+        points(j)%height = state(j)%height
       end do
+
+
     end subroutine wheel_points
 
   end subroutine run_wheelset
+
+  !> The first k whose computation (rows_at_shift at shift sgns(k) shifts(k),
+  !> yaw sgns(k) yaw) is that of shift y on side sgn: the same shift (within
+  !> 1e-9 mm, as sorted_unique takes the shifts: the table's 0.3 and the
+  !> negated -0.30000000000000004 are one) and the same side, either side at
+  !> zero yaw; else 0.
+  pure integer function same_as(shifts, sgns, y, sgn, zero_yaw) result(k)
+    real(real64), intent(in) :: shifts(:), sgns(:), y, sgn
+    logical, intent(in) :: zero_yaw
+    do k = 1, size(shifts)
+      if (abs(sgns(k) * shifts(k) - sgn * y) <= 1e-9_real64 .and. (sgns(k) == sgn .or. zero_yaw)) return
+    end do
+    k = 0
+  end function same_as
 
   !> Ascending values without repeats (within 1e-9 mm).
   pure function sorted_unique(values) result(out)

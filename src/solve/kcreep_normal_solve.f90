@@ -73,13 +73,22 @@ module kcreep_normal_solve
   end type normal_result_t
 
   !> A periodic real grid, its half spectrum and FFTW's r2c / c2r plans:
-  !> the convolutions of the operator and of the preconditioner.
+  !> the convolutions of the operator and of the preconditioner. With
+  !> rows > 0 also the pruned pair of a convolution whose input and output
+  !> live in the grid's first `rows` columns (the zero-padded operator's:
+  !> x transforms of those columns only, then the y transforms of every
+  !> spectrum row; 3/4 of the whole grid's work, the same result
+  !> to rounding, as kcreep_fft_operator's; the y transforms out of place
+  !> into cols, contiguous, as there).
   type :: periodic_grid_t
-    integer :: nx = 0, ny = 0
-    type(c_ptr) :: p_real = c_null_ptr, p_spec = c_null_ptr
+    integer :: nx = 0, ny = 0, rows = 0
+    type(c_ptr) :: p_real = c_null_ptr, p_spec = c_null_ptr, p_cols = c_null_ptr
     real(c_double), pointer :: grid(:, :) => null()
     complex(c_double_complex), pointer :: spec(:, :) => null()
+    complex(c_double_complex), pointer :: cols(:, :) => null()   !< (ny, nx/2 + 1), with rows > 0
     type(c_ptr) :: forward = c_null_ptr, backward = c_null_ptr
+    type(c_ptr) :: rows_forward = c_null_ptr, rows_backward = c_null_ptr
+    type(c_ptr) :: columns_forward = c_null_ptr, columns_backward = c_null_ptr
   end type periodic_grid_t
 
   !> A p on an mx x my grid by FFT (the kernel is even: its spectrum is real).
@@ -87,7 +96,7 @@ module kcreep_normal_solve
     integer :: applications = 0                 !< products A p done
     integer :: threads = 1                      !< FFTW threads of its plans
     type(periodic_grid_t) :: fft                !< at least 2 mx x 2 my: the linear convolution
-    real(real64), allocatable :: kernel(:, :)   !< real spectrum / (nx ny)
+    real(real64), allocatable :: kernel(:, :)   !< real spectrum / (nx ny), (ny, nx/2 + 1)
   end type normal_operator_t
 
   !> The preconditioner z = M^-1 g: the operator's kernel wrapped onto a
@@ -122,14 +131,16 @@ contains
   end function fast_even_size
 
   !> An nx x ny periodic grid with its plans; threads: FFTW threads (1 if
-  !> FFTW has no thread support).
-  subroutine create_periodic_grid(nx, ny, threads, pg)
+  !> FFTW has no thread support); rows: the pruned pair's columns (0: none).
+  subroutine create_periodic_grid(nx, ny, threads, pg, rows)
     integer, intent(in) :: nx, ny
     integer, intent(inout) :: threads
     type(periodic_grid_t), intent(out) :: pg
+    integer, intent(in), optional :: rows
     integer :: nh
     pg%nx = nx
     pg%ny = ny
+    if (present(rows)) pg%rows = rows
     nh = nx / 2 + 1
     pg%p_real = fftw_alloc_real(int(nx, c_size_t) * ny)
     pg%p_spec = fftw_alloc_complex(int(nh, c_size_t) * ny)
@@ -145,6 +156,27 @@ contains
     end if
     pg%forward = fftw_plan_dft_r2c_2d(ny, nx, pg%grid, pg%spec, FFTW_ESTIMATE)
     pg%backward = fftw_plan_dft_c2r_2d(ny, nx, pg%spec, pg%grid, FFTW_ESTIMATE)
+    if (pg%rows > 0) then
+      pg%p_cols = fftw_alloc_complex(int(nh, c_size_t) * ny)
+      call c_f_pointer(pg%p_cols, pg%cols, [ny, nh])
+      ! grid columns 1..rows: real transforms of length nx (FFTW's rows)
+      pg%rows_forward = fftw_plan_many_dft_r2c(1_c_int, [int(nx, c_int)], int(pg%rows, c_int), &
+                                               pg%grid, [int(nx, c_int)], 1_c_int, int(nx, c_int), &
+                                               pg%spec, [int(nh, c_int)], 1_c_int, int(nh, c_int), FFTW_ESTIMATE)
+      pg%rows_backward = fftw_plan_many_dft_c2r(1_c_int, [int(nx, c_int)], int(pg%rows, c_int), &
+                                                pg%spec, [int(nh, c_int)], 1_c_int, int(nh, c_int), &
+                                                pg%grid, [int(nx, c_int)], 1_c_int, int(nx, c_int), FFTW_ESTIMATE)
+      ! spectrum rows 1..nh: complex transforms of length ny, from spec
+      ! (stride nh) to cols (contiguous) and back
+      pg%columns_forward = fftw_plan_many_dft(1_c_int, [int(ny, c_int)], int(nh, c_int), &
+                                              pg%spec, [int(ny, c_int)], int(nh, c_int), 1_c_int, &
+                                              pg%cols, [int(ny, c_int)], 1_c_int, int(ny, c_int), &
+                                              FFTW_FORWARD, FFTW_ESTIMATE)
+      pg%columns_backward = fftw_plan_many_dft(1_c_int, [int(ny, c_int)], int(nh, c_int), &
+                                               pg%cols, [int(ny, c_int)], 1_c_int, int(ny, c_int), &
+                                               pg%spec, [int(ny, c_int)], int(nh, c_int), 1_c_int, &
+                                               FFTW_BACKWARD, FFTW_ESTIMATE)
+    end if
     !$omp end critical (kcreep_fftw_planner)
   end subroutine create_periodic_grid
 
@@ -156,6 +188,15 @@ contains
     !$omp critical (kcreep_fftw_planner)
     call fftw_destroy_plan(pg%forward)
     call fftw_destroy_plan(pg%backward)
+    if (pg%rows > 0) then
+      call fftw_free(pg%p_cols)
+      pg%p_cols = c_null_ptr
+      nullify (pg%cols)
+      call fftw_destroy_plan(pg%rows_forward)
+      call fftw_destroy_plan(pg%rows_backward)
+      call fftw_destroy_plan(pg%columns_forward)
+      call fftw_destroy_plan(pg%columns_backward)
+    end if
     !$omp end critical (kcreep_fftw_planner)
     pg%p_real = c_null_ptr
     pg%p_spec = c_null_ptr
@@ -163,12 +204,30 @@ contains
   end subroutine destroy_periodic_grid
 
   !> y = the periodic convolution of x (zero beyond its mx x my cells) with
-  !> the kernel of (unnormalised) real spectrum `spectrum`, on those cells.
+  !> the kernel of (unnormalised) real spectrum `spectrum`, on those cells;
+  !> the spectrum (nx/2 + 1, ny), or (ny, nx/2 + 1) on a pruned grid.
   subroutine convolve(pg, spectrum, x, y)
     type(periodic_grid_t), intent(inout) :: pg
     real(real64), intent(in) :: spectrum(:, :), x(:, :)
     real(real64), intent(out) :: y(:, :)
     integer :: j
+    if (pg%rows > 0) then
+      if (size(x, 2) > pg%rows .or. size(y, 2) > pg%rows) error stop 'convolve: beyond the pruned columns'
+      pg%grid(:, 1:pg%rows) = 0
+      do j = 1, size(x, 2)
+        pg%grid(1:size(x, 1), j) = x(:, j)
+      end do
+      call fftw_execute_dft_r2c(pg%rows_forward, pg%grid, pg%spec)
+      pg%spec(:, pg%rows + 1:) = 0   ! zero columns: zero spectrum
+      call fftw_execute_dft(pg%columns_forward, pg%spec, pg%cols)
+      pg%cols = pg%cols * spectrum
+      call fftw_execute_dft(pg%columns_backward, pg%cols, pg%spec)
+      call fftw_execute_dft_c2r(pg%rows_backward, pg%spec, pg%grid)
+      do j = 1, size(y, 2)
+        y(:, j) = pg%grid(1:size(y, 1), j)
+      end do
+      return
+    end if
     pg%grid = 0
     do j = 1, size(x, 2)
       pg%grid(1:size(x, 1), j) = x(:, j)
@@ -181,19 +240,26 @@ contains
     end do
   end subroutine convolve
 
-  !> threads: FFTW threads for the transforms, 0 automatic (kcreep_threads)
-  subroutine create_normal_operator(mx, my, dx, dy, compliance, threads, op)
+  !> threads: FFTW threads for the transforms, 0 automatic (kcreep_threads);
+  !> offsets: normal_offset_table of at least mx x my (else made here).
+  subroutine create_normal_operator(mx, my, dx, dy, compliance, threads, op, offsets)
     integer, intent(in) :: mx, my, threads
     real(real64), intent(in) :: dx, dy, compliance
     type(normal_operator_t), intent(out) :: op
+    real(real64), intent(in), optional :: offsets(0:, 0:)
     real(real64), allocatable :: table(:, :)
     integer :: i, j, nx, ny
 
     nx = fast_even_size(2 * mx)
     ny = fast_even_size(2 * my)
     op%threads = team_size(threads, int(nx, int64) * ny, cells_per_thread_normal)
-    call create_periodic_grid(nx, ny, op%threads, op%fft)
-    call normal_offset_table(mx, my, dx, dy, compliance, table)
+    call create_periodic_grid(nx, ny, op%threads, op%fft, rows=my)
+    if (present(offsets)) then
+      allocate (table(0:mx - 1, 0:my - 1))
+      table(:, :) = offsets(0:mx - 1, 0:my - 1)
+    else
+      call normal_offset_table(mx, my, dx, dy, compliance, table)
+    end if
     op%fft%grid = 0
     do j = -(my - 1), my - 1
       do i = -(mx - 1), mx - 1
@@ -201,7 +267,7 @@ contains
       end do
     end do
     call fftw_execute_dft_r2c(op%fft%forward, op%fft%grid, op%fft%spec)
-    op%kernel = real(op%fft%spec, real64) / (real(nx, real64) * ny)
+    op%kernel = transpose(real(op%fft%spec, real64)) / (real(nx, real64) * ny)   ! by column: pruned
   end subroutine create_normal_operator
 
   subroutine destroy_normal_operator(op)
@@ -218,12 +284,12 @@ contains
     call convolve(op%fft, op%kernel, p, u)
   end subroutine apply_normal_operator
 
-  !> The preconditioner of an mx x my grid (normal_preconditioner_t).
-  subroutine create_normal_preconditioner(mx, my, dx, dy, compliance, threads, pre)
+  !> The preconditioner of an mx x my grid (normal_preconditioner_t); table:
+  !> normal_offset_table of preconditioner_offsets(mx, my) cells.
+  subroutine create_normal_preconditioner(mx, my, threads, table, pre)
     integer, intent(in) :: mx, my, threads
-    real(real64), intent(in) :: dx, dy, compliance
+    real(real64), intent(in) :: table(0:, 0:)
     type(normal_preconditioner_t), intent(out) :: pre
-    real(real64), allocatable :: table(:, :)
     real(real64) :: smallest
     integer :: i, j, nx, ny, fft_threads
 
@@ -232,7 +298,6 @@ contains
     fft_threads = threads
     call create_periodic_grid(nx, ny, fft_threads, pre%fft)
     ! the kernel at the offset of each periodic cell's nearest image
-    call normal_offset_table(max(mx, nx / 2 + 1), max(my, ny / 2 + 1), dx, dy, compliance, table)
     do j = 0, ny - 1
       do i = 0, nx - 1
         pre%fft%grid(i + 1, j + 1) = table(min(i, nx - i), min(j, ny - j))
@@ -245,6 +310,14 @@ contains
     smallest = 1e-6_real64 * maxval(pre%inverse)
     pre%inverse = 1 / (max(pre%inverse, smallest) * (real(nx, real64) * ny))
   end subroutine create_normal_preconditioner
+
+  !> The offsets the preconditioner of an mx x my grid needs, each way: the
+  !> grid's own and its periodic grid's half (the operator's are a corner).
+  pure function preconditioner_offsets(mx, my) result(n)
+    integer, intent(in) :: mx, my
+    integer :: n(2)
+    n = [max(mx, fast_even_size(mx) / 2 + 1), max(my, fast_even_size(my) / 2 + 1)]
+  end function preconditioner_offsets
 
   subroutine destroy_normal_preconditioner(pre)
     type(normal_preconditioner_t), intent(inout) :: pre
@@ -276,7 +349,8 @@ contains
 
     type(normal_operator_t) :: op
     type(normal_preconditioner_t) :: pre
-    real(real64), allocatable :: p(:, :), g(:, :), t(:, :), u(:, :), r(:, :), z(:, :)
+    real(real64), allocatable :: p(:, :), g(:, :), t(:, :), u(:, :), r(:, :), z(:, :), offsets(:, :)
+    integer :: n_offsets(2)
     logical, allocatable :: active(:, :)
     logical :: force_given, restart, fresh, changed, started
     integer :: since_fresh
@@ -349,8 +423,12 @@ contains
       if (force_given) p = p * (fn / (cell_area * sum(p)))
     end if
 
-    call create_normal_operator(mx, my, dx, dy, compliance, options%threads, op)
-    call create_normal_preconditioner(mx, my, dx, dy, compliance, op%threads, pre)
+    ! one offset table for the operator and the preconditioner
+    n_offsets = preconditioner_offsets(mx, my)
+    call normal_offset_table(n_offsets(1), n_offsets(2), dx, dy, compliance, offsets)
+    call create_normal_operator(mx, my, dx, dy, compliance, options%threads, op, offsets)
+    call create_normal_preconditioner(mx, my, op%threads, offsets, pre)
+    deallocate (offsets)
     if (.not. force_given .and. .not. started) then
       ! first estimate: the best multiple of the interpenetration
       call apply_normal_operator(op, g, u)

@@ -14,7 +14,9 @@ Checks:
    delta_left(y) = delta_right(-y) (the left wheel runs as the mirrored side
    with the shift and yaw negated), roll and z symmetric; lambda_eq (exact
    integral of delta_r linear between the shifts) against a direct numerical
-   integral of the first harmonic of delta_r(A sin t) over t;
+   integral of the first harmonic of delta_r(A sin t) over t; the same table
+   with the left profiles given as files (each left state computed, not
+   shared with the right wheel's or the table's);
  - the table's columns by name, and the table's own rows: r_right at each
    shift is the table's r_wheel (one patch); a hollow tread with two patches
    (as tests/scenario/test_wheel_rail.py) gives the Fn-weighted radius and
@@ -142,6 +144,21 @@ for y in ys:
     b1 = sum(interp(y * math.sin(2 * math.pi * (k + 0.5) / n)) * math.sin(2 * math.pi * (k + 0.5) / n)
              for k in range(n)) * 2 / n
     kc.close(by[y]["lambda_eq"], b1 / (2 * y), 1e-6, f"S1002, A = {y}: lambda_eq against the numerical harmonic")
+
+# --- each wheel state computed once: the left wheel on the right profiles at y
+# is the right wheel's computation at -y (zero yaw), and the table's own states
+# are not computed again. The same wheelset with the left profiles given as
+# files of their own (every left state computed anew, as before) must give the
+# same table, number for number; the shifts asymmetric, so that some states
+# come from the table and some not.
+MIX = S1002.split(", shifts")[0] + ", shifts = -1 0 0.5 2 3"
+run("s1002_mix", MIX)
+run("s1002_own", MIX + f", left_wheel_file = '{profiles}/MBench_S1002_v3.prw', "
+    f"left_rail_file = '{profiles}/MBench_UIC60_v3.prr'")
+mix = kc.read_table(os.path.join(folder, "s1002_mix.ws"))
+own = kc.read_table(os.path.join(folder, "s1002_own.ws"))
+kc.check(mix == own and len(mix) == 5, "S1002, shifts -1 0 0.5 2 3: the wheelset with the left profiles given "
+         "(each left state computed) is the one with the states shared, number for number")
 
 # --- against CONTACT (../shared/contact-wr, 70 kN, shifts -6 to 6 every 2 mm):
 # CONTACT's rolling radius r = R0 (2 + CKSI) / (2 - CKSI) (geom46's finding:
