@@ -2,6 +2,7 @@
 """Benchmark of creep forces inside a multibody time step (issue 48), one thread.
 
   scripts/bench_loop.py [--steps 200] [--points 10000] [--repeat 3] [--doc docs/performance.md]
+  scripts/bench_loop.py --builds [--vs OTHER_SOURCE_DIR] [--repeat 3]
 
 On the 20 x 20-cell Hertzian circle (316 cells, Fn = 1, mu = 0.3) along a
 slowly varying creepage history of --steps steps (xi = 2e-3 sin 3t,
@@ -18,10 +19,21 @@ The distance from the exact forces, max |F - F_exact| / (mu Fn) with
 F = (Fx, Fy), is taken along the history. Holds /tmp/kcreep-bench.lock (one
 benchmark at a time on the machine); with --doc, writes the table into the
 section `loop-bench` of that page. Needs numpy.
+
+--builds: the fast model's build time on the Hertzian circle on 20 x 20
+cells (316), the ellipses a/b = 5 (400) and 1.5 (840), the L-shaped mask on
+24 x 24 (432) and 36 x 36 (972) cells (the ellipses are their own mirror
+images in y, which halves their build; the L-shapes are not), and rolling
+one call per step along the history above, for this repository's build and,
+with --vs, another source tree's build beside it (each in a process of its
+own, in turn, --repeat times; medians and the ratio new / old).
 """
 import argparse
 import fcntl
+import json
 import os
+import statistics
+import subprocess
 import sys
 import time
 
@@ -46,6 +58,83 @@ def best(f, repeat):
     return min(times), out
 
 
+CHILD = r"""
+import json, os, sys, time
+os.environ["OMP_NUM_THREADS"] = "1"
+sys.path.insert(0, os.path.join(sys.argv[1], "python"))
+import numpy as np
+import kcreep
+
+def ellipse(a, b, cells_a):
+    dx = 2 * a / cells_a
+    ny = max(2, int(round(2 * b / dx)))
+    x = (np.arange(cells_a) + 0.5) * dx - a
+    y = (np.arange(ny) + 0.5) * dx - ny * dx / 2
+    X, Y = np.meshgrid(x, y)
+    r2 = (X / a) ** 2 + (Y / b) ** 2
+    return r2 < 1, np.sqrt(np.clip(1 - r2, 0, None)), dx, x[0], y[0]
+
+def l_shape(m):
+    x = (np.arange(m) + 0.5) / m * 2 - 1
+    X, Y = np.meshgrid(x, x)
+    p = np.sqrt(np.clip(1 - X ** 2, 0, None) * np.clip(1 - Y ** 2, 0, None))
+    return (X < 0) | (Y < 0), p, 2.0 / m, x[0], x[0]
+
+out = {}
+cases = [("circle", ellipse(1, 1, 20)), ("a/b = 5", ellipse(1, 0.2, 50)), ("a/b = 1.5", ellipse(1.5, 1, 40)),
+         ("L 24", l_shape(24)), ("L 36", l_shape(36))]
+for name, (inside, p, d, x0, y0) in cases:
+    p = np.where(inside, p, 0.0)
+    p /= p.sum() * d * d
+    s = kcreep.Solver(threads=1, refine_grid=False, estimate_error=False, target_error=0)
+    r = s.solve_mask(inside, d, d, x0, y0)
+    t0 = time.process_time()
+    s.fast_forces(0.3, [[1e-3, 0, 0]], p)
+    out[f"build, {name} ({r.n} cells) [s]"] = time.process_time() - t0
+inside, p, d, x0, y0 = ellipse(1, 1, 20)
+p = np.where(inside, p, 0.0)
+p /= p.sum() * d * d
+t = np.linspace(0, 1, 200)
+history = np.c_[2e-3 * np.sin(3 * t), 1e-3 * np.cos(2 * t), 0.2 * np.sin(t)]
+s = kcreep.Solver(threads=1, refine_grid=False, estimate_error=False, target_error=0)
+s.solve_mask(inside, d, d, x0, y0)
+s.rolling(0.3, [history[0]], p)
+t0 = time.process_time()
+for c in history:
+    s.rolling(0.3, [c], p)
+out["rolling one call per step, circle [ms]"] = (time.process_time() - t0) / len(history) * 1e3
+print(json.dumps(out))
+"""
+
+
+def measure(root):
+    run = subprocess.run([sys.executable, "-c", CHILD, root], capture_output=True, text=True)
+    if run.returncode != 0:
+        sys.exit(f"bench_loop: the run on {root} failed: {run.stderr.strip().splitlines()[-1:]}")
+    return json.loads(run.stdout.strip().splitlines()[-1])
+
+def build_times(args):
+    """--builds: the build times side by side (see the docstring)."""
+    roots = [HERE] + ([os.path.abspath(args.vs)] if args.vs else [])
+    for root in roots:
+        if not os.path.exists(os.path.join(root, "build", "libkcreep.so")):
+            sys.exit(f"bench_loop: no build/libkcreep.so in {root} (build it: scripts/setup.sh)")
+    runs = {root: [] for root in roots}
+    with open("/tmp/kcreep-bench.lock", "w") as lock:
+        fcntl.flock(lock, fcntl.LOCK_EX)
+        for _ in range(args.repeat):
+            for root in roots:
+                runs[root].append(measure(root))
+    print(f"one thread, CPU time, medians of {args.repeat}" + (f"; old: {roots[1]}" if args.vs else ""))
+    for k in runs[HERE][0]:
+        new = statistics.median(r[k] for r in runs[HERE])
+        if args.vs:
+            old = statistics.median(r[k] for r in runs[roots[1]])
+            print(f"  {k:48s} new {new:7.3f}  old {old:7.3f}  new/old {new / old:5.2f}")
+        else:
+            print(f"  {k:48s} {new:7.3f}")
+
+
 def main():
     ap = argparse.ArgumentParser(description=__doc__.split("\n")[0], formatter_class=argparse.RawDescriptionHelpFormatter,
                                  epilog=__doc__)
@@ -53,7 +142,12 @@ def main():
     ap.add_argument("--points", type=int, default=10000)
     ap.add_argument("--repeat", type=int, default=3)
     ap.add_argument("--doc", default=None)
+    ap.add_argument("--builds", action="store_true", help="the fast model's build times (and rolling warm) instead")
+    ap.add_argument("--vs", default=None, help="with --builds: another source tree with a build, beside this one")
     args = ap.parse_args()
+    if args.builds:
+        build_times(args)
+        return
     os.environ["OMP_NUM_THREADS"] = "1"
     sys.path.insert(0, os.path.join(HERE, "python"))
     import numpy as np
