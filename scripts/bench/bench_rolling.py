@@ -54,7 +54,8 @@ def main():
                 r = subprocess.run([args.kcreep, path], cwd=tmp, env=env, capture_output=True, text=True)
                 if r.returncode != 0:
                     sys.exit(f'bench_rolling: kcreep failed on {name}: {r.stderr.strip()}')
-                m = re.search(r'exact rolling: (\d+) creepage points.*?,\s+([0-9.]+) s; Newton steps per point\s+([0-9.]+), '
+                m = re.search(r'exact rolling: (\d+) creepage points.*?,\s+([0-9.]+) s(?: on \d+ thread\(s\))?; '
+                              r'Newton steps per point\s+([0-9.]+), '
                               r'operator products per point\s+([0-9.]+)', r.stdout)
                 res = re.search(r'largest residual max\|F\|/max\(mu pn\)\s+(\S+);', r.stdout).group(1)
                 cells = re.search(r'grid (\d+) x (\d+), (\d+) cells', r.stdout).group(3)
