@@ -40,13 +40,35 @@ import time
 HERE = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 
 
-def circle(np, m=20):
+def ellipse(np, a, b, cells_a):
+    """A Hertzian ellipse (semi-axes a, b) on square cells, cells_a across 2a: inside,
+    its pressure for Fn = 1, the cell size and the grid's first cell centres."""
+    d = 2 * a / cells_a
+    ny = max(2, int(round(2 * b / d)))
+    x = (np.arange(cells_a) + 0.5) * d - a
+    y = (np.arange(ny) + 0.5) * d - ny * d / 2
+    X, Y = np.meshgrid(x, y)
+    r2 = (X / a) ** 2 + (Y / b) ** 2
+    return normalised(np, r2 < 1, np.sqrt(np.clip(1 - r2, 0, None)), d, x[0], y[0])
+
+
+def l_shape(np, m):
+    """The L-shaped mask on m x m cells of [-1, 1]^2 (three quarters), pressure as ellipse's."""
     x = (np.arange(m) + 0.5) / m * 2 - 1
     X, Y = np.meshgrid(x, x)
-    inside = X ** 2 + Y ** 2 < 1
-    p = np.where(inside, np.sqrt(np.clip(1 - X ** 2 - Y ** 2, 0, None)), 0.0)
-    d = 2.0 / m
-    return inside, p / (p.sum() * d * d), d, x[0]
+    p = np.sqrt(np.clip(1 - X ** 2, 0, None) * np.clip(1 - Y ** 2, 0, None))
+    return normalised(np, (X < 0) | (Y < 0), p, 2.0 / m, x[0], x[0])
+
+
+def normalised(np, inside, p, d, x0, y0):
+    p = np.where(inside, p, 0.0)
+    return inside, p / (p.sum() * d * d), d, x0, y0
+
+
+def history(np, steps):
+    """The slowly varying creepage history (xi, eta, phi) of the time step."""
+    t = np.linspace(0, 1, steps)
+    return np.c_[2e-3 * np.sin(3 * t), 1e-3 * np.cos(2 * t), 0.2 * np.sin(t)]
 
 
 def best(f, repeat):
@@ -58,60 +80,41 @@ def best(f, repeat):
     return min(times), out
 
 
-CHILD = r"""
-import json, os, sys, time
-os.environ["OMP_NUM_THREADS"] = "1"
-sys.path.insert(0, os.path.join(sys.argv[1], "python"))
-import numpy as np
-import kcreep
-
-def ellipse(a, b, cells_a):
-    dx = 2 * a / cells_a
-    ny = max(2, int(round(2 * b / dx)))
-    x = (np.arange(cells_a) + 0.5) * dx - a
-    y = (np.arange(ny) + 0.5) * dx - ny * dx / 2
-    X, Y = np.meshgrid(x, y)
-    r2 = (X / a) ** 2 + (Y / b) ** 2
-    return r2 < 1, np.sqrt(np.clip(1 - r2, 0, None)), dx, x[0], y[0]
-
-def l_shape(m):
-    x = (np.arange(m) + 0.5) / m * 2 - 1
-    X, Y = np.meshgrid(x, x)
-    p = np.sqrt(np.clip(1 - X ** 2, 0, None) * np.clip(1 - Y ** 2, 0, None))
-    return (X < 0) | (Y < 0), p, 2.0 / m, x[0], x[0]
-
-out = {}
-cases = [("circle", ellipse(1, 1, 20)), ("a/b = 5", ellipse(1, 0.2, 50)), ("a/b = 1.5", ellipse(1.5, 1, 40)),
-         ("L 24", l_shape(24)), ("L 36", l_shape(36))]
-for name, (inside, p, d, x0, y0) in cases:
-    p = np.where(inside, p, 0.0)
-    p /= p.sum() * d * d
+def measure_builds(root):
+    """--measure-builds ROOT: the --builds figures of ROOT's build (run in a process of
+    its own, so that it loads ROOT's libkcreep.so), printed as one JSON line."""
+    os.environ["OMP_NUM_THREADS"] = "1"
+    sys.path.insert(0, os.path.join(root, "python"))
+    import numpy as np
+    import kcreep
+    out = {}
+    cases = [("circle", ellipse(np, 1, 1, 20)), ("a/b = 5", ellipse(np, 1, 0.2, 50)),
+             ("a/b = 1.5", ellipse(np, 1.5, 1, 40)), ("L 24", l_shape(np, 24)), ("L 36", l_shape(np, 36))]
+    for name, (inside, p, d, x0, y0) in cases:
+        s = kcreep.Solver(threads=1, refine_grid=False, estimate_error=False, target_error=0)
+        r = s.solve_mask(inside, d, d, x0, y0)
+        t0 = time.process_time()
+        s.fast_forces(0.3, [[1e-3, 0, 0]], p)
+        out[f"build, {name} ({r.n} cells) [s]"] = time.process_time() - t0
+    inside, p, d, x0, y0 = cases[0][1]
+    steps = history(np, 200)
     s = kcreep.Solver(threads=1, refine_grid=False, estimate_error=False, target_error=0)
-    r = s.solve_mask(inside, d, d, x0, y0)
+    s.solve_mask(inside, d, d, x0, y0)
+    s.rolling(0.3, steps[:1], p)
     t0 = time.process_time()
-    s.fast_forces(0.3, [[1e-3, 0, 0]], p)
-    out[f"build, {name} ({r.n} cells) [s]"] = time.process_time() - t0
-inside, p, d, x0, y0 = ellipse(1, 1, 20)
-p = np.where(inside, p, 0.0)
-p /= p.sum() * d * d
-t = np.linspace(0, 1, 200)
-history = np.c_[2e-3 * np.sin(3 * t), 1e-3 * np.cos(2 * t), 0.2 * np.sin(t)]
-s = kcreep.Solver(threads=1, refine_grid=False, estimate_error=False, target_error=0)
-s.solve_mask(inside, d, d, x0, y0)
-s.rolling(0.3, [history[0]], p)
-t0 = time.process_time()
-for c in history:
-    s.rolling(0.3, [c], p)
-out["rolling one call per step, circle [ms]"] = (time.process_time() - t0) / len(history) * 1e3
-print(json.dumps(out))
-"""
+    for c in steps:
+        s.rolling(0.3, [c], p)
+    out["rolling one call per step, circle [ms]"] = (time.process_time() - t0) / len(steps) * 1e3
+    print(json.dumps(out))
 
 
 def measure(root):
-    run = subprocess.run([sys.executable, "-c", CHILD, root], capture_output=True, text=True)
+    run = subprocess.run([sys.executable, os.path.abspath(__file__), "--measure-builds", root],
+                         capture_output=True, text=True)
     if run.returncode != 0:
         sys.exit(f"bench_loop: the run on {root} failed: {run.stderr.strip().splitlines()[-1:]}")
     return json.loads(run.stdout.strip().splitlines()[-1])
+
 
 def build_times(args):
     """--builds: the build times side by side (see the docstring)."""
@@ -144,7 +147,11 @@ def main():
     ap.add_argument("--doc", default=None)
     ap.add_argument("--builds", action="store_true", help="the fast model's build times (and rolling warm) instead")
     ap.add_argument("--vs", default=None, help="with --builds: another source tree with a build, beside this one")
+    ap.add_argument("--measure-builds", default=None, help=argparse.SUPPRESS)
     args = ap.parse_args()
+    if args.measure_builds:
+        measure_builds(args.measure_builds)
+        return
     if args.builds:
         build_times(args)
         return
@@ -154,32 +161,31 @@ def main():
     import kcreep
     from kcreep.docsection import replace_section
     mu, n = 0.3, args.steps
-    inside, p, d, x0 = circle(np)
-    t = np.linspace(0, 1, n)
-    history = np.c_[2e-3 * np.sin(3 * t), 1e-3 * np.cos(2 * t), 0.2 * np.sin(t)]
+    inside, p, d, x0, y0 = ellipse(np, 1, 1, 20)
+    steps = history(np, n)
     rng = np.random.default_rng(1)
     random = rng.normal(size=(args.points, 3)) * [2e-3, 2e-3, 0.2]
 
     def solver():
         s = kcreep.Solver(threads=1, refine_grid=False, estimate_error=False, target_error=0)
-        s.solve_mask(inside, d, d, x0, x0)
+        s.solve_mask(inside, d, d, x0, y0)
         return s
 
     with open("/tmp/kcreep-bench.lock", "w") as lock:
         fcntl.flock(lock, fcntl.LOCK_EX)
         s = solver()
-        exact, _ = s.rolling(mu, history, p)
-        t_batch, _ = best(lambda: s.rolling(mu, history, p), args.repeat)
-        t_single, single = best(lambda: np.array([s.rolling(mu, [c], p)[0][0] for c in history]), args.repeat)
+        exact, _ = s.rolling(mu, steps, p)
+        t_batch, _ = best(lambda: s.rolling(mu, steps, p), args.repeat)
+        t_single, single = best(lambda: np.array([s.rolling(mu, [c], p)[0][0] for c in steps]), args.repeat)
         builds = []
         for _ in range(args.repeat):
             f = solver()
             t0 = time.process_time()
-            f.fast_forces(mu, history[:1], p)
+            f.fast_forces(mu, steps[:1], p)
             builds.append(time.process_time() - t0)
-        t_fast_single, fast = best(lambda: np.array([f.fast_forces(mu, [c], p)[0] for c in history]), args.repeat)
+        t_fast_single, fast = best(lambda: np.array([f.fast_forces(mu, [c], p)[0] for c in steps]), args.repeat)
         t_fast_many, _ = best(lambda: f.fast_forces(mu, random, p), args.repeat)
-        t_fastsim, (fsim, _) = best(lambda: s.fastsim(mu, history, p), args.repeat)
+        t_fastsim, (fsim, _) = best(lambda: s.fastsim(mu, steps, p), args.repeat)
 
     def distance(forces):
         return 100 * np.hypot(*(forces - exact)[:, :2].T).max() / mu
