@@ -21,8 +21,8 @@ module kcreep_rolling_curve
   use kcreep_fastsim_forces, only: fastsim_result_t
   use kcreep_creep_curve, only: creep_map_t
   use kcreep_rolling_solve, only: rolling_solver_t, rolling_options_t, rolling_info_t, create_rolling_solver, &
-                                  destroy_rolling_solver, solve_rolling, rolling_residual, cell_stick, cell_slip, &
-                                  default_rolling_tolerance
+                                  destroy_rolling_solver, solve_rolling, rolling_residual, project_to_bounds, &
+                                  cell_stick, cell_slip, default_rolling_tolerance
   implicit none
   private
   public :: rolling_request_t, rolling_point_t, rolling_curve, default_rolling_tolerance, cell_stick, cell_slip
@@ -255,7 +255,7 @@ contains
       ! the caller's start is the start (the fast model's build: its neighbours' solutions
       ! extrapolated, the best start at 88 % of its points): no residual spent on others
       p = start
-      call project(p)
+      call project_to_bounds(bound, p)
     else if (state%kept >= 1) then
       guess = mu * state%p1(:, 1)
       call try(guess)
@@ -265,13 +265,13 @@ contains
       if (dot_product(d, d) > 0) then
         alpha = dot_product(c1 - state%creep1(:, 1), d) / dot_product(d, d)
         guess = mu * (state%p1(:, 1) + alpha * (state%p1(:, 1) - state%p1(:, 2)))
-        call project(guess)
+        call project_to_bounds(bound, guess)
         call try(guess)
       end if
     end if
     if (present(unit_traction) .and. .not. present(start)) then
       guess = cr(1) * unit_traction(:, 1) + cr(2) * unit_traction(:, 2) + cr(3) * unit_traction(:, 3)
-      call project(guess)
+      call project_to_bounds(bound, guess)
       call try(guess)
     end if
     options%tolerance = tolerance
@@ -296,19 +296,6 @@ contains
         p = start
       end if
     end subroutine try
-
-    pure subroutine project(v)
-      real(real64), intent(inout) :: v(:)
-      real(real64) :: a
-      integer :: i
-      do i = 1, n
-        a = hypot(v(i), v(n + i))
-        if (a > bound(i) .and. a > 0) then
-          v(i) = v(i) * bound(i) / a
-          v(n + i) = v(n + i) * bound(i) / a
-        end if
-      end do
-    end subroutine project
 
   end subroutine solve_point
 

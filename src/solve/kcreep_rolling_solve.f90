@@ -27,7 +27,7 @@ module kcreep_rolling_solve
   implicit none
   private
   public :: rolling_solver_t, rolling_options_t, rolling_info_t, create_rolling_solver, destroy_rolling_solver, &
-            solve_rolling, rolling_residual, cell_stick, cell_slip, default_rolling_tolerance
+            solve_rolling, rolling_residual, project_to_bounds, cell_stick, cell_slip, default_rolling_tolerance
 
   integer, parameter :: cell_stick = 1, cell_slip = 2   !< CONTACT's IGS: 1 adhesion, 2 slip
 
@@ -222,7 +222,7 @@ contains
     solver%jac%products = 0
     gscale = max(maxval(bound), tiny(1.0_real64))
     ! p must start inside the bounds for the residual to mean what it says
-    call project(p)
+    call project_to_bounds(bound, p)
     call rolling_residual(solver, w, bound, p, f, q, fnorm, fmax)
     do
       info%residual = fmax / gscale
@@ -275,21 +275,6 @@ contains
 
   contains
 
-    subroutine project(v)
-      real(real64), intent(inout) :: v(:)
-      real(real64) :: a
-      integer :: k
-      do k = 1, n
-        a = sqrt(v(k)**2 + v(n + k)**2)
-        if (a > bound(k)) then
-          if (a > 0) then
-            v(k) = v(k) * bound(k) / a
-            v(n + k) = v(n + k) * bound(k) / a
-          end if
-        end if
-      end do
-    end subroutine project
-
     !> P' per cell at q.
     subroutine set_derivative(qq)
       real(real64), intent(in) :: qq(:)
@@ -313,6 +298,22 @@ contains
     end subroutine set_derivative
 
   end subroutine solve_rolling
+
+  !> Tractions v (2n: px, py) scaled back onto the disc |p_i| <= bound_i where they lie outside it.
+  pure subroutine project_to_bounds(bound, v)
+    real(real64), intent(in) :: bound(:)
+    real(real64), intent(inout) :: v(:)
+    real(real64) :: a
+    integer :: k, n
+    n = size(bound)
+    do k = 1, n
+      a = sqrt(v(k)**2 + v(n + k)**2)
+      if (a > bound(k) .and. a > 0) then
+        v(k) = v(k) * bound(k) / a
+        v(n + k) = v(n + k) * bound(k) / a
+      end if
+    end do
+  end subroutine project_to_bounds
 
   !> y = J x = x - P' (x + rho A x) for each column.
   subroutine apply_jacobian(self, x, y, columns)
