@@ -103,6 +103,8 @@ contains
               here(2 * n, ns - 1))
     do i = 0, nt
       stride = fast_model_ring_stride(fast%model, i)
+      ! the neighbour of a ring's first ray: the previous ring's first
+      if (i > 0) last_ray = row_first
       do j = 0, np - 1
         if ((i == 0 .and. j > 0) .or. (i == nt .and. j >= np / 2) .or. mod(j, stride) /= 0) cycle
         ! a patch symmetric about y = 0: F(-z1, z2, z3) = (-Fx, Fy, Mz)(z1, z2, z3), the mirror
@@ -116,19 +118,15 @@ contains
         call fast_model_ray(fast%model, i, j, creep, dir)
         state%kept = 0
         do m = 1, ns - 1
-          ! start: the neighbouring ray's step from s(m - 1) to s(m) added to this ray's
-          ! point at s(m - 1) (the neighbour: the previous ray of the ring, or the
-          ! previous ring's first); at m = 1 the neighbour's point itself
-          if (j > 0 .and. m > 1) then
-            call point(creep(:, m), here(:, m - 1) + last_ray(:, m) - last_ray(:, m - 1))
-          else if (j > 0) then
-            call point(creep(:, m), last_ray(:, m))
-          else if (i > 0 .and. m > 1) then
-            call point(creep(:, m), here(:, m - 1) + row_first(:, m) - row_first(:, m - 1))
-          else if (i > 0) then
-            call point(creep(:, m), row_first(:, m))
-          else
+          ! start: the neighbouring ray's (last_ray's) step from s(m - 1) to s(m) added to
+          ! this ray's point at s(m - 1); at m = 1 the neighbour's point itself; the pole
+          ! ray (i = 0) has no neighbour
+          if (i == 0) then
             call point(creep(:, m))
+          else if (m == 1) then
+            call point(creep(:, m), last_ray(:, m))
+          else
+            call point(creep(:, m), here(:, m - 1) + last_ray(:, m) - last_ray(:, m - 1))
           end if
           if (status%failed()) return
           v(:, i, j, m) = forces(p)
