@@ -127,17 +127,11 @@ contains
     c_wheel_rail = begin(handle, h)
     if (c_wheel_rail /= status_ok) return
     h%wheel_rail_done = .false.
-    if (.not. (c_associated(shifts) .and. c_associated(rows))) then
-      call fail(h%last, exit_bad_input, 'kcreep_wheel_rail: shifts or rows is NULL')
-    else if (n_shifts < 1 .or. n_shifts > max_wheel_rail_shifts) then
-      call fail(h%last, exit_bad_input, 'kcreep_wheel_rail: n_shifts = '//itoa(int(n_shifts))//' (allowed: 1 to '// &
-                itoa(max_wheel_rail_shifts)//')')
-    else if (.not. (allocated(h%wheel_rail%wheel_y) .and. allocated(h%wheel_rail%rail_y))) then
-      call fail(h%last, exit_bad_input, 'kcreep_wheel_rail: no profiles (call kcreep_set_profiles first)')
-    else if ((vertical_force > 0) .eqv. (approach > 0)) then
+    call check_table_call(h, 'kcreep_wheel_rail', shifts, rows, n_shifts)
+    if (.not. h%last%failed() .and. ((vertical_force > 0) .eqv. (approach > 0))) &
       call fail(h%last, exit_bad_input, 'kcreep_wheel_rail: vertical_force = '//rtoa(real(vertical_force, wp))// &
                 ', approach = '//rtoa(real(approach, wp))//' (allowed: exactly one > 0)')
-    else
+    if (.not. h%last%failed()) then
       call c_f_pointer(shifts, values, [n_shifts])
       call c_f_pointer(rows, n_rows)
       n_rows = 0
@@ -254,6 +248,23 @@ contains
     c_set_left_profiles = finish(h)
   end function c_set_left_profiles
 
+  !> The checks kcreep_wheel_rail and kcreep_wheelset (who) share: shifts and rows given,
+  !> 1 <= n_shifts <= max_wheel_rail_shifts, the handle's profiles set.
+  subroutine check_table_call(h, who, shifts, rows, n_shifts)
+    type(handle_t), intent(inout) :: h
+    character(len=*), intent(in) :: who
+    type(c_ptr), intent(in) :: shifts, rows
+    integer(c_int), intent(in) :: n_shifts
+    if (.not. (c_associated(shifts) .and. c_associated(rows))) then
+      call fail(h%last, exit_bad_input, who//': shifts or rows is NULL')
+    else if (n_shifts < 1 .or. n_shifts > max_wheel_rail_shifts) then
+      call fail(h%last, exit_bad_input, who//': n_shifts = '//itoa(int(n_shifts))//' (allowed: 1 to '// &
+                itoa(max_wheel_rail_shifts)//')')
+    else if (.not. (allocated(h%wheel_rail%wheel_y) .and. allocated(h%wheel_rail%rail_y))) then
+      call fail(h%last, exit_bad_input, who//': no profiles (call kcreep_set_profiles first)')
+    end if
+  end subroutine check_table_call
+
   !> The wheelset table of the handle's profiles and track (docs/wheel_rail.md,
   !> Wheelset) for n_shifts lateral shifts (mm) at yaw (rad), each wheel
   !> carrying vertical_force (N) > 0; rows: one per shift, read with
@@ -270,14 +281,8 @@ contains
     c_wheelset = begin(handle, h)
     if (c_wheelset /= status_ok) return
     h%wheelset_done = .false.
-    if (.not. (c_associated(shifts) .and. c_associated(rows))) then
-      call fail(h%last, exit_bad_input, 'kcreep_wheelset: shifts or rows is NULL')
-    else if (n_shifts < 1 .or. n_shifts > max_wheel_rail_shifts) then
-      call fail(h%last, exit_bad_input, 'kcreep_wheelset: n_shifts = '//itoa(int(n_shifts))//' (allowed: 1 to '// &
-                itoa(max_wheel_rail_shifts)//')')
-    else if (.not. (allocated(h%wheel_rail%wheel_y) .and. allocated(h%wheel_rail%rail_y))) then
-      call fail(h%last, exit_bad_input, 'kcreep_wheelset: no profiles (call kcreep_set_profiles first)')
-    else
+    call check_table_call(h, 'kcreep_wheelset', shifts, rows, n_shifts)
+    if (.not. h%last%failed()) then
       call c_f_pointer(shifts, values, [n_shifts])
       call c_f_pointer(rows, n_rows)
       n_rows = 0
