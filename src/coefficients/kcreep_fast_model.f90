@@ -99,14 +99,20 @@ contains
   end subroutine fast_model_fill_ring
 
   !> An empty model with the grid's sizes: scales k (> 0), the patch's centre (about the
-  !> spin centre).
-  pure subroutine fast_model_grid(k, centre, model)
+  !> spin centre); sizes: (nt, np, ns) other than the table's resolution above (np even).
+  pure subroutine fast_model_grid(k, centre, model, sizes)
     real(real64), intent(in) :: k(3), centre(2)
     type(fast_model_t), intent(out) :: model
+    integer, intent(in), optional :: sizes(3)
     real(real64) :: t(3, 3)
     model%nt = fast_model_theta_intervals
     model%np = fast_model_lambda_points
     model%ns = fast_model_s_intervals
+    if (present(sizes)) then
+      model%nt = sizes(1)
+      model%np = sizes(2)
+      model%ns = sizes(3)
+    end if
     t = reshape([1.0_real64, 0.0_real64, 0.0_real64, 0.0_real64, 1.0_real64, 0.0_real64, &
                  -centre(2), centre(1), 1.0_real64], [3, 3])
     model%m = spread(k, 2, 3) * t

@@ -2,30 +2,37 @@
 !> steady-rolling solutions (kcreep_rolling_curve's solver, mu = 1) on its
 !> grid and pressure, and its forces at any friction and creepage.
 !>
-!> Build: the linear coefficients f11, f22 from two full-adhesion points set
-!> the normalisation; then every ray of the model's grid (theta <= pi/2) is
-!> solved outward in s to the stop test build_tolerance, each point started
-!> from its neighbours: this ray's previous point plus the step the
-!> neighbouring ray (the previous one of the ring, or the previous ring's
-!> first) took between the same two s (second order in both directions; the
-!> pole ray: the secant along it, kcreep_rolling_curve solve_point); its
-!> s = 1 node is the full-slip force, -sum mu pn w/|w| dA. The model is the
-!> interpolant of these values; it is kept with the pressure it was built
-!> for, and rebuilt for another.
+!> Build (build_table): the linear coefficients f11, f22 from two
+!> full-adhesion points set the normalisation; then every ray of the model's
+!> grid (theta <= pi/2) is solved outward in s to the stop test
+!> build_tolerance, each point started from its neighbours: this ray's
+!> previous point plus the step the neighbouring ray (the previous one of the
+!> ring, or the previous ring's first) took between the same two s (second
+!> order in both directions; the pole ray: the secant along it,
+!> kcreep_rolling_curve solve_point); its s = 1 node is the full-slip force,
+!> -sum mu pn w/|w| dA. The model is the interpolant of these values; it is
+!> kept with the pressure it was built for, and rebuilt for another.
+!>
+!> Patches of more than fast_model_cell_cap cells (two levels): the table is
+!> built on the patch coarsened by whole blocks of cells (coarse_patch), and a
+!> correction table of the difference, exact forces on the patch itself less
+!> the coarse model's, on a coarser creepage grid (correction_sizes) is added.
+!> The difference is the coarse grid's discretisation error (1-3 % of mu Fn),
+!> smooth in the creepage, so few exact solves on the fine grid hold it.
 module kcreep_fast_build
   use, intrinsic :: iso_fortran_env, only: real64, int64
   use kcreep_status, only: status_t, fail, exit_numerical
   use kcreep_strings, only: itoa, rtoa
-  use kcreep_patch, only: patch_t
+  use kcreep_patch, only: patch_t, mask_patch
   use kcreep_assembly, only: scheme_t
   use kcreep_rolling_solve, only: rolling_info_t
   use kcreep_fast_model, only: fast_model_t, fast_model_grid, fast_model_ray, fast_model_fit, fast_model_forces, &
                                fast_model_ring_stride, fast_model_fill_ring
-  use kcreep_rolling_curve, only: rolling_state_t, prepare_rolling_state, solve_point, check_rolling_input, &
-                                 default_rolling_tolerance
+  use kcreep_rolling_curve, only: rolling_state_t, prepare_rolling_state, release_rolling_state, solve_point, &
+                                 check_rolling_input, default_rolling_tolerance
   implicit none
   private
-  public :: fast_forces_t, build_fast_forces, fast_forces_of
+  public :: fast_forces_t, build_fast_forces, fast_forces_of, fast_model_cell_cap
 
   !> Stop test of the table's exact solves, max|F| / max(mu pn). Measured on the six
   !> patches of tests/api/test_fast_forces.py (300 points each): 95th percentile and
@@ -34,9 +41,29 @@ module kcreep_fast_build
   !> 0.51 of its time at 1e-4 (L-shaped mask).
   real(real64), parameter :: build_tolerance = 2e-3_real64
 
+  !> The most solved cells a table is built on directly (a patch that mirrors in y solves
+  !> half its rays: half its cells count); larger patches take two levels. A direct build
+  !> costs about 4-5 ms per solved cell on one thread (0.7-1.8 s at 316-432 cells, 5.0 s at
+  !> 972, 2.8 s at 1020 mirrored); two levels 0.9-1.6 s at 680-1280 cells. Two levels cost
+  !> accuracy where a force has a kink (the spin pole crossing the patch's edge), which the
+  !> coarse grid puts elsewhere: largest error 0.8-1.7 % of mu Fn on the patches below
+  !> against 0.5-1.1 % built directly, 2.3 % on an a/b = 2 ellipse of 632 cells (built
+  !> directly under this rule). lab/notes/rolling_speed.md holds the measurements.
+  integer, parameter :: fast_model_cell_cap = 350
+
+  !> The correction table's (nt, np, ns): theta 22.5 deg, lambda 22.5 deg, s 1/8. On
+  !> circle, a/b = 5 and 0.2, L-shaped and crescent masks of 680-1280 cells coarsened to
+  !> 180-340 (300 random points each) the two levels are within 95th percentile
+  !> 0.18-0.29 %, largest 0.7-1.6 % of mu Fn of the exact forces (the coarse table
+  !> alone: 1.0-1.9 % and 1.9-2.8 %); (4, 8, 4): largest 2.1 %.
+  integer, parameter :: correction_sizes(3) = [4, 16, 8]
+
   type :: fast_forces_t
     type(fast_model_t) :: model
+    !> the two levels' correction (fine less coarse); not ready: none
+    type(fast_model_t) :: correction
     real(real64), allocatable :: pn(:)     !< the pressure per patch cell it was built for
+    integer :: coarse_cells = 0            !< the coarse level's cells (0: built directly)
     integer :: solves = 0                  !< exact points solved to build it
     integer :: newton = 0                  !< their Newton steps
     real(real64) :: seconds = 0            !< its build time
@@ -53,31 +80,119 @@ contains
     type(rolling_state_t), intent(inout) :: state
     type(fast_forces_t), intent(inout) :: fast
     type(status_t), intent(inout) :: status
-    real(real64), allocatable :: bound(:), p(:), x(:), y(:), v(:, :, :, :), creep(:, :), w(:)
+    type(patch_t) :: coarse
+    type(rolling_state_t) :: coarse_state
+    real(real64), allocatable :: bound(:), coarse_pn(:, :)
+    integer :: c
+    integer(int64) :: t0, t1, rate
+
+    call check_rolling_input(patch, scheme, pn, status)
+    if (status%failed()) return
+    call prepare_rolling_state(patch, scheme, nu, g, spin_centre, state)
+    bound = [(pn(patch%ix(c), patch%iy(c)), c=1, patch%n)]
+    if (fast%model%ready .and. allocated(fast%pn)) then
+      if (size(fast%pn) == patch%n) then
+        if (all(fast%pn == bound)) return
+      end if
+    end if
+    call system_clock(t0, rate)
+    fast = fast_forces_t()
+    if (solved_cells(state%centred, pn) > fast_model_cell_cap) call coarse_patch(patch, pn, coarse, coarse_pn)
+    ! a patch whose blocks are mostly empty (scattered cells) is built directly
+    if (coarse%n < fast_model_cell_cap / 4) then
+      call build_table(state, pn, g, fast%model, fast, status)
+    else
+      call prepare_rolling_state(coarse, scheme, nu, g, spin_centre, coarse_state)
+      call build_table(coarse_state, coarse_pn, g, fast%model, fast, status)
+      call release_rolling_state(coarse_state)
+      if (status%failed()) return
+      fast%coarse_cells = coarse%n
+      call build_table(state, pn, g, fast%correction, fast, status, base=fast%model, sizes=correction_sizes)
+    end if
+    if (status%failed()) return
+    fast%pn = bound
+    call system_clock(t1)
+    fast%seconds = real(t1 - t0, real64) / rate
+  end subroutine build_fast_forces
+
+  !> The cells a direct build solves: half the patch's when it mirrors in y.
+  pure integer function solved_cells(centred, pn) result(cells)
+    type(patch_t), intent(in) :: centred
+    real(real64), intent(in) :: pn(:, :)
+    cells = centred%n
+    if (mirror_symmetric(centred, pn)) cells = (cells + 1) / 2
+  end function solved_cells
+
+  !> The patch coarsened by blocks of kx x ky cells, the smallest blocks (kept near square
+  !> in length) that leave at most fast_model_cell_cap cells: a block is a coarse cell when
+  !> at least half its cells carry pressure; its pressure the block's mean, all scaled to
+  !> keep the normal force. Coarse cell centres are the blocks' centres.
+  !> An empty coarse patch (n = 0) when none is left.
+  subroutine coarse_patch(patch, pn, coarse, coarse_pn)
+    type(patch_t), intent(in) :: patch
+    real(real64), intent(in) :: pn(:, :)
+    type(patch_t), intent(out) :: coarse
+    real(real64), allocatable, intent(out) :: coarse_pn(:, :)
+    type(status_t) :: status
+    integer, allocatable :: loaded(:, :)
+    logical, allocatable :: inside(:, :)
+    real(real64) :: total
+    integer :: kx, ky, mx, my, c, bx, by
+    kx = 1
+    ky = 1
+    do while (patch%n > fast_model_cell_cap * kx * ky .or. &
+              max(kx * patch%dx, ky * patch%dy) > 1.5_real64 * min(kx * patch%dx, ky * patch%dy))
+      if (kx * patch%dx <= ky * patch%dy) then
+        kx = kx + 1
+      else
+        ky = ky + 1
+      end if
+    end do
+    mx = (patch%mx + kx - 1) / kx
+    my = (patch%my + ky - 1) / ky
+    allocate (loaded(mx, my), coarse_pn(mx, my))
+    loaded = 0
+    coarse_pn = 0
+    do c = 1, patch%n
+      bx = (patch%ix(c) - 1) / kx + 1
+      by = (patch%iy(c) - 1) / ky + 1
+      if (pn(patch%ix(c), patch%iy(c)) > 0) loaded(bx, by) = loaded(bx, by) + 1
+      coarse_pn(bx, by) = coarse_pn(bx, by) + pn(patch%ix(c), patch%iy(c)) / (kx * ky)
+    end do
+    inside = 2 * loaded >= kx * ky .and. loaded > 0
+    where (.not. inside) coarse_pn = 0
+    total = sum(coarse_pn)
+    if (total > 0) coarse_pn = coarse_pn * (sum([(pn(patch%ix(c), patch%iy(c)), c=1, patch%n)]) / (kx * ky)) / total
+    call mask_patch(inside, kx * patch%dx, ky * patch%dy, patch%x0 + 0.5_real64 * (kx - 1) * patch%dx, &
+                    patch%y0 + 0.5_real64 * (ky - 1) * patch%dy, 'fast force model (coarse level)', coarse, status)
+    if (status%failed()) coarse%n = 0
+  end subroutine coarse_patch
+
+  !> The table of model (grid sizes: the default resolution, or sizes) on the state's patch
+  !> with pressure pn (mx, my): the exact forces at its nodes, less base's forces there when
+  !> base is given (the correction of the two levels). Counts solves in fast.
+  subroutine build_table(state, pn, g, model, fast, status, base, sizes)
+    type(rolling_state_t), intent(inout) :: state
+    real(real64), intent(in) :: pn(:, :), g
+    type(fast_model_t), intent(inout) :: model
+    type(fast_forces_t), intent(inout) :: fast
+    type(status_t), intent(inout) :: status
+    type(fast_model_t), intent(in), optional :: base
+    integer, intent(in), optional :: sizes(3)
+    real(real64), allocatable :: bound(:), p(:), x(:), y(:), v(:, :, :, :), creep(:, :), w(:), base_f(:, :)
     real(real64), allocatable :: last_ray(:, :), row_first(:, :), here(:, :)
     integer, allocatable :: cells(:)
     type(rolling_info_t) :: info
     real(real64) :: da, fn, area, tiny_creep, f11, f22, dir(3), k(3), a, cr(3), centre(2)
     integer :: n, i, j, m, c, nt, np, ns, info_fit, jm, stride
     logical :: mirrored
-    integer(int64) :: t0, t1, rate
 
-    call check_rolling_input(patch, scheme, pn, status)
-    if (status%failed()) return
-    call prepare_rolling_state(patch, scheme, nu, g, spin_centre, state)
-    n = patch%n
-    allocate (bound(n), p(2 * n), cells(n), w(2 * n))
-    bound = [(pn(patch%ix(c), patch%iy(c)), c=1, n)]
-    if (fast%model%ready .and. allocated(fast%pn)) then
-      if (size(fast%pn) == n) then
-        if (all(fast%pn == bound)) return
-      end if
-    end if
-    call system_clock(t0, rate)
-    fast = fast_forces_t()
+    n = state%centred%n
+    allocate (p(2 * n), cells(n), w(2 * n))
+    bound = [(pn(state%centred%ix(c), state%centred%iy(c)), c=1, n)]
     x = state%centred%cell_x(state%centred%ix)
     y = state%centred%cell_y(state%centred%iy)
-    da = patch%dx * patch%dy
+    da = state%centred%dx * state%centred%dy
     fn = sum(bound) * da
     area = n * da
     ! the linear coefficients at a creepage far inside full adhesion (|F| ~ 4e-4 Fn),
@@ -94,15 +209,16 @@ contains
     ! the patch's centre: its pressure's centroid
     centre = [sum(bound * x), sum(bound * y)] / max(sum(bound), tiny(1.0_real64))
     if (.not. sum(bound) > 0) centre = [sum(x), sum(y)] / n
-    call fast_model_grid(k, centre, fast%model)
+    call fast_model_grid(k, centre, model, sizes)
     mirrored = mirror_symmetric(state%centred, pn)
-    nt = fast%model%nt
-    np = fast%model%np
-    ns = fast%model%ns
+    nt = model%nt
+    np = model%np
+    ns = model%ns
     allocate (v(3, 0:nt, 0:np - 1, 1:ns), creep(3, ns - 1), last_ray(2 * n, ns - 1), row_first(2 * n, ns - 1), &
-              here(2 * n, ns - 1))
+              here(2 * n, ns - 1), base_f(3, ns))
+    base_f = 0
     do i = 0, nt
-      stride = fast_model_ring_stride(fast%model, i)
+      stride = fast_model_ring_stride(model, i)
       ! the neighbour of a ring's first ray: the previous ring's first
       if (i > 0) last_ray = row_first
       do j = 0, np - 1
@@ -115,7 +231,12 @@ contains
           v(2:3, i, j, :) = v(2:3, i, jm, :)
           cycle
         end if
-        call fast_model_ray(fast%model, i, j, creep, dir)
+        call fast_model_ray(model, i, j, creep, dir)
+        if (present(base)) then
+          ! the base at the same creepages; s = 1 as |z| = 1e12 (s within 1e-12 of 1)
+          call fast_model_forces(base, 1.0_real64, creep, base_f(:, 1:ns - 1))
+          call fast_model_forces(base, 1.0_real64, reshape(1e12_real64 * dir, [3, 1]), base_f(:, ns:ns))
+        end if
         state%kept = 0
         do m = 1, ns - 1
           ! start: the neighbouring ray's (last_ray's) step from s(m - 1) to s(m) added to
@@ -129,7 +250,7 @@ contains
             call point(creep(:, m), here(:, m - 1) + last_ray(:, m) - last_ray(:, m - 1))
           end if
           if (status%failed()) return
-          v(:, i, j, m) = forces(p)
+          v(:, i, j, m) = forces(p) - base_f(:, m)
           here(:, m) = p
         end do
         last_ray = here
@@ -146,9 +267,9 @@ contains
             p(n + c) = 0
           end if
         end do
-        v(:, i, j, ns) = forces(p)
+        v(:, i, j, ns) = forces(p) - base_f(:, ns)
       end do
-      call fast_model_fill_ring(fast%model, stride, v(:, i, :, :))
+      call fast_model_fill_ring(model, stride, v(:, i, :, :))
     end do
     do j = 1, np - 1
       v(:, 0, j, :) = v(:, 0, 0, :)
@@ -156,15 +277,9 @@ contains
     do j = np / 2, np - 1
       v(:, nt, j, :) = -v(:, nt, j - np / 2, :)
     end do
-    call fast_model_fit(fast%model, v, info_fit)
-    if (info_fit /= 0) then
-      call fail(status, exit_numerical, 'fast force model: the interpolant could not be fitted (LAPACK info '// &
-                itoa(info_fit)//')')
-      return
-    end if
-    fast%pn = bound
-    call system_clock(t1)
-    fast%seconds = real(t1 - t0, real64) / rate
+    call fast_model_fit(model, v, info_fit)
+    if (info_fit /= 0) call fail(status, exit_numerical, 'fast force model: the interpolant could not be '// &
+                                 'fitted (LAPACK info '//itoa(info_fit)//')')
 
   contains
 
@@ -191,7 +306,7 @@ contains
       f = [sum(t(1:n)), sum(t(n + 1:2 * n)), sum(x * t(n + 1:2 * n) - y * t(1:n))] * da
     end function forces
 
-  end subroutine build_fast_forces
+  end subroutine build_table
 
   !> Whether the patch (spin centre at the origin) and its pressure pn (mx, my) are their own
   !> mirror images in y -> -y (Hertzian ellipses about their centre): the grid's rows
@@ -217,7 +332,13 @@ contains
     type(fast_forces_t), intent(in) :: fast
     real(real64), intent(in) :: mu, creep(:, :)
     real(real64), intent(out) :: force(:, :)
+    real(real64), allocatable :: correction(:, :)
     call fast_model_forces(fast%model, mu, creep, force)
+    if (fast%correction%ready) then
+      allocate (correction(3, size(creep, 2)))
+      call fast_model_forces(fast%correction, mu, creep, correction)
+      force = force + correction
+    end if
   end subroutine fast_forces_of
 
 end module kcreep_fast_build
