@@ -155,6 +155,13 @@ int kcreep_rolling(kcreep_handle handle, double mu, int n, const double *creep, 
  * then microseconds per point. Arguments as kcreep_rolling. */
 int kcreep_fast_forces(kcreep_handle handle, double mu, int n, const double *creep, const double *pressure,
                        double *force);
+/* The solved patch and the normal problem's pressure coarsened by square
+ * blocks of cells to at most max_cells (>= 16) cells, for kcreep_fastsim,
+ * kcreep_rolling and kcreep_fast_forces where the normal grid is finer than
+ * their forces need (a contact table's rows: 1,600-4,000 cells); the solved
+ * coefficients stay. The forces are then those of the coarser grid
+ * (docs/mbs.md says how far they move). Needs a normal problem. */
+int kcreep_coarsen_patch(kcreep_handle handle, int max_cells);
 
 /* Wheel and rail profiles to a contact table (docs/wheel_rail.md; the same
  * table as the program's &wheel_rail). Profiles are read by

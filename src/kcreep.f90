@@ -36,6 +36,7 @@ module kcreep
   use kcreep_rolling_curve, only: rolling_request_t, rolling_point_t, rolling_curve, default_rolling_tolerance, &
                                  cell_stick, cell_slip, rolling_residual_of, rolling_state_t, release_rolling_state
   use kcreep_fast_build, only: fast_forces_t, build_fast_forces, fast_forces_of
+  use kcreep_grid_transfer, only: coarsened_patch
   use kcreep_creep_curve, only: creep_request_t, creep_point_t, creep_map_t, creep_curve, source_names, &
                                 source_flexibilities
   use kcreep_fastsim_forces, only: fastsim_forces, fastsim_result_t, flexibility_weighted, flexibility_separate, &
@@ -60,7 +61,7 @@ module kcreep
   public :: kcreep_version, kcreep_version_number, max_threads, serial_blas, run_team, enter_team, leave_team
   public :: rolling_request_t, rolling_point_t, rolling_curve, default_rolling_tolerance, cell_stick, cell_slip, &
             rolling_residual_of, rolling_state_t, release_rolling_state
-  public :: fast_forces_t, build_fast_forces, fast_forces_of
+  public :: fast_forces_t, build_fast_forces, fast_forces_of, coarsened_patch
   public :: creep_request_t, creep_point_t, creep_map_t, creep_curve, source_names, source_flexibilities
   public :: validate_solver_options, refine_modes, collocation_aspect_limit, normalised_about
   public :: fastsim_forces, fastsim_result_t, flexibility_weighted, flexibility_separate, flexibility_aligned, &

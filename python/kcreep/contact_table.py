@@ -45,10 +45,13 @@ class ContactTable:
     kcreep.wheel_rail (vertical_force or approach, yaw, side, gauge_width, ...).
     tolerance: the bound of the interpolation check (FLAG_TOLERANCE).
     fast_model: what forces(exact=False) uses, 'fast_forces' (the library's
-    fast model, the default) or 'fastsim'."""
+    fast model, the default) or 'fastsim'. force_cells: the most cells of a
+    row's patch for the force models (fast model, FASTSIM, exact rolling):
+    the row's normal grid coarsened by square blocks (Solver.coarsen_patch);
+    0, the default, the rows' own grids."""
 
     def __init__(self, wheel_file, rail_file, shifts, *, g, nu, target_error=1e-3, threads=0,
-                 cell_budget=0.0, tolerance=FLAG_TOLERANCE, fast_model=None, **placement):
+                 cell_budget=0.0, tolerance=FLAG_TOLERANCE, fast_model=None, force_cells=0, **placement):
         shifts = np.unique(np.asarray(shifts, dtype=np.float64))
         if shifts.size < 2:
             raise KcreepError(2, f"ContactTable: shifts = {shifts.tolist()} (allowed: at least 2 distinct values)")
@@ -63,6 +66,10 @@ class ContactTable:
                                         else self.table[c].astype(np.float64) for c in self.columns])
         self._solvers = [None] * n_rows
         self._g, self._nu, self._threads = g, nu, threads
+        if force_cells and force_cells < 16:
+            raise KcreepError(2, f"ContactTable: force_cells = {force_cells} (allowed: 0, the rows' own grids, or 16 "
+                                 "or more)")
+        self.force_cells = int(force_cells)
         self._rows_at = [np.flatnonzero(self.table["shift"] == s).tolist() for s in shifts]
         # room for kcreep_wheel_rail_at: every patch of two neighbouring rows
         self._capacity = 2 * max(len(r) for r in self._rows_at)
@@ -192,6 +199,8 @@ class ContactTable:
         if self._solvers[row] is None:
             s = Solver(g=self._g, nu=self._nu, threads=self._threads)
             s.take_wheel_rail_row(self._source, row)
+            if self.force_cells:
+                s.coarsen_patch(self.force_cells)
             self._solvers[row] = s
         return self._solvers[row]
 

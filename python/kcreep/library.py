@@ -83,6 +83,7 @@ _signatures = {
     "kcreep_fastsim": ([_h, _d, _i, _p, _p, ctypes.c_char_p, _p, _p], _i),
     "kcreep_rolling": ([_h, _d, _i, _p, _p, _p, _p], _i),
     "kcreep_fast_forces": ([_h, _d, _i, _p, _p, _p], _i),
+    "kcreep_coarsen_patch": ([_h, _i], _i),
     "kcreep_get_diagnostics": ([_h, ctypes.POINTER(_i), ctypes.POINTER(_d), ctypes.POINTER(_d), ctypes.POINTER(_d)], _i),
     "kcreep_set_profiles": ([_h, ctypes.c_char_p, ctypes.c_char_p, _i, _i, _d], _i),
     "kcreep_set_track": ([_h, ctypes.c_char_p, _d, _d, _d, _d, _d, _d], _i),
@@ -305,6 +306,13 @@ class Solver:
         self._check(_lib.kcreep_fast_forces(self._handle, mu, n, creep.ctypes.data,
                                             None if p is None else p.ctypes.data, forces.ctypes.data))
         return forces
+
+    def coarsen_patch(self, max_cells):
+        """The solved patch and the normal problem's pressure coarsened by
+        square blocks of cells to at most max_cells cells, for fastsim,
+        rolling and fast_forces (kcreep_coarsen_patch); the coefficients stay
+        the solved ones."""
+        self._check(_lib.kcreep_coarsen_patch(self._handle, int(max_cells)))
 
     @property
     def reuse_count(self):

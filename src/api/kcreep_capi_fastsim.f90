@@ -1,12 +1,15 @@
 !> The C API's calls with friction on a solved handle's patch
 !> (include/kcreep.h): kcreep_fastsim (FASTSIM) and kcreep_rolling (exact
-!> steady rolling), with the same conventions and the same pressure.
+!> steady rolling), with the same conventions and the same pressure;
+!> kcreep_coarsen_patch, a coarser grid for them.
 module kcreep_capi_fastsim
-  use, intrinsic :: iso_c_binding, only: c_int, c_double, c_ptr, c_f_pointer, c_associated
+  use, intrinsic :: iso_c_binding, only: c_int, c_double, c_ptr, c_f_pointer, c_associated, c_null_ptr
   use kcreep_kinds, only: wp
   use kcreep_status, only: fail, exit_bad_input
+  use kcreep_strings, only: itoa
   use kcreep, only: creep_request_t, creep_point_t, creep_map_t, creep_curve, flexibility_rule_of, &
-                    rolling_request_t, rolling_point_t, rolling_curve, build_fast_forces, fast_forces_of
+                    rolling_request_t, rolling_point_t, rolling_curve, build_fast_forces, fast_forces_of, &
+                    fast_forces_t, coarsened_patch, patch_t
   use kcreep_capi_handle, only: handle_t, status_ok, solved, finish, from_c
   use kcreep_threads, only: team_size, enter_team, leave_team, cells_per_thread_iterative
   use, intrinsic :: iso_fortran_env, only: int64
@@ -168,6 +171,45 @@ contains
     call fast_forces_of(h%fast, mu, creepages, forces)
     c_fast_forces = finish(h)
   end function c_fast_forces
+
+  !> The solved patch and the normal problem's pressure coarsened by square blocks of cells
+  !> to at most max_cells cells (kcreep_grid_transfer coarsened_patch), for the force models
+  !> (kcreep_fastsim, kcreep_rolling, kcreep_fast_forces) where the normal grid is finer
+  !> than their forces need; the coefficients and their errors stay the solved ones. A
+  !> patch of at most max_cells cells is kept as it is.
+  integer(c_int) function c_coarsen_patch(handle, max_cells) bind(c, name='kcreep_coarsen_patch')
+    type(c_ptr), value :: handle
+    integer(c_int), value :: max_cells
+    type(handle_t), pointer :: h
+    type(patch_t) :: coarse
+    real(wp), allocatable :: pn(:, :), coarse_pn(:, :)
+    integer :: k
+    c_coarsen_patch = solved(handle, h)
+    if (c_coarsen_patch /= status_ok) return
+    if (max_cells < 16) then
+      call fail(h%last, exit_bad_input, 'kcreep_coarsen_patch: max_cells = '//itoa(int(max_cells))// &
+                ' (allowed: 16 or more)')
+    else if (.not. h%result%normal_solved) then
+      call fail(h%last, exit_bad_input, 'kcreep_coarsen_patch: the last solve had no normal problem (its '// &
+                'pressure is what is coarsened)')
+    else if (h%result%patch%n > max_cells) then
+      call pressure_of(h, c_null_ptr, 'kcreep_coarsen_patch', pn)
+      call coarsened_patch(h%result%patch, pn, int(max_cells), coarse, coarse_pn)
+      if (coarse%n == 0) then
+        call fail(h%last, exit_bad_input, 'kcreep_coarsen_patch: max_cells = '//itoa(int(max_cells))// &
+                  ' leaves no cell of the patch (allowed: a larger value)')
+      else
+        h%result%patch = coarse
+        h%result%n = coarse%n
+        h%result%mx = coarse%mx
+        h%result%my = coarse%my
+        h%result%pressure = [(coarse_pn(coarse%ix(k), coarse%iy(k)), k=1, coarse%n)]
+        if (allocated(h%result%traction)) deallocate (h%result%traction)
+        h%fast = fast_forces_t()
+      end if
+    end if
+    c_coarsen_patch = finish(h)
+  end function c_coarsen_patch
 
   !> The pressure for kcreep_fastsim / kcreep_rolling: mx * my values, or the
   !> normal problem's (pressure NULL); an error in h%last when not usable.

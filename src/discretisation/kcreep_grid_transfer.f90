@@ -1,14 +1,17 @@
-!> Tractions carried from one grid of a patch to another: the starting guess
+!> A patch's grids: a patch and its pressure coarsened by blocks of cells
+!> (coarsened_patch), and tractions carried from one grid of a patch to
+!> another (transferred_traction): the starting guess
 !> of the iterative solver on the next level of error control, which solves
 !> the same patch on finer cells. A guess only has to be close: GMRES still
 !> solves to its tolerance on the new grid, so the result does not depend on
 !> the guess beyond that tolerance.
 module kcreep_grid_transfer
   use, intrinsic :: iso_fortran_env, only: real64
-  use kcreep_patch, only: patch_t
+  use kcreep_status, only: status_t
+  use kcreep_patch, only: patch_t, mask_patch
   implicit none
   private
-  public :: transferred_traction
+  public :: transferred_traction, coarsened_patch
 
   !> How far (in source cells, each way) a target cell outside the source's
   !> cells looks for the nearest source cell: the levels differ by about 15 %,
@@ -95,5 +98,52 @@ contains
     end function cell_at
 
   end function transferred_traction
+
+  !> The patch coarsened by blocks of kx x ky cells, the smallest blocks (their sides within
+  !> a factor 1.5 of each other) that leave at most max_cells cells: a block is a coarse
+  !> cell when at least half its cells carry pressure pn (mx, my); its pressure the block's
+  !> mean, all scaled to keep the normal force; its centre the block's. An empty coarse
+  !> patch (n = 0) when none is left. The fast force model's coarse level and a contact
+  !> table's force grid (kcreep_coarsen_patch).
+  subroutine coarsened_patch(patch, pn, max_cells, coarse, coarse_pn)
+    type(patch_t), intent(in) :: patch
+    real(real64), intent(in) :: pn(:, :)
+    integer, intent(in) :: max_cells
+    type(patch_t), intent(out) :: coarse
+    real(real64), allocatable, intent(out) :: coarse_pn(:, :)
+    type(status_t) :: status
+    integer, allocatable :: loaded(:, :)
+    logical, allocatable :: inside(:, :)
+    real(real64) :: total
+    integer :: kx, ky, mx, my, c, bx, by
+    kx = 1
+    ky = 1
+    do while (patch%n > max(max_cells, 1) * kx * ky .or. (kx * ky > 1 .and. &
+              max(kx * patch%dx, ky * patch%dy) > 1.5_real64 * min(kx * patch%dx, ky * patch%dy)))
+      if (kx * patch%dx <= ky * patch%dy) then
+        kx = kx + 1
+      else
+        ky = ky + 1
+      end if
+    end do
+    mx = (patch%mx + kx - 1) / kx
+    my = (patch%my + ky - 1) / ky
+    allocate (loaded(mx, my), coarse_pn(mx, my))
+    loaded = 0
+    coarse_pn = 0
+    do c = 1, patch%n
+      bx = (patch%ix(c) - 1) / kx + 1
+      by = (patch%iy(c) - 1) / ky + 1
+      if (pn(patch%ix(c), patch%iy(c)) > 0) loaded(bx, by) = loaded(bx, by) + 1
+      coarse_pn(bx, by) = coarse_pn(bx, by) + pn(patch%ix(c), patch%iy(c)) / (kx * ky)
+    end do
+    inside = 2 * loaded >= kx * ky .and. loaded > 0
+    where (.not. inside) coarse_pn = 0
+    total = sum(coarse_pn)
+    if (total > 0) coarse_pn = coarse_pn * (sum([(pn(patch%ix(c), patch%iy(c)), c=1, patch%n)]) / (kx * ky)) / total
+    call mask_patch(inside, kx * patch%dx, ky * patch%dy, patch%x0 + 0.5_real64 * (kx - 1) * patch%dx, &
+                    patch%y0 + 0.5_real64 * (ky - 1) * patch%dy, 'coarsened patch', coarse, status)
+    if (status%failed()) coarse%n = 0
+  end subroutine coarsened_patch
 
 end module kcreep_grid_transfer

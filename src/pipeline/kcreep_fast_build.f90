@@ -14,7 +14,7 @@
 !> kept with the pressure it was built for, and rebuilt for another.
 !>
 !> Patches of more than fast_model_cell_cap cells (two levels): the table is
-!> built on the patch coarsened by whole blocks of cells (coarse_patch), and a
+!> built on the patch coarsened by whole blocks of cells (coarsened_patch), and a
 !> correction table of the difference, exact forces on the patch itself less
 !> the coarse model's, on a coarser creepage grid (correction_sizes) is added.
 !> The difference is the coarse grid's discretisation error (1-3 % of mu Fn),
@@ -23,7 +23,8 @@ module kcreep_fast_build
   use, intrinsic :: iso_fortran_env, only: real64, int64
   use kcreep_status, only: status_t, fail, exit_numerical
   use kcreep_strings, only: itoa, rtoa
-  use kcreep_patch, only: patch_t, mask_patch
+  use kcreep_patch, only: patch_t
+  use kcreep_grid_transfer, only: coarsened_patch
   use kcreep_assembly, only: scheme_t
   use kcreep_rolling_solve, only: rolling_info_t
   use kcreep_fast_model, only: fast_model_t, fast_model_grid, fast_model_ray, fast_model_fit, fast_model_forces, &
@@ -97,7 +98,8 @@ contains
     end if
     call system_clock(t0, rate)
     fast = fast_forces_t()
-    if (solved_cells(state%centred, pn) > fast_model_cell_cap) call coarse_patch(patch, pn, coarse, coarse_pn)
+    if (solved_cells(state%centred, pn) > fast_model_cell_cap) &
+      call coarsened_patch(patch, pn, fast_model_cell_cap, coarse, coarse_pn)
     ! a patch whose blocks are mostly empty (scattered cells) is built directly
     if (coarse%n < fast_model_cell_cap / 4) then
       call build_table(state, pn, g, fast%model, fast, status)
@@ -122,51 +124,6 @@ contains
     cells = centred%n
     if (mirror_symmetric(centred, pn)) cells = (cells + 1) / 2
   end function solved_cells
-
-  !> The patch coarsened by blocks of kx x ky cells, the smallest blocks (kept near square
-  !> in length) that leave at most fast_model_cell_cap cells: a block is a coarse cell when
-  !> at least half its cells carry pressure; its pressure the block's mean, all scaled to
-  !> keep the normal force. Coarse cell centres are the blocks' centres.
-  !> An empty coarse patch (n = 0) when none is left.
-  subroutine coarse_patch(patch, pn, coarse, coarse_pn)
-    type(patch_t), intent(in) :: patch
-    real(real64), intent(in) :: pn(:, :)
-    type(patch_t), intent(out) :: coarse
-    real(real64), allocatable, intent(out) :: coarse_pn(:, :)
-    type(status_t) :: status
-    integer, allocatable :: loaded(:, :)
-    logical, allocatable :: inside(:, :)
-    real(real64) :: total
-    integer :: kx, ky, mx, my, c, bx, by
-    kx = 1
-    ky = 1
-    do while (patch%n > fast_model_cell_cap * kx * ky .or. &
-              max(kx * patch%dx, ky * patch%dy) > 1.5_real64 * min(kx * patch%dx, ky * patch%dy))
-      if (kx * patch%dx <= ky * patch%dy) then
-        kx = kx + 1
-      else
-        ky = ky + 1
-      end if
-    end do
-    mx = (patch%mx + kx - 1) / kx
-    my = (patch%my + ky - 1) / ky
-    allocate (loaded(mx, my), coarse_pn(mx, my))
-    loaded = 0
-    coarse_pn = 0
-    do c = 1, patch%n
-      bx = (patch%ix(c) - 1) / kx + 1
-      by = (patch%iy(c) - 1) / ky + 1
-      if (pn(patch%ix(c), patch%iy(c)) > 0) loaded(bx, by) = loaded(bx, by) + 1
-      coarse_pn(bx, by) = coarse_pn(bx, by) + pn(patch%ix(c), patch%iy(c)) / (kx * ky)
-    end do
-    inside = 2 * loaded >= kx * ky .and. loaded > 0
-    where (.not. inside) coarse_pn = 0
-    total = sum(coarse_pn)
-    if (total > 0) coarse_pn = coarse_pn * (sum([(pn(patch%ix(c), patch%iy(c)), c=1, patch%n)]) / (kx * ky)) / total
-    call mask_patch(inside, kx * patch%dx, ky * patch%dy, patch%x0 + 0.5_real64 * (kx - 1) * patch%dx, &
-                    patch%y0 + 0.5_real64 * (ky - 1) * patch%dy, 'fast force model (coarse level)', coarse, status)
-    if (status%failed()) coarse%n = 0
-  end subroutine coarse_patch
 
   !> The table of model (grid sizes: the default resolution, or sizes) on the state's patch
   !> with pressure pn (mx, my): the exact forces at its nodes, less base's forces there when

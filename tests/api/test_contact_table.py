@@ -11,7 +11,9 @@
   up to 8-15 % of mu Fn off on such patches, docs/fastsim.md);
 - FASTSIM ('aligned') finite on S1002/UIC60 patches whose edge pressures
   underflow its slip projection (it gave NaN before the fix in aligned_slip);
-- patches matched across shifts and flags for intervals too coarse.
+- patches matched across shifts and flags for intervals too coarse;
+- force_cells: rows' force grids coarsened (kcreep_coarsen_patch), their
+  fast model held to their exact forces, those near the full grid's.
 
 usage: /usr/bin/python3 test_contact_table.py KCREEP SOURCE_DIR   (needs numpy)
 """
@@ -134,6 +136,46 @@ kc.check(not bad, f"FASTSIM finite on every S1002 row and rule (NaN: {bad})")
 kc.check(s1002.fast_model in ("fastsim", "fast_forces"), f"fast model named ({s1002.fast_model})")
 # 4 -> 5 -> 6 mm: the tread patch moves towards the flange; the table says whether it follows
 kc.check(len(s1002.flags) == 2, f"one flag list per interval ({s1002.flags})")
+
+# force_cells: the rows' force models on their normal grids coarsened (kcreep_coarsen_patch)
+coarse = kcreep.ContactTable(os.path.join(profiles, "MBench_S1002_v3.prw"), os.path.join(profiles, "MBench_UIC60_v3.prr"),
+                             [4.0, 5.0, 6.0], g=G, nu=NU, vertical_force=70e3, target_error=1e-2, cell_budget=1000.0,
+                             threads=1, force_cells=350)
+rng = np.random.default_rng(7)
+creeps = rng.normal(size=(40, 3)) * [1e-3, 1e-3, 2e-4]
+for r in (0, 1):
+    full_n, n = s1002.solver(r)._result(False).n, coarse.solver(r)._result(False).n
+    shift, fn = coarse.table["shift"][r], coarse.table["fn"][r]
+    kc.check(full_n > 1000 and 100 < n <= 350, f"row {r}: force grid {full_n} -> {n} cells (at most 350)")
+    # the normal force kept: linear forces at a tiny creepage are the row's -f11 xi within the
+    # coarse grid's discretisation (measured 1.3-2.0 % on these rows, full grids 0.3-1.0 %)
+    small = coarse.solver(r).rolling(MU, [[1e-7, 0, 0]])[0][0, 0] / -1e-7
+    f11 = G * coarse.table["area"][r] / math.pi * coarse.table["c11"][r]
+    kc.check(abs(small / f11 - 1) < 0.04, f"row {r}: -Fx/xi on the coarse grid {small:.4g} against f11 {f11:.4g}")
+    fast = coarse.solver(r).fast_forces(MU, creeps)
+    exact = coarse.solver(r).rolling(MU, creeps)[0]
+    full = s1002.solver(r).rolling(MU, creeps)[0]
+    e_fast = np.hypot(*(fast - exact)[:, :2].T).max() / (MU * fn)
+    e_grid = np.hypot(*(exact - full)[:, :2].T).max() / (MU * fn)
+    # measured: fast model 0.1-0.3 % of its own grid's exact forces; coarse against full grid
+    # 1.0-2.5 % (S1002 rows at 0, 3, 8 mm, 100 creepages), the price of force_cells
+    kc.check(e_fast <= 0.01, f"row {r}: fast model on the coarse grid within 1 % of its exact forces "
+             f"({100 * e_fast:.2f} %)")
+    kc.check(e_grid <= 0.04, f"row {r}: coarse grid's exact forces within 4 % of mu Fn of the full grid's "
+             f"({100 * e_grid:.2f} %)")
+try:
+    kcreep.ContactTable(wheel, rail, [-4.0, 0.0], g=G, nu=NU, vertical_force=FORCE, target_error=1e-2,
+                        cell_budget=600.0, flange_back_position=-72.5, threads=1, force_cells=5)
+    kc.check(False, "force_cells = 5 refused")
+except kcreep.KcreepError as e:
+    kc.check(e.code == 2 and "force_cells = 5" in str(e), f"force_cells = 5 refused: {e}")
+try:
+    plain = Solver(g=G, nu=NU, threads=1)
+    plain.solve_ellipse(1.0, 1.0, 10, 10)
+    plain.coarsen_patch(20)
+    kc.check(False, "coarsen_patch without a normal problem refused")
+except kcreep.KcreepError as e:
+    kc.check(e.code == 2 and "no normal problem" in str(e), f"coarsen_patch without a normal problem refused: {e}")
 
 # kcreep_take_wheel_rail_row: a row out of range, a handle without a table
 try:

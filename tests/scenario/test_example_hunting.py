@@ -1,8 +1,9 @@
 """examples/wheelset_hunting.py --check: a wheelset on S1002/UIC60 from a
 kcreep.ContactTable prints its kinematic wavelength within 3 % of Klingel's
 (with the table's own equivalent conicity), three critical speeds, and draws
-its figure (issue 48). Measured: 8.77 m against 8.70 m (0.8 %), critical
-speeds 271 km/h each (4 bisection steps, +-12 km/h), 18 s user on one thread.
+its figure (issue 48). Measured: 9.05 m against 9.02 m (0.3 %), critical
+speeds 271 km/h each (4 bisection steps, +-12 km/h), 27 s user on one thread
+with the fast model on force grids of at most 350 cells.
 
 usage: /usr/bin/python3 test_example_hunting.py KCREEP SOURCE_DIR   (numpy, scipy, matplotlib)
 """
@@ -25,6 +26,8 @@ print(proc.stdout)
 kc.check(proc.returncode == 0, f"--check runs ({proc.returncode}: {proc.stderr.strip()[-300:]})")
 m = re.search(r"kinematic wavelength at amplitude ([\d.]+) mm: ([\d.]+) m \(Klingel: ([\d.]+) m\)", proc.stdout)
 kc.check(m is not None, "the wavelength line printed")
+kc.check("fast model: fast_forces on at most 350 cells a row" in proc.stdout,
+         "--check runs the fast model (on force grids of at most 350 cells), not a stand-in")
 if m:
     length, klingel = float(m.group(2)), float(m.group(3))
     kc.check(abs(length / klingel - 1) <= 0.03, f"wavelength {length} m within 3 % of Klingel's {klingel} m")
