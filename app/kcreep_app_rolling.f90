@@ -19,9 +19,9 @@ module kcreep_app_rolling
   private
   public :: run_rolling
 
-  !> The largest patch whose fast force model the summary builds (about 4 s of one thread
-  !> at 400 cells, 12 s at 840; the model is meant for patches of 300-1000 cells).
-  integer, parameter :: fast_model_cells = 1000
+  !> The largest patch whose fast force model the summary builds (one thread: 0.5-1.8 s up
+  !> to 1300 cells, 2-3 s at 1600-1800, 7 s at 4000 on two levels; docs/rolling.md).
+  integer, parameter :: fast_model_cells = 4000
 
 contains
 
