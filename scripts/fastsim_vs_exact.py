@@ -394,9 +394,11 @@ def run_patch(args, folder, patch, subset=None):
             f.write(''.join(f'{c[0]} {c[1]} {c[2]!r} {c[3]!r} {c[4]!r}\n' for c in read_first_map(maps)))
         os.remove(maps)
     cells = [(int(w[0]), int(w[1]), float(w[2]), float(w[3]), float(w[4])) for w in numbers(keep)]
-    summary = [line.strip() for line in groups[RULES[0]].splitlines() if 'against exact' in line]
+    lines = [line.strip() for line in groups[RULES[0]].splitlines() if 'against exact' in line]
+    summary = [line for line in lines if line.startswith('FASTSIM')]
+    fast_model = [line for line in lines if line.startswith('fast model')]
     return dict(family=family, name=name, desc=desc, tab=tab, points=points, roll=roll, fast=fast,
-                cells=cells, seconds=seconds, summary=summary, n=int(tab['n']))
+                cells=cells, seconds=seconds, summary=summary, fast_model=fast_model, n=int(tab['n']))
 
 
 def point_errors(res):
