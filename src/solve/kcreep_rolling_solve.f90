@@ -27,7 +27,8 @@ module kcreep_rolling_solve
   implicit none
   private
   public :: rolling_solver_t, rolling_options_t, rolling_info_t, create_rolling_solver, destroy_rolling_solver, &
-            solve_rolling, rolling_residual, project_to_bounds, cell_stick, cell_slip, default_rolling_tolerance
+            solve_rolling, rolling_residual, residual_of_product, project_to_bounds, cell_stick, cell_slip, &
+            default_rolling_tolerance
 
   integer, parameter :: cell_stick = 1, cell_slip = 2   !< CONTACT's IGS: 1 adhesion, 2 slip
 
@@ -174,18 +175,31 @@ contains
     call destroy_fft_operator(solver%jac%op)
   end subroutine destroy_rolling_solver
 
-  !> F(p) and what Newton needs of it: q = p - rho s, ||F||_2, max |F_i|.
-  subroutine rolling_residual(solver, w, bound, p, f, q, fnorm, fmax)
+  !> F(p) and what Newton needs of it: q = p - rho s, ||F||_2, max |F_i|;
+  !> ap: A p (one operator product), kept by callers that reuse it.
+  subroutine rolling_residual(solver, w, bound, p, f, q, fnorm, fmax, ap)
     type(rolling_solver_t), intent(inout) :: solver
     real(real64), intent(in) :: w(:), bound(:), p(:)
     real(real64), intent(out) :: f(:), q(:)
     real(real64), intent(out) :: fnorm, fmax
-    real(real64) :: ap(size(p), 1), qn
+    real(real64), intent(out), optional :: ap(:)
+    real(real64) :: product(size(p), 1)
+    call apply_fft_operator(solver%jac%op, reshape(p, [size(p), 1]), product)
+    solver%jac%products = solver%jac%products + 1
+    call residual_of_product(solver, w, bound, p, product(:, 1), f, q, fnorm, fmax)
+    if (present(ap)) ap = product(:, 1)
+  end subroutine rolling_residual
+
+  !> rolling_residual with A p given (ap): no operator product.
+  subroutine residual_of_product(solver, w, bound, p, ap, f, q, fnorm, fmax)
+    type(rolling_solver_t), intent(in) :: solver
+    real(real64), intent(in) :: w(:), bound(:), p(:), ap(:)
+    real(real64), intent(out) :: f(:), q(:)
+    real(real64), intent(out) :: fnorm, fmax
+    real(real64) :: qn
     integer :: i, n
     n = solver%n
-    call apply_fft_operator(solver%jac%op, reshape(p, [2 * n, 1]), ap)
-    solver%jac%products = solver%jac%products + 1
-    q = p + solver%jac%rho * (ap(:, 1) - w)
+    q = p + solver%jac%rho * (ap - w)
     fmax = 0
     do i = 1, n
       qn = sqrt(q(i)**2 + q(n + i)**2)
@@ -200,30 +214,40 @@ contains
     end do
     fmax = sqrt(fmax)
     fnorm = norm2(f)
-  end subroutine rolling_residual
+  end subroutine residual_of_product
 
   !> Solve the rolling problem for rigid slip w (2n) and traction bounds g (n);
   !> p: start in, solution out; state: cell_stick / cell_slip per cell.
-  subroutine solve_rolling(solver, w, bound, options, p, state, info)
+  !> start_ap: A p of the start as given (a caller that has it saves the product; p is
+  !> then taken as it is, else projected onto the bounds first); ap: A p of the solution.
+  subroutine solve_rolling(solver, w, bound, options, p, state, info, start_ap, ap)
     type(rolling_solver_t), intent(inout) :: solver
     real(real64), intent(in) :: w(:), bound(:)
     type(rolling_options_t), intent(in) :: options
     real(real64), intent(inout) :: p(:)
     integer, intent(out) :: state(:)
     type(rolling_info_t), intent(out) :: info
-    real(real64), allocatable :: f(:), q(:), ftrial(:), qtrial(:), ptrial(:), dp(:, :), rhs(:, :)
+    real(real64), intent(in), optional :: start_ap(:)
+    real(real64), intent(out), optional :: ap(:)
+    real(real64), allocatable :: f(:), q(:), ftrial(:), qtrial(:), ptrial(:), dp(:, :), rhs(:, :), pa(:), patrial(:)
     real(real64) :: fnorm, fmax, gscale, tnorm, tmax, t, eta, fnorm_previous
     type(gmres_result_t) :: gr
     integer :: n, i, halvings
     real(real64), parameter :: armijo = 1e-4_real64
 
     n = solver%n
-    allocate (f(2 * n), q(2 * n), ftrial(2 * n), qtrial(2 * n), ptrial(2 * n), dp(2 * n, 1), rhs(2 * n, 1))
+    allocate (f(2 * n), q(2 * n), ftrial(2 * n), qtrial(2 * n), ptrial(2 * n), dp(2 * n, 1), rhs(2 * n, 1), &
+              pa(2 * n), patrial(2 * n))
     solver%jac%products = 0
     gscale = max(maxval(bound), tiny(1.0_real64))
-    ! p must start inside the bounds for the residual to mean what it says
-    call project_to_bounds(bound, p)
-    call rolling_residual(solver, w, bound, p, f, q, fnorm, fmax)
+    if (present(start_ap)) then
+      pa = start_ap
+      call residual_of_product(solver, w, bound, p, pa, f, q, fnorm, fmax)
+    else
+      ! p must start inside the bounds for the residual to mean what it says
+      call project_to_bounds(bound, p)
+      call rolling_residual(solver, w, bound, p, f, q, fnorm, fmax, pa)
+    end if
     do
       info%residual = fmax / gscale
       if (info%residual <= options%tolerance) then
@@ -252,7 +276,7 @@ contains
       halvings = 0
       do
         ptrial = p + t * dp(:, 1)
-        call rolling_residual(solver, w, bound, ptrial, ftrial, qtrial, tnorm, tmax)
+        call rolling_residual(solver, w, bound, ptrial, ftrial, qtrial, tnorm, tmax, patrial)
         if (tnorm <= (1 - armijo * t) * fnorm .or. halvings >= 30) exit
         t = t / 2
         halvings = halvings + 1
@@ -260,10 +284,12 @@ contains
       p = ptrial
       f = ftrial
       q = qtrial
+      pa = patrial
       fnorm = tnorm
       fmax = tmax
     end do
     info%products = solver%jac%products
+    if (present(ap)) ap = pa
     ! the element division of the solution (q: of the final p)
     do i = 1, n
       if (q(i)**2 + q(n + i)**2 <= bound(i)**2) then
