@@ -238,12 +238,17 @@ contains
     integer :: b, k, nb
 
     nb = size(partial, 2)
-    ! one block (short vectors: the rolling solver's): no parallel region to enter
-    !$omp parallel do schedule(static) if(nb > 1)
-    do b = 1, nb
-      call block_products(v, w, b, partial(:, b))
-    end do
-    !$omp end parallel do
+    if (nb == 1) then
+      ! one block (short vectors: the rolling solver's): no parallel region to enter (an
+      ! OpenMP region with if(.false.) still sets up a team, a microsecond per call)
+      call block_products(v, w, 1, partial(:, 1))
+    else
+      !$omp parallel do schedule(static)
+      do b = 1, nb
+        call block_products(v, w, b, partial(:, b))
+      end do
+      !$omp end parallel do
+    end if
     do k = 1, size(v, 2)
       h(k) = sum(partial(k, :))
     end do
@@ -285,11 +290,15 @@ contains
     real(real64) :: partial((size(w) + row_block - 1) / row_block)
     integer :: b, nb
     nb = size(partial)
-    !$omp parallel do schedule(static) if(nb > 1)
-    do b = 1, nb
-      partial(b) = block_dot(w, w, b)
-    end do
-    !$omp end parallel do
+    if (nb == 1) then
+      partial(1) = block_dot(w, w, 1)
+    else
+      !$omp parallel do schedule(static)
+      do b = 1, nb
+        partial(b) = block_dot(w, w, b)
+      end do
+      !$omp end parallel do
+    end if
     norm = sqrt(sum(partial))
   end function norm
 
@@ -311,13 +320,26 @@ contains
   subroutine add_combination(v, a, w)
     real(real64), intent(in), contiguous :: v(:, :), a(:)
     real(real64), intent(inout), contiguous :: w(:)
-    integer :: b, k, i, lo, hi, nk
-    real(real64) :: a1, a2, a3, a4
+    integer :: b, lo, hi, nk
     nk = size(a)
-    !$omp parallel do private(k, i, lo, hi, a1, a2, a3, a4) schedule(static) if(size(w) > row_block)
+    if (size(w) <= row_block) then
+      call add_block(1, size(w))
+      return
+    end if
+    !$omp parallel do private(lo, hi) schedule(static)
     do b = 1, (size(w) + row_block - 1) / row_block
       lo = (b - 1) * row_block + 1
       hi = min(b * row_block, size(w))
+      call add_block(lo, hi)
+    end do
+    !$omp end parallel do
+
+  contains
+
+    subroutine add_block(lo, hi)
+      integer, intent(in) :: lo, hi
+      integer :: k, i
+      real(real64) :: a1, a2, a3, a4
       do k = 1, nk - 3, 4
         a1 = a(k)
         a2 = a(k + 1)
@@ -330,8 +352,8 @@ contains
       do k = nk - mod(nk, 4) + 1, nk
         w(lo:hi) = w(lo:hi) + a(k) * v(lo:hi, k)
       end do
-    end do
-    !$omp end parallel do
+    end subroutine add_block
+
   end subroutine add_combination
 
 end module kcreep_krylov
