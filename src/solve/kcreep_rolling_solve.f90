@@ -122,6 +122,7 @@ module kcreep_rolling_solve
     !> the row interchanged with j minus j
     real(real64), allocatable :: lower(:, :, :), upper(:, :, :), inverse_diagonal(:, :)
     integer, allocatable :: swap(:, :)
+    logical, allocatable :: swapped(:)                    !< (width): some row interchanges unknown j
     integer, allocatable :: place(:)                      !< (2n): each unknown's element of b
     real(real64), allocatable :: b(:, :)                  !< (rows, width) work
   contains
@@ -181,11 +182,13 @@ contains
       pr%kl = maxval(pr%rows%kl)
       pr%width = 2 * maxval(pr%rows%m)
       allocate (pr%lower(nrows, pr%kl, pr%width), pr%upper(nrows, 2 * pr%kl, pr%width), &
-                pr%inverse_diagonal(nrows, pr%width), pr%swap(nrows, pr%width), pr%b(nrows, pr%width))
+                pr%inverse_diagonal(nrows, pr%width), pr%swap(nrows, pr%width), pr%b(nrows, pr%width), &
+                pr%swapped(pr%width))
       pr%lower = 0
       pr%upper = 0
       pr%inverse_diagonal = 1
       pr%swap = 0
+      pr%swapped = .false.
       pr%b = 0
       ! unknown px of a row's i-th cell is its 2 i - 1-th, py the 2 i-th
       do r = 1, nrows
@@ -479,6 +482,7 @@ contains
           end do
         end associate
       end do
+      pr%swapped = any(pr%swap /= 0, dim=1)
     end associate
 
   contains
@@ -505,7 +509,7 @@ contains
     do v = 1, size(x, 2)
       call place_values(x(:, v), self%place, self%b)
       call rows_solve(size(self%rows), self%width, self%kl, maxval(self%rows%ku), self%lower, self%upper, &
-                      self%inverse_diagonal, self%swap, self%b)
+                      self%inverse_diagonal, self%swap, self%swapped, self%b)
       call take_values(self%b, self%place, y(:, v))
     end do
   end subroutine apply_rows
@@ -527,20 +531,24 @@ contains
   !> All rows' banded LU solves at once (LAPACK's dgbtrs with band_factor's LU, one
   !> right-hand side each), b(row, unknown): in, the right-hand sides; out, the solutions.
   !> The padding's unknowns stay zero.
-  pure subroutine rows_solve(nr, nu, kl, ku, lower, upper, inverse_diagonal, swap, b)
+  pure subroutine rows_solve(nr, nu, kl, ku, lower, upper, inverse_diagonal, swap, swapped, b)
     integer, intent(in) :: nr, nu, kl, ku   !< ku: U's superdiagonals not zero in any row
     real(real64), intent(in) :: lower(nr, kl, nu), upper(nr, 2 * kl, nu), inverse_diagonal(nr, nu)
     integer, intent(in) :: swap(nr, nu)
+    logical, intent(in) :: swapped(nu)
     real(real64), intent(inout) :: b(nr, nu)
     real(real64) :: t
     integer :: j, i, r, l
     do j = 1, nu - 1
-      do r = 1, nr
-        l = j + swap(r, j)
-        t = b(r, l)
-        b(r, l) = b(r, j)
-        b(r, j) = t
-      end do
+      ! (the rolling Jacobian's row blocks seldom pivot: none on the 20 x 20 circle's loop)
+      if (swapped(j)) then
+        do r = 1, nr
+          l = j + swap(r, j)
+          t = b(r, l)
+          b(r, l) = b(r, j)
+          b(r, j) = t
+        end do
+      end if
       do i = 1, min(kl, nu - j)
         b(:, j + i) = b(:, j + i) - lower(:, i, j) * b(:, j)
       end do
