@@ -54,7 +54,10 @@ contains
   !> estimate_ends: a column ends when GMRES's own residual estimate meets tol, without the
   !> product that checks it (an inexact Newton step's caller, which measures its own
   !> residual next, needs no more); restarts still begin from the true residual.
-  subroutine gmres(a, precond, b, x, tol, restart, max_iterations, result, estimate_ends)
+  !> second_pass_below: Gram-Schmidt's second pass runs when the first left less than this
+  !> fraction of the vector's norm (default 1/sqrt(2), Kahan's "twice is enough"; a pass
+  !> that keeps a fraction r loses about eps / r of orthogonality).
+  subroutine gmres(a, precond, b, x, tol, restart, max_iterations, result, estimate_ends, second_pass_below)
     class(block_operator_t), intent(inout) :: a, precond
     real(real64), intent(in) :: b(:, :)
     real(real64), intent(inout) :: x(:, :)
@@ -62,13 +65,14 @@ contains
     integer, intent(in) :: restart, max_iterations
     type(gmres_result_t), intent(out) :: result
     logical, intent(in), optional :: estimate_ends
+    real(real64), intent(in), optional :: second_pass_below
     real(real64), allocatable :: v(:, :, :), h(:, :, :), g(:, :), cs(:, :), sn(:, :), y(:)
     real(real64), allocatable :: r(:, :), bnorm(:), work(:, :), z(:, :)
     integer, allocatable :: cols(:), jend(:)
     logical, allocatable :: active(:), in_cycle(:)
     logical :: trust
     integer :: nn, nv, m, j, i, c, col, na
-    real(real64) :: beta, hnew, t, wnorm
+    real(real64) :: beta, hnew, t, wnorm, second_pass
     integer(int64) :: c0, c1, c2, c3, rate
 
     nn = size(b, 1)
@@ -87,6 +91,8 @@ contains
     active = .true.
     trust = .false.
     if (present(estimate_ends)) trust = estimate_ends
+    second_pass = 0.7_real64
+    if (present(second_pass_below)) second_pass = second_pass_below
     ! a zero start's residual is b itself (A 0 = 0 exactly): no product for it
     do c = 1, nv
       if (all(x(:, c) == 0)) then
@@ -140,7 +146,7 @@ contains
           call project(v(:, 1:j, c), work(:, i), h(1:j, j, c))
           call add_combination(v(:, 1:j, c), -h(1:j, j, c), work(:, i))
           hnew = norm(work(:, i))
-          if (hnew < 0.7_real64 * wnorm) then
+          if (hnew < second_pass * wnorm) then
             call project(v(:, 1:j, c), work(:, i), y(1:j))
             call add_combination(v(:, 1:j, c), -y(1:j), work(:, i))
             h(1:j, j, c) = h(1:j, j, c) + y(1:j)
