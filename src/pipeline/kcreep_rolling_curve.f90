@@ -60,6 +60,7 @@ module kcreep_rolling_curve
     real(real64) :: key(9) = 0                    !< dx dy x0 y0 nu g spin_centre spin_shift
     logical, allocatable :: inside(:, :)
     type(patch_t) :: centred                      !< the patch with the spin centre at the origin
+    real(real64), allocatable :: x(:), y(:)       !< its cell centres (the moment's arms)
     type(rolling_solver_t) :: solver
     real(real64), allocatable :: unit_w(:, :)     !< (2n, 3) rigid slip per unit xi, eta, phi
     integer :: kept = 0                           !< solutions kept (0 to 2, 1 the newest)
@@ -89,7 +90,7 @@ contains
     type(rolling_state_t), intent(inout), optional, target :: state
     type(rolling_state_t), target :: local
     type(rolling_state_t), pointer :: st
-    real(real64), allocatable :: bound(:), p(:), x(:), y(:)
+    real(real64), allocatable :: bound(:), p(:)
     integer, allocatable :: cells(:)
     real(real64) :: da
     logical :: have_unit
@@ -127,8 +128,6 @@ contains
     else
       allocate (maps(0))
     end if
-    x = st%centred%cell_x(st%centred%ix)
-    y = st%centred%cell_y(st%centred%iy)
     da = patch%dx * patch%dy
     do k = 1, size(points)
       call system_clock(t0, rate)
@@ -150,7 +149,7 @@ contains
       associate (r => points(k)%force)
         r%fx = sum(p(1:n)) * da
         r%fy = sum(p(n + 1:2 * n)) * da
-        r%mz = sum(x * p(n + 1:2 * n) - y * p(1:n)) * da
+        r%mz = sum(st%x * p(n + 1:2 * n) - st%y * p(1:n)) * da
         r%fn = sum(pn, mask=patch%inside) * da
         r%adhesion = real(count(cells == cell_stick), real64) / max(n, 1)
       end associate
@@ -216,6 +215,8 @@ contains
     state%centred = patch
     state%centred%x0 = patch%x0 - spin_centre(1)
     state%centred%y0 = patch%y0 - spin_centre(2)
+    state%x = state%centred%cell_x(state%centred%ix)
+    state%y = state%centred%cell_y(state%centred%iy)
     allocate (state%unit_w(2 * patch%n, 3), state%p1(2 * patch%n, 2), state%ap1(2 * patch%n, 2))
     do j = 1, 3
       call rigid_creepage(state%centred, scheme, j, state%unit_w(:, j))

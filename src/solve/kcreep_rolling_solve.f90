@@ -249,24 +249,21 @@ contains
     real(real64), intent(in) :: w(:), bound(:), p(:), ap(:)
     real(real64), intent(out) :: f(:), q(:)
     real(real64), intent(out) :: fnorm, fmax
-    real(real64) :: qn
+    real(real64) :: qn, d
     integer :: i, n
     n = solver%n
     q = p + solver%jac%rho * (ap - w)
-    fmax = 0
+    ! branch-free (merge), so that the loop vectorises: the projection's two cases as
+    ! before, the slip one's division guarded where it is not taken (q = 0)
     do i = 1, n
       qn = sqrt(q(i)**2 + q(n + i)**2)
-      if (qn <= bound(i)) then
-        f(i) = p(i) - q(i)
-        f(n + i) = p(n + i) - q(n + i)
-      else
-        f(i) = p(i) - bound(i) * q(i) / qn
-        f(n + i) = p(n + i) - bound(i) * q(n + i) / qn
-      end if
-      fmax = max(fmax, f(i)**2 + f(n + i)**2)
+      d = max(qn, tiny(1.0_real64))
+      f(i) = p(i) - merge(q(i), bound(i) * q(i) / d, qn <= bound(i))
+      f(n + i) = p(n + i) - merge(q(n + i), bound(i) * q(n + i) / d, qn <= bound(i))
     end do
-    fmax = sqrt(fmax)
-    fnorm = norm2(f)
+    fmax = sqrt(maxval(f(1:n)**2 + f(n + 1:2 * n)**2))
+    ! O(1) values: the plain sum of squares (norm2's scaling divides at every element)
+    fnorm = sqrt(sum(f**2))
   end subroutine residual_of_product
 
   !> Solve the rolling problem for rigid slip w (2n) and traction bounds g (n);
