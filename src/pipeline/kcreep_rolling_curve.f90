@@ -273,7 +273,7 @@ contains
     else
       if (state%kept >= 1) then
         guess = mu * state%p1(:, 1)
-        if (maxval(sqrt(guess(1:n)**2 + guess(n + 1:)**2) - bound) <= tolerance * gscale) then
+        if (all(guess(1:n)**2 + guess(n + 1:)**2 <= (bound + tolerance * gscale)**2)) then
           ! Newton's answer lies on or within the bounds to the stop test (its slip cells
           ! outside by about 1e-9 of max(mu pn)): taken as it is, with its A p
           ap = mu * state%ap1(:, 1)

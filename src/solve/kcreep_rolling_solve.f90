@@ -249,17 +249,15 @@ contains
     real(real64), intent(in) :: w(:), bound(:), p(:), ap(:)
     real(real64), intent(out) :: f(:), q(:)
     real(real64), intent(out) :: fnorm, fmax
-    real(real64) :: qn, d
+    real(real64) :: shrink
     integer :: i, n
     n = solver%n
     q = p + solver%jac%rho * (ap - w)
-    ! branch-free (merge), so that the loop vectorises: the projection's two cases as
-    ! before, the slip one's division guarded where it is not taken (q = 0)
+    ! the projection as one factor, min(1, g / |q|): no branch, so that the loop vectorises
     do i = 1, n
-      qn = sqrt(q(i)**2 + q(n + i)**2)
-      d = max(qn, tiny(1.0_real64))
-      f(i) = p(i) - merge(q(i), bound(i) * q(i) / d, qn <= bound(i))
-      f(n + i) = p(n + i) - merge(q(n + i), bound(i) * q(n + i) / d, qn <= bound(i))
+      shrink = min(1.0_real64, bound(i) / max(sqrt(q(i)**2 + q(n + i)**2), tiny(1.0_real64)))
+      f(i) = p(i) - shrink * q(i)
+      f(n + i) = p(n + i) - shrink * q(n + i)
     end do
     fmax = sqrt(maxval(f(1:n)**2 + f(n + 1:2 * n)**2))
     ! O(1) values: the plain sum of squares (norm2's scaling divides at every element)
