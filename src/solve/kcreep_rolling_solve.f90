@@ -48,11 +48,15 @@ module kcreep_rolling_solve
   real(real64), parameter :: first_forcing = 1e-2_real64, max_forcing = 0.5_real64, stop_forcing = 0.9_real64
 
   !> Cells of a grid row coupled in the preconditioner's row blocks, each side.
-  !> Measured, one thread (24-point circle curve of ../shared/contact-slip;
-  !> one point xi = 2e-3 on the Hertzian circle at 100 x 100 and 200 x 200):
-  !> whole rows (dense LU) 0.47 s, 0.37 s, 7.8 s; band 8: 0.56, 0.22, 2.3 s;
-  !> band 4: 0.41, 0.15, 1.3 s; band 2: 0.38, 0.25, 1.4 s (more GMRES steps).
-  integer, parameter :: band_cells = 4
+  !> Measured, one thread, CPU time, with the rows' substitutions side by side
+  !> (rows_solve: their cost now grows with the band): band 4 / 3 / 2, the 20 x 20
+  !> circle's warm loop 0.295 / 0.283 / 0.283 ms per call, the fast model's build
+  !> 0.54 / 0.51 / 0.50 s (circle) and 1.43 / 1.32 / 1.24 s (432-cell L-shaped mask),
+  !> one cold point xi = 2e-3 on a 200 x 200 circle 0.265 / - / 0.248 s. (With one row after
+  !> another, before: whole rows 0.47 s, 0.37 s, 7.8 s on a 24-point curve, one point
+  !> at 100 x 100 and at 200 x 200; band 8: 0.56, 0.22, 2.3 s; band 4: 0.41, 0.15,
+  !> 1.3 s; band 2: 0.38, 0.25, 1.4 s.)
+  integer, parameter :: band_cells = 2
 
   !> GMRES's second Gram-Schmidt pass only where the first kept less than a tenth of the
   !> vector (at most about 10 eps of orthogonality lost a step; a Newton step asks GMRES
