@@ -7,9 +7,11 @@
 !> Points are solved in the order given, each started from the best (the
 !> smallest ||F||) of the previous point's tractions, the secant through the
 !> previous two, and the full-adhesion tractions of its creepage (when the
-!> unit tractions are known) projected onto the traction bound. A caller's
-!> rolling_state_t carries the set-up and the previous points across calls
-!> (a time integration calling once per step).
+!> unit tractions are known, and they lie within the bounds or no other start
+!> is close) projected onto the traction bound (solve_point). A caller's
+!> rolling_state_t carries the set-up (FFT plans, the preconditioner's
+!> factors) and the previous points with their operator products across
+!> calls (a time integration calling once per step).
 module kcreep_rolling_curve
   use, intrinsic :: iso_fortran_env, only: real64, int64
   use kcreep_status, only: status_t, fail, exit_bad_input, exit_numerical
@@ -26,14 +28,14 @@ module kcreep_rolling_curve
   implicit none
   private
   public :: rolling_request_t, rolling_point_t, rolling_curve, default_rolling_tolerance, cell_stick, cell_slip
+  public :: rolling_residual_of, rolling_state_t, prepare_rolling_state, release_rolling_state, solve_point, &
+            check_rolling_input
+
   !> A start whose max |F_i| is within this fraction of max(mu pn) is good enough that the
   !> full adhesion (one more operator product) is not tried. Measured (the 20 x 20 circle's
   !> warm loop): the secant's start 1e-3 to 7e-3, the last solution's about 1e-2, the full
   !> adhesion's 1e-2 to 1e-1 there.
   real(real64), parameter :: accept_start = 1e-2_real64
-
-  public :: rolling_residual_of, rolling_state_t, prepare_rolling_state, release_rolling_state, solve_point, &
-            check_rolling_input
 
   type :: rolling_request_t
     real(real64) :: mu = 0                        !< friction coefficient
@@ -238,10 +240,10 @@ contains
   !> start when given, else from the best (smallest ||F||) of: the state's last solution,
   !> the secant through its last two (both scaled to mu: p(mu, c) = mu p(1, c/mu)), the
   !> projected full adhesion of cr (unit_traction) when it lies within the bounds or neither
-  !> other start is within accept_start of max(mu pn), and zero when there is no other. The last solution's residual
-  !> costs no operator product (the state keeps its A p, linear in p); the winner's product
-  !> is handed to the solver. p, cells: the solution and its stick/slip cells; the state
-  !> keeps it (per unit mu) for the next point.
+  !> other start is within accept_start of max(mu pn), and zero when there is no other.
+  !> The last solution's residual costs no operator product (the state keeps its A p,
+  !> linear in p); the winner's product is handed to the solver. p, cells: the solution
+  !> and its stick/slip cells; the state keeps it (per unit mu) for the next point.
   subroutine solve_point(state, cr, mu, bound, tolerance, p, cells, info, unit_traction, start)
     type(rolling_state_t), intent(inout) :: state
     real(real64), intent(in) :: cr(3), mu, bound(:), tolerance
