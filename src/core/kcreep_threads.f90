@@ -120,6 +120,12 @@ contains
       n = requested
       return
     end if
+    if (work / work_per_thread <= 1) then
+      ! work for one thread: the same answer without asking the system (cpus_allowed
+      ! reads the cgroup's files: 30 us, a tenth of a warm rolling call on 316 cells)
+      n = 1
+      return
+    end if
     n = int(min(int(cpus_allowed(), int64), max(work / work_per_thread, 1_int64)))
     if (n > 1) n = min(n, cpus_free())
     n = max(n, 1)

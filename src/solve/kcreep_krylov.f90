@@ -54,7 +54,10 @@ contains
   !> estimate_ends: a column ends when GMRES's own residual estimate meets tol, without the
   !> product that checks it (an inexact Newton step's caller, which measures its own
   !> residual next, needs no more); restarts still begin from the true residual.
-  subroutine gmres(a, precond, b, x, tol, restart, max_iterations, result, estimate_ends)
+  !> second_pass_below: Gram-Schmidt's second pass runs when the first left less than this
+  !> fraction of the vector's norm (default 1/sqrt(2), Kahan's "twice is enough"; a pass
+  !> that keeps a fraction r loses about eps / r of orthogonality).
+  subroutine gmres(a, precond, b, x, tol, restart, max_iterations, result, estimate_ends, second_pass_below)
     class(block_operator_t), intent(inout) :: a, precond
     real(real64), intent(in) :: b(:, :)
     real(real64), intent(inout) :: x(:, :)
@@ -62,13 +65,14 @@ contains
     integer, intent(in) :: restart, max_iterations
     type(gmres_result_t), intent(out) :: result
     logical, intent(in), optional :: estimate_ends
+    real(real64), intent(in), optional :: second_pass_below
     real(real64), allocatable :: v(:, :, :), h(:, :, :), g(:, :), cs(:, :), sn(:, :), y(:)
     real(real64), allocatable :: r(:, :), bnorm(:), work(:, :), z(:, :)
     integer, allocatable :: cols(:), jend(:)
     logical, allocatable :: active(:), in_cycle(:)
     logical :: trust
     integer :: nn, nv, m, j, i, c, col, na
-    real(real64) :: beta, hnew, t, wnorm
+    real(real64) :: beta, hnew, t, wnorm, second_pass
     integer(int64) :: c0, c1, c2, c3, rate
 
     nn = size(b, 1)
@@ -87,6 +91,8 @@ contains
     active = .true.
     trust = .false.
     if (present(estimate_ends)) trust = estimate_ends
+    second_pass = 0.7_real64
+    if (present(second_pass_below)) second_pass = second_pass_below
     ! a zero start's residual is b itself (A 0 = 0 exactly): no product for it
     do c = 1, nv
       if (all(x(:, c) == 0)) then
@@ -140,7 +146,7 @@ contains
           call project(v(:, 1:j, c), work(:, i), h(1:j, j, c))
           call add_combination(v(:, 1:j, c), -h(1:j, j, c), work(:, i))
           hnew = norm(work(:, i))
-          if (hnew < 0.7_real64 * wnorm) then
+          if (hnew < second_pass * wnorm) then
             call project(v(:, 1:j, c), work(:, i), y(1:j))
             call add_combination(v(:, 1:j, c), -y(1:j), work(:, i))
             h(1:j, j, c) = h(1:j, j, c) + y(1:j)
@@ -238,12 +244,17 @@ contains
     integer :: b, k, nb
 
     nb = size(partial, 2)
-    ! one block (short vectors: the rolling solver's): no parallel region to enter
-    !$omp parallel do schedule(static) if(nb > 1)
-    do b = 1, nb
-      call block_products(v, w, b, partial(:, b))
-    end do
-    !$omp end parallel do
+    if (nb == 1) then
+      ! one block (short vectors: the rolling solver's): no parallel region to enter (an
+      ! OpenMP region with if(.false.) still sets up a team, a microsecond per call)
+      call block_products(v, w, 1, partial(:, 1))
+    else
+      !$omp parallel do schedule(static)
+      do b = 1, nb
+        call block_products(v, w, b, partial(:, b))
+      end do
+      !$omp end parallel do
+    end if
     do k = 1, size(v, 2)
       h(k) = sum(partial(k, :))
     end do
@@ -285,11 +296,15 @@ contains
     real(real64) :: partial((size(w) + row_block - 1) / row_block)
     integer :: b, nb
     nb = size(partial)
-    !$omp parallel do schedule(static) if(nb > 1)
-    do b = 1, nb
-      partial(b) = block_dot(w, w, b)
-    end do
-    !$omp end parallel do
+    if (nb == 1) then
+      partial(1) = block_dot(w, w, 1)
+    else
+      !$omp parallel do schedule(static)
+      do b = 1, nb
+        partial(b) = block_dot(w, w, b)
+      end do
+      !$omp end parallel do
+    end if
     norm = sqrt(sum(partial))
   end function norm
 
@@ -311,13 +326,26 @@ contains
   subroutine add_combination(v, a, w)
     real(real64), intent(in), contiguous :: v(:, :), a(:)
     real(real64), intent(inout), contiguous :: w(:)
-    integer :: b, k, i, lo, hi, nk
-    real(real64) :: a1, a2, a3, a4
+    integer :: b, lo, hi, nk
     nk = size(a)
-    !$omp parallel do private(k, i, lo, hi, a1, a2, a3, a4) schedule(static) if(size(w) > row_block)
+    if (size(w) <= row_block) then
+      call add_block(1, size(w))
+      return
+    end if
+    !$omp parallel do private(lo, hi) schedule(static)
     do b = 1, (size(w) + row_block - 1) / row_block
       lo = (b - 1) * row_block + 1
       hi = min(b * row_block, size(w))
+      call add_block(lo, hi)
+    end do
+    !$omp end parallel do
+
+  contains
+
+    subroutine add_block(lo, hi)
+      integer, intent(in) :: lo, hi
+      integer :: k, i
+      real(real64) :: a1, a2, a3, a4
       do k = 1, nk - 3, 4
         a1 = a(k)
         a2 = a(k + 1)
@@ -330,8 +358,8 @@ contains
       do k = nk - mod(nk, 4) + 1, nk
         w(lo:hi) = w(lo:hi) + a(k) * v(lo:hi, k)
       end do
-    end do
-    !$omp end parallel do
+    end subroutine add_block
+
   end subroutine add_combination
 
 end module kcreep_krylov

@@ -27,7 +27,8 @@ module kcreep_rolling_solve
   implicit none
   private
   public :: rolling_solver_t, rolling_options_t, rolling_info_t, create_rolling_solver, destroy_rolling_solver, &
-            solve_rolling, rolling_residual, project_to_bounds, cell_stick, cell_slip, default_rolling_tolerance
+            solve_rolling, rolling_residual, residual_of_product, project_to_bounds, cell_stick, cell_slip, &
+            default_rolling_tolerance
 
   integer, parameter :: cell_stick = 1, cell_slip = 2   !< CONTACT's IGS: 1 adhesion, 2 slip
 
@@ -47,11 +48,33 @@ module kcreep_rolling_solve
   real(real64), parameter :: first_forcing = 1e-2_real64, max_forcing = 0.5_real64, stop_forcing = 0.9_real64
 
   !> Cells of a grid row coupled in the preconditioner's row blocks, each side.
-  !> Measured, one thread (24-point circle curve of ../shared/contact-slip;
-  !> one point xi = 2e-3 on the Hertzian circle at 100 x 100 and 200 x 200):
-  !> whole rows (dense LU) 0.47 s, 0.37 s, 7.8 s; band 8: 0.56, 0.22, 2.3 s;
-  !> band 4: 0.41, 0.15, 1.3 s; band 2: 0.38, 0.25, 1.4 s (more GMRES steps).
-  integer, parameter :: band_cells = 4
+  !> Measured, one thread, CPU time, with the rows' substitutions side by side
+  !> (rows_solve: their cost now grows with the band): band 4 / 3 / 2, the 20 x 20
+  !> circle's warm loop 0.295 / 0.283 / 0.283 ms per call, the fast model's build
+  !> 0.54 / 0.51 / 0.50 s (circle) and 1.43 / 1.32 / 1.24 s (432-cell L-shaped mask),
+  !> one cold point xi = 2e-3 on a 200 x 200 circle 0.265 / - / 0.248 s. (With one row after
+  !> another, before: whole rows 0.47 s, 0.37 s, 7.8 s on a 24-point curve, one point
+  !> at 100 x 100 and at 200 x 200; band 8: 0.56, 0.22, 2.3 s; band 4: 0.41, 0.15,
+  !> 1.3 s; band 2: 0.38, 0.25, 1.4 s.)
+  integer, parameter :: band_cells = 2
+
+  !> GMRES's second Gram-Schmidt pass only where the first kept less than a tenth of the
+  !> vector (at most about 10 eps of orthogonality lost a step; a Newton step asks GMRES
+  !> for 1e-2 to 1e-3). Measured (the 20 x 20 circle's warm loop, 3033 GMRES steps): the
+  !> first pass kept 0.14 to 0.72 of the vector, median 0.38, so the default test (1/sqrt(2))
+  !> ran the second pass at all but 4 steps; without it, the same iterations and the warm
+  !> loop 0.307 -> 0.293 ms per call.
+  real(real64), parameter :: second_pass_below = 0.1_real64
+
+  !> A row block is factored again when P' of one of its cells moved by more than this
+  !> (|d pxx| + |d pxy| + |d pyy|; a cell turning from adhesion to slip moves it by
+  !> about 1 or more) since the row's last factorisation, kept across Newton steps and
+  !> calls; the others keep their LU as the preconditioner. Measured, one thread, CPU
+  !> time (the 20 x 20 circle's warm loop; the fast model's build of the circle and of
+  !> the 432-cell L-shaped mask): every row every step 0.45 ms, 0.70 s, 1.84 s; only
+  !> unchanged rows kept (0): 0.45 ms; 0.01: 0.43 ms; 0.1: 0.41 ms, 0.66 s, 1.71 s;
+  !> 0.3: 0.40 ms, 0.63 s, 1.64 s; 0.5: 0.42 ms, 0.63 s, 1.64 s; 1: 0.41 ms.
+  real(real64), parameter :: refactor_change = 0.3_real64
 
   type :: rolling_options_t
     real(real64) :: tolerance = default_rolling_tolerance
@@ -85,20 +108,35 @@ module kcreep_rolling_solve
   !> apart in the row (A's row coupling falls off as 1/distance^2).
   type :: row_block_t
     integer :: first = 0, m = 0      !< cells first .. first + m - 1
+    logical :: factored = .false.    !< ab holds the LU of P' as in row_preconditioner_t's fxx ...
     integer :: kl = 0                !< sub- and superdiagonals of the band (unknowns)
+    integer :: ku = 0                !< U's superdiagonals that are not zero (kl to 2 kl, by the pivoting)
     real(real64), allocatable :: ab(:, :)      !< LAPACK band storage (2 kl + kl + 1, 2 m)
     integer, allocatable :: pivots(:)
-    !> 1 / U's diagonal: the back substitution multiplies (a division's latency, on the
-    !> substitution's one chain of dependent steps, was a sixth of the preconditioner's time)
-    real(real64), allocatable :: inverse_diagonal(:)
   end type row_block_t
 
+  !> The row blocks' LU factors side by side for the substitutions (rows_solve), the
+  !> row index fastest: all rows' substitutions advance together, independent steps
+  !> in one loop instead of one row's chain of dependent steps after another (that
+  !> chain, not the flops, set the time: 6 us against 2 us per apply, 20 x 20 circle).
+  !> Rows shorter than the longest and bands narrower than the widest are padded with
+  !> the identity (zero multipliers, unit diagonal), which leaves every value as the
+  !> row's own substitution computes it.
   type, extends(block_operator_t) :: row_preconditioner_t
     type(row_block_t), allocatable :: rows(:)
     integer :: n = 0
+    integer :: kl = 0, width = 0                          !< the widest band; the longest row's unknowns (2 m)
     integer, allocatable :: ix(:)                         !< grid column of each cell
     real(real64), allocatable :: rxx(:), rxy(:), ryy(:)   !< A within a grid row, by offset
-    real(real64), allocatable :: b(:)                     !< work
+    real(real64), allocatable :: fxx(:), fxy(:), fyy(:)   !< P' per cell at the rows' last factorisation
+    !> (row, i, j): L's multiplier of unknown j + i by unknown j; U(j - i, j); (row, j): 1 / U(j, j)
+    !> (the back substitution multiplies: a division's latency was a sixth of its time);
+    !> the row interchanged with j minus j
+    real(real64), allocatable :: lower(:, :, :), upper(:, :, :), inverse_diagonal(:, :)
+    integer, allocatable :: swap(:, :)
+    logical, allocatable :: swapped(:)                    !< (width): some row interchanges unknown j
+    integer, allocatable :: place(:)                      !< (2n): each unknown's element of b
+    real(real64), allocatable :: b(:, :)                  !< (rows, width) work
   contains
     procedure :: apply => apply_rows
   end type row_preconditioner_t
@@ -140,7 +178,8 @@ contains
     solver%prec%rxx = table%xx(:, 0)
     solver%prec%rxy = table%xy(:, 0)
     solver%prec%ryy = table%yy(:, 0)
-    allocate (solver%prec%rows(nrows))
+    allocate (solver%prec%rows(nrows), solver%prec%fxx(patch%n), solver%prec%fxy(patch%n), solver%prec%fyy(patch%n), &
+              solver%prec%place(2 * patch%n))
     r = 0
     first = 1
     do k = 1, patch%n
@@ -151,6 +190,26 @@ contains
         first = k + 1
       end if
     end do
+    associate (pr => solver%prec)
+      pr%kl = maxval(pr%rows%kl)
+      pr%width = 2 * maxval(pr%rows%m)
+      allocate (pr%lower(nrows, pr%kl, pr%width), pr%upper(nrows, 2 * pr%kl, pr%width), &
+                pr%inverse_diagonal(nrows, pr%width), pr%swap(nrows, pr%width), pr%b(nrows, pr%width), &
+                pr%swapped(pr%width))
+      pr%lower = 0
+      pr%upper = 0
+      pr%inverse_diagonal = 1
+      pr%swap = 0
+      pr%swapped = .false.
+      pr%b = 0
+      ! unknown px of a row's i-th cell is its 2 i - 1-th, py the 2 i-th
+      do r = 1, nrows
+        do k = 1, pr%rows(r)%m
+          pr%place(pr%rows(r)%first + k - 1) = r + (2 * k - 2) * nrows
+          pr%place(patch%n + pr%rows(r)%first + k - 1) = r + (2 * k - 1) * nrows
+        end do
+      end do
+    end associate
 
   contains
 
@@ -163,8 +222,7 @@ contains
       solver%prec%rows(r)%first = lo
       solver%prec%rows(r)%m = m
       solver%prec%rows(r)%kl = kl
-      allocate (solver%prec%rows(r)%ab(3 * kl + 1, 2 * m), solver%prec%rows(r)%pivots(2 * m), &
-                solver%prec%rows(r)%inverse_diagonal(2 * m))
+      allocate (solver%prec%rows(r)%ab(3 * kl + 1, 2 * m), solver%prec%rows(r)%pivots(2 * m))
     end subroutine add_row
 
   end subroutine create_rolling_solver
@@ -174,56 +232,74 @@ contains
     call destroy_fft_operator(solver%jac%op)
   end subroutine destroy_rolling_solver
 
-  !> F(p) and what Newton needs of it: q = p - rho s, ||F||_2, max |F_i|.
-  subroutine rolling_residual(solver, w, bound, p, f, q, fnorm, fmax)
+  !> F(p) and what Newton needs of it: q = p - rho s, ||F||_2, max |F_i|;
+  !> ap: A p (one operator product), kept by callers that reuse it.
+  subroutine rolling_residual(solver, w, bound, p, f, q, fnorm, fmax, ap)
     type(rolling_solver_t), intent(inout) :: solver
     real(real64), intent(in) :: w(:), bound(:), p(:)
     real(real64), intent(out) :: f(:), q(:)
     real(real64), intent(out) :: fnorm, fmax
-    real(real64) :: ap(size(p), 1), qn
+    real(real64), intent(out), optional :: ap(:)
+    real(real64) :: product(size(p), 1)
+    call apply_fft_operator(solver%jac%op, reshape(p, [size(p), 1]), product)
+    solver%jac%products = solver%jac%products + 1
+    call residual_of_product(solver, w, bound, p, product(:, 1), f, q, fnorm, fmax)
+    if (present(ap)) ap = product(:, 1)
+  end subroutine rolling_residual
+
+  !> rolling_residual with A p given (ap): no operator product.
+  subroutine residual_of_product(solver, w, bound, p, ap, f, q, fnorm, fmax)
+    type(rolling_solver_t), intent(in) :: solver
+    real(real64), intent(in) :: w(:), bound(:), p(:), ap(:)
+    real(real64), intent(out) :: f(:), q(:)
+    real(real64), intent(out) :: fnorm, fmax
+    real(real64) :: shrink
     integer :: i, n
     n = solver%n
-    call apply_fft_operator(solver%jac%op, reshape(p, [2 * n, 1]), ap)
-    solver%jac%products = solver%jac%products + 1
-    q = p + solver%jac%rho * (ap(:, 1) - w)
-    fmax = 0
+    q = p + solver%jac%rho * (ap - w)
+    ! the projection as one factor, min(1, g / |q|): no branch, so that the loop vectorises
     do i = 1, n
-      qn = sqrt(q(i)**2 + q(n + i)**2)
-      if (qn <= bound(i)) then
-        f(i) = p(i) - q(i)
-        f(n + i) = p(n + i) - q(n + i)
-      else
-        f(i) = p(i) - bound(i) * q(i) / qn
-        f(n + i) = p(n + i) - bound(i) * q(n + i) / qn
-      end if
-      fmax = max(fmax, f(i)**2 + f(n + i)**2)
+      shrink = min(1.0_real64, bound(i) / max(sqrt(q(i)**2 + q(n + i)**2), tiny(1.0_real64)))
+      f(i) = p(i) - shrink * q(i)
+      f(n + i) = p(n + i) - shrink * q(n + i)
     end do
-    fmax = sqrt(fmax)
-    fnorm = norm2(f)
-  end subroutine rolling_residual
+    fmax = sqrt(maxval(f(1:n)**2 + f(n + 1:2 * n)**2))
+    ! O(1) values: the plain sum of squares (norm2's scaling divides at every element)
+    fnorm = sqrt(sum(f**2))
+  end subroutine residual_of_product
 
   !> Solve the rolling problem for rigid slip w (2n) and traction bounds g (n);
   !> p: start in, solution out; state: cell_stick / cell_slip per cell.
-  subroutine solve_rolling(solver, w, bound, options, p, state, info)
+  !> start_ap: A p of the start as given (a caller that has it saves the product; p is
+  !> then taken as it is, else projected onto the bounds first); ap: A p of the solution.
+  subroutine solve_rolling(solver, w, bound, options, p, state, info, start_ap, ap)
     type(rolling_solver_t), intent(inout) :: solver
     real(real64), intent(in) :: w(:), bound(:)
     type(rolling_options_t), intent(in) :: options
     real(real64), intent(inout) :: p(:)
     integer, intent(out) :: state(:)
     type(rolling_info_t), intent(out) :: info
-    real(real64), allocatable :: f(:), q(:), ftrial(:), qtrial(:), ptrial(:), dp(:, :), rhs(:, :)
+    real(real64), intent(in), optional :: start_ap(:)
+    real(real64), intent(out), optional :: ap(:)
+    real(real64), allocatable :: f(:), q(:), ftrial(:), qtrial(:), ptrial(:), dp(:, :), rhs(:, :), pa(:), patrial(:)
     real(real64) :: fnorm, fmax, gscale, tnorm, tmax, t, eta, fnorm_previous
     type(gmres_result_t) :: gr
     integer :: n, i, halvings
     real(real64), parameter :: armijo = 1e-4_real64
 
     n = solver%n
-    allocate (f(2 * n), q(2 * n), ftrial(2 * n), qtrial(2 * n), ptrial(2 * n), dp(2 * n, 1), rhs(2 * n, 1))
+    allocate (f(2 * n), q(2 * n), ftrial(2 * n), qtrial(2 * n), ptrial(2 * n), dp(2 * n, 1), rhs(2 * n, 1), &
+              pa(2 * n), patrial(2 * n))
     solver%jac%products = 0
     gscale = max(maxval(bound), tiny(1.0_real64))
-    ! p must start inside the bounds for the residual to mean what it says
-    call project_to_bounds(bound, p)
-    call rolling_residual(solver, w, bound, p, f, q, fnorm, fmax)
+    if (present(start_ap)) then
+      pa = start_ap
+      call residual_of_product(solver, w, bound, p, pa, f, q, fnorm, fmax)
+    else
+      ! p must start inside the bounds for the residual to mean what it says
+      call project_to_bounds(bound, p)
+      call rolling_residual(solver, w, bound, p, f, q, fnorm, fmax, pa)
+    end if
     do
       info%residual = fmax / gscale
       if (info%residual <= options%tolerance) then
@@ -245,14 +321,15 @@ contains
       fnorm_previous = fnorm
       rhs(:, 1) = -f
       dp = 0
-      call gmres(solver%jac, solver%prec, rhs, dp, eta, options%restart, options%max_gmres, gr, estimate_ends=.true.)
+      call gmres(solver%jac, solver%prec, rhs, dp, eta, options%restart, options%max_gmres, gr, estimate_ends=.true., &
+                 second_pass_below=second_pass_below)
       info%gmres = info%gmres + gr%iterations(1)
       ! Armijo back-tracking on ||F||_2
       t = 1
       halvings = 0
       do
         ptrial = p + t * dp(:, 1)
-        call rolling_residual(solver, w, bound, ptrial, ftrial, qtrial, tnorm, tmax)
+        call rolling_residual(solver, w, bound, ptrial, ftrial, qtrial, tnorm, tmax, patrial)
         if (tnorm <= (1 - armijo * t) * fnorm .or. halvings >= 30) exit
         t = t / 2
         halvings = halvings + 1
@@ -260,10 +337,12 @@ contains
       p = ptrial
       f = ftrial
       q = qtrial
+      pa = patrial
       fnorm = tnorm
       fmax = tmax
     end do
     info%products = solver%jac%products
+    if (present(ap)) ap = pa
     ! the element division of the solution (q: of the final p)
     do i = 1, n
       if (q(i)**2 + q(n + i)**2 <= bound(i)**2) then
@@ -337,10 +416,11 @@ contains
     end do
   end subroutine apply_jacobian
 
-  !> Banded LU of each row's block of J = I - P' (I + rho A_row).
+  !> Banded LU of each row's block of J = I - P' (I + rho A_row), for the rows where P'
+  !> moved by more than refactor_change (any entry of any cell) since their last one.
   subroutine factor_rows(solver)
     type(rolling_solver_t), intent(inout) :: solver
-    integer :: r, i, j, m, k, l, kl, info, d, ci, cj
+    integer :: r, i, j, m, k, l, kl, info, d, ci, cj, lo, hi
     real(real64) :: rho, pxx, pxy, pyy, bxx, bxy, byy
     rho = solver%jac%rho
     associate (pr => solver%prec)
@@ -348,6 +428,17 @@ contains
         associate (row => pr%rows(r))
           m = row%m
           kl = row%kl
+          lo = row%first
+          hi = lo + m - 1
+          if (row%factored) then
+            if (maxval(abs(solver%jac%pxx(lo:hi) - pr%fxx(lo:hi)) + abs(solver%jac%pxy(lo:hi) - pr%fxy(lo:hi)) + &
+                       abs(solver%jac%pyy(lo:hi) - pr%fyy(lo:hi))) <= refactor_change) cycle
+          end if
+          pr%fxx(lo:hi) = solver%jac%pxx(lo:hi)
+          pr%fxy(lo:hi) = solver%jac%pxy(lo:hi)
+          pr%fyy(lo:hi) = solver%jac%pyy(lo:hi)
+          row%factored = .true.
+          row%ku = 0
           row%ab = 0
           do i = 1, m
             k = row%first + i - 1
@@ -383,9 +474,23 @@ contains
             row%ab(2 * kl + 1, :) = 1
             row%pivots = [(i, i=1, 2 * m)]
           end if
-          row%inverse_diagonal = 1 / row%ab(2 * kl + 1, :)
+          ! the factors side by side (kept zero or one beyond the row's own)
+          do j = 1, 2 * m
+            pr%swap(r, j) = row%pivots(j) - j
+            pr%inverse_diagonal(r, j) = 1 / row%ab(2 * kl + 1, j)
+            do i = 1, kl
+              pr%lower(r, i, j) = 0
+              if (i <= 2 * m - j) pr%lower(r, i, j) = row%ab(2 * kl + 1 + i, j)
+            end do
+            do i = 1, 2 * kl
+              pr%upper(r, i, j) = 0
+              if (i <= j - 1) pr%upper(r, i, j) = row%ab(2 * kl + 1 - i, j)
+              if (pr%upper(r, i, j) /= 0) row%ku = max(row%ku, i)
+            end do
+          end do
         end associate
       end do
+      pr%swapped = any(pr%swap /= 0, dim=1)
     end associate
 
   contains
@@ -407,27 +512,62 @@ contains
     real(real64), intent(in) :: x(:, :)
     real(real64), intent(out) :: y(:, :)
     integer, intent(in) :: columns(:)
-    integer :: r, v, m, lo, n, i
+    integer :: v
     if (size(columns) < 0) return
-    n = self%n
-    if (.not. allocated(self%b)) allocate (self%b(2 * n))
     do v = 1, size(x, 2)
-      do r = 1, size(self%rows)
-        m = self%rows(r)%m
-        lo = self%rows(r)%first
-        do i = 1, m
-          self%b(2 * i - 1) = x(lo + i - 1, v)
-          self%b(2 * i) = x(n + lo + i - 1, v)
-        end do
-        call band_solve(2 * m, self%rows(r)%kl, self%rows(r)%ab, self%rows(r)%pivots, self%rows(r)%inverse_diagonal, &
-                        self%b(1:2 * m))
-        do i = 1, m
-          y(lo + i - 1, v) = self%b(2 * i - 1)
-          y(n + lo + i - 1, v) = self%b(2 * i)
-        end do
-      end do
+      call place_values(x(:, v), self%place, self%b)
+      call rows_solve(size(self%rows), self%width, self%kl, maxval(self%rows%ku), self%lower, self%upper, &
+                      self%inverse_diagonal, self%swap, self%swapped, self%b)
+      call take_values(self%b, self%place, y(:, v))
     end do
   end subroutine apply_rows
+
+  pure subroutine place_values(values, place, b)
+    real(real64), intent(in) :: values(:)
+    integer, intent(in) :: place(:)
+    real(real64), intent(inout) :: b(*)
+    b(place) = values
+  end subroutine place_values
+
+  pure subroutine take_values(b, place, values)
+    real(real64), intent(in) :: b(*)
+    integer, intent(in) :: place(:)
+    real(real64), intent(out) :: values(:)
+    values = b(place)
+  end subroutine take_values
+
+  !> All rows' banded LU solves at once (LAPACK's dgbtrs with band_factor's LU, one
+  !> right-hand side each), b(row, unknown): in, the right-hand sides; out, the solutions.
+  !> The padding's unknowns stay zero.
+  pure subroutine rows_solve(nr, nu, kl, ku, lower, upper, inverse_diagonal, swap, swapped, b)
+    integer, intent(in) :: nr, nu, kl, ku   !< ku: U's superdiagonals not zero in any row
+    real(real64), intent(in) :: lower(nr, kl, nu), upper(nr, 2 * kl, nu), inverse_diagonal(nr, nu)
+    integer, intent(in) :: swap(nr, nu)
+    logical, intent(in) :: swapped(nu)
+    real(real64), intent(inout) :: b(nr, nu)
+    real(real64) :: t
+    integer :: j, i, r, l
+    do j = 1, nu - 1
+      ! (the rolling Jacobian's row blocks seldom pivot: none on the 20 x 20 circle's loop)
+      if (swapped(j)) then
+        do r = 1, nr
+          l = j + swap(r, j)
+          t = b(r, l)
+          b(r, l) = b(r, j)
+          b(r, j) = t
+        end do
+      end if
+      do i = 1, min(kl, nu - j)
+        b(:, j + i) = b(:, j + i) - lower(:, i, j) * b(:, j)
+      end do
+    end do
+    do j = nu, 1, -1
+      b(:, j) = b(:, j) * inverse_diagonal(:, j)
+      do i = 1, min(ku, j - 1)
+        b(:, j - i) = b(:, j - i) - b(:, j) * upper(:, i, j)
+      end do
+    end do
+  end subroutine rows_solve
 
   !> LU with partial pivoting of a band matrix with kl sub- and kl superdiagonals in
   !> LAPACK's storage (ab(2 kl + kl + 1, n), A(i, j) = ab(2 kl + 1 + i - j, j)): LAPACK's
@@ -488,32 +628,5 @@ contains
     end do
   end subroutine band_factor
 
-  !> Solve A x = b (b in, x out) with band_factor's LU (LAPACK's dgbtrs, one right-hand
-  !> side); inverse_diagonal: 1 / U's diagonal.
-  pure subroutine band_solve(n, kl, ab, pivots, inverse_diagonal, b)
-    integer, intent(in) :: n, kl
-    real(real64), intent(in) :: ab(3 * kl + 1, n), inverse_diagonal(n)
-    integer, intent(in) :: pivots(n)
-    real(real64), intent(inout) :: b(n)
-    integer :: kd, j, l, lm, lo
-    real(real64) :: t
-    kd = 2 * kl + 1
-    do j = 1, n - 1
-      lm = min(kl, n - j)
-      l = pivots(j)
-      if (l /= j) then
-        t = b(l)
-        b(l) = b(j)
-        b(j) = t
-      end if
-      b(j + 1:j + lm) = b(j + 1:j + lm) - ab(kd + 1:kd + lm, j) * b(j)
-    end do
-    ! U's columns as ascending array operations (vectorised; a descending loop was not)
-    do j = n, 1, -1
-      b(j) = b(j) * inverse_diagonal(j)
-      lo = max(1, j - 2 * kl)
-      b(lo:j - 1) = b(lo:j - 1) - b(j) * ab(kd + lo - j:kd - 1, j)
-    end do
-  end subroutine band_solve
 
 end module kcreep_rolling_solve
