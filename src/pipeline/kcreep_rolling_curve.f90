@@ -37,6 +37,12 @@ module kcreep_rolling_curve
   !> adhesion's 1e-2 to 1e-1 there.
   real(real64), parameter :: accept_start = 1e-2_real64
 
+  !> Newton steps after which a point counts as stalled and is solved along the creepage
+  !> path instead (follow_path). Converging solves took at most 19 steps in 50,000 solves of
+  !> the tests fast_forces, contact_table, rolling_contact, wheel_rail_rolling,
+  !> rolling_input, unit_rolling_warm and fastsim_exact (95 % within 4).
+  integer, parameter :: stall_newton = 30
+
   type :: rolling_request_t
     real(real64) :: mu = 0                        !< friction coefficient
     real(real64), allocatable :: creepages(:, :)  !< (3, n): (xi, eta, phi) of each point
@@ -267,6 +273,7 @@ contains
     p = 0
     best_ap = 0   ! A 0 = 0: the zero start's product
     options%tolerance = tolerance
+    options%max_newton = stall_newton
     if (present(start)) then
       ! the caller's start is the start (the fast model's build: its neighbours' solutions
       ! extrapolated, the best start at 88 % of its points): no residual spent on others
@@ -308,6 +315,7 @@ contains
       call solve_rolling(state%solver, w, bound, options, p, cells, info, start_ap=best_ap, ap=ap)
     end if
     info%products = info%products + starts
+    if (.not. info%converged) call follow_path()
     if (info%converged) then
       state%p1(:, 2) = state%p1(:, 1)
       state%ap1(:, 2) = state%ap1(:, 1)
@@ -319,6 +327,43 @@ contains
     end if
 
   contains
+
+    !> Newton stalls where the stick/slip set moves far between the start and the answer
+    !> (damped steps of about a quarter: on an S1002 flange row of 3929 cells, where the
+    !> spin moment changes sign, still 2e-5 after 60 steps). Then the creepage path from
+    !> the state's last solution (or from zero creepage, whose answer is zero) in steps,
+    !> each started from the one before: 4, 16, then 64 steps.
+    subroutine follow_path()
+      real(real64), allocatable :: path_p(:)
+      real(real64) :: c0(3), ck(3)
+      type(rolling_info_t) :: step_info
+      type(rolling_options_t) :: defaults
+      integer :: steps, k
+      options%max_newton = defaults%max_newton
+      c0 = 0
+      if (state%kept >= 1) c0 = mu * state%creep1(:, 1)
+      steps = 4
+      do while (steps <= 64)
+        path_p = 0 * p
+        if (state%kept >= 1) path_p = mu * state%p1(:, 1)
+        do k = 1, steps
+          ck = c0 + (cr - c0) * real(k, real64) / steps
+          w = ck(1) * state%unit_w(:, 1) + ck(2) * state%unit_w(:, 2) + ck(3) * state%unit_w(:, 3)
+          call solve_rolling(state%solver, w, bound, options, path_p, cells, step_info, ap=ap)
+          info%newton = info%newton + step_info%newton
+          info%gmres = info%gmres + step_info%gmres
+          info%products = info%products + step_info%products
+          info%residual = step_info%residual
+          if (.not. step_info%converged) exit
+        end do
+        if (step_info%converged) then
+          p = path_p
+          info%converged = .true.
+          return
+        end if
+        steps = 4 * steps
+      end do
+    end subroutine follow_path
 
     !> The residual of a start (one product) and kept when the best so far.
     subroutine try(start)
