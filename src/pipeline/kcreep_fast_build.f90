@@ -52,12 +52,14 @@ module kcreep_fast_build
   !> directly under this rule). lab/notes/rolling_speed.md holds the measurements.
   integer, parameter :: fast_model_cell_cap = 350
 
-  !> The correction table's (nt, np, ns): theta 22.5 deg, lambda 22.5 deg, s 1/8. On
-  !> circle, a/b = 5 and 0.2, L-shaped and crescent masks of 680-1280 cells coarsened to
-  !> 180-340 (300 random points each) the two levels are within 95th percentile
-  !> 0.18-0.29 %, largest 0.7-1.6 % of mu Fn of the exact forces (the coarse table
-  !> alone: 1.0-1.9 % and 1.9-2.8 %); (4, 8, 4): largest 2.1 %.
-  integer, parameter :: correction_sizes(3) = [4, 16, 8]
+  !> The correction table's (nt, np, ns): theta 22.5 deg, lambda 22.5 deg, s 1/16; 735
+  !> exact solves on the patch. lab/fast_model_levels.py (1500 random points a patch):
+  !> circle, a/b = 5 and 0.2, L-shaped masks of 675-1276 cells within 95th percentile
+  !> 0.11-0.17 %, largest 0.88-1.27 % of mu Fn of the exact forces; with s 1/8 (343
+  !> solves) 0.15-0.35 % and 0.79-1.51 %, and on S1002 flange rows of 3391-4069 cells
+  !> (200 points) 0.85-1.34 % and 2.5-3.3 % against 0.75-1.18 % and 1.6-2.2 % (a direct
+  !> build: 0.57 % and 1.44 %, 40 s); the coarse table alone 1.0-1.9 % and 1.9-2.8 %.
+  integer, parameter :: correction_sizes(3) = [4, 16, 16]
 
   type :: fast_forces_t
     type(fast_model_t) :: model

@@ -11,10 +11,9 @@ rolling across calls against cold solves.
   (the model is built at mu = 1: the scaling is under test too).
 - Bound (issue 48): |F_fast - F_exact| / (mu Fn), F = (Fx, Fy), at most 1 %
   at 95 % of the points and 2 % at every point. Measured (this seed): 95th
-  percentile 0.05-0.42 %, largest 0.41-1.0 % (a/b = 5), 316-432 cells (the
-  432-cell L-shaped mask on two levels). Two levels on 972 and 1020 cells
-  (the L-shaped mask on 36 x 36, the circle): in lab/fast_model_levels.py's
-  1500 points 95th percentile 0.17-0.18 %, largest 0.79-0.86 %.
+  percentile 0.06-0.28 %, largest 0.44-1.0 % (a/b = 5), 316-432 cells (the
+  432-cell L-shaped mask on two levels); two levels on 972 and 1020 cells
+  (the L-shaped mask on 36 x 36, the circle): 0.11-0.18 % and 0.37-0.79 %.
 - Warm starts: rolling called once per step along a slowly varying history on
   one Solver equals a cold solve (a new Solver) within 1e-6 of mu Fn
   (measured 1.5e-9: both stop at the residual 1e-7, the default), also with mu
