@@ -166,7 +166,7 @@ def main():
     table = kcreep.ContactTable(WHEEL, RAIL, shifts, g=G, nu=NU, vertical_force=LOAD, target_error=1e-2,
                                 cell_budget=1000.0, threads=1,
                                 # --check: the force models on at most 350 cells a row (the rows' normal
-                                # grids have 1,600-4,000: a fast model there costs 2-7 s a row)
+                                # grids have 1,600-4,000: a fast model there costs 2-9 s a row)
                                 force_cells=350 if a.check else 0)
     grids = f"at most {table.force_cells} cells a row" if table.force_cells else "the rows' normal grids"
     flagged = [f"{table.shifts[i]:g}..{table.shifts[i + 1]:g}" for i, f in enumerate(table.flags) if f]
