@@ -2,7 +2,7 @@
 kcreep.ContactTable prints its kinematic wavelength within 3 % of Klingel's
 (with the table's own equivalent conicity), three critical speeds, and draws
 its figure (issue 48). Measured: 9.05 m against 9.02 m (0.3 %), critical
-speeds 271 km/h each (4 bisection steps, +-12 km/h), 27 s user on one thread
+speeds 271 km/h each (4 bisection steps, +-12 km/h), 23 s user on one thread
 with the fast model on force grids of at most 350 cells.
 
 usage: /usr/bin/python3 test_example_hunting.py KCREEP SOURCE_DIR   (numpy, scipy, matplotlib)
