@@ -23,6 +23,8 @@ import re
 import sys
 
 HERE = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
+sys.path.insert(0, os.path.join(HERE, 'tests'))
+import kctest  # noqa: E402  (the tests' mask pressure, parabolic)
 MU = 0.3
 LEVELS = (0.02, 0.1, 0.3, 0.6, 1.0, 1.5, 2.5, 4.0, 10.0)
 RULES = ('aligned', 'separate', 'weighted')
@@ -44,25 +46,6 @@ def grid_of(np, text, numeric):
     return a, float(dx), float(dy), float(x0), float(y0)
 
 
-def parabolic(np, inside, dx, dy):
-    """kcreep's pressure of a bare mask: p = k (s^2 - (x - x_m)^2) / s on each strip segment; Fn = 1."""
-    p = np.zeros(inside.shape)
-    for j, row in enumerate(inside):
-        i = 0
-        while i < len(row):
-            if not row[i]:
-                i += 1
-                continue
-            k = i
-            while k < len(row) and row[k]:
-                k += 1
-            s, xm = (k - i) * dx / 2, (i + k - 1) / 2
-            x = (np.arange(i, k) - xm) * dx
-            p[j, i:k] = (s * s - x * x) / s
-            i = k
-    return p / (p.sum() * dx * dy)
-
-
 def setup(np, kcreep, patch):
     """(solver, pressure or None, Fn, c, result) of a study patch."""
     family, name, desc, head, files, pressure = patch
@@ -80,7 +63,7 @@ def setup(np, kcreep, patch):
         inside, dx, dy, x0, y0 = grid_of(np, list(files.values())[0], False)
         s = kcreep.Solver(nu=number('nu'), g=1.0, target_error=0)
         r = s.solve_mask(inside, dx, dy, x0, y0)
-        return s, parabolic(np, inside, dx, dy), 1.0, math.sqrt(inside.sum() * dx * dy / math.pi), r
+        return s, kctest.parabolic(np, inside, dx, dy), 1.0, math.sqrt(inside.sum() * dx * dy / math.pi), r
     if files:
         gap, dx, dy, x0, y0 = grid_of(np, list(files.values())[0], True)
         s = kcreep.Solver(nu=number('nu'), g=82000.0, target_error=0)

@@ -147,6 +147,27 @@ def coefficients(text, folder, name="case"):
     return run(text, folder, name)[3][0]
 
 
+def parabolic(np, inside, dx, dy):
+    """kcreep's pressure of a bare mask (numpy passed in: this module needs only the
+    standard library): on each strip segment of half length s, p = k (s^2 - (x - x_m)^2) / s;
+    Fn = 1."""
+    p = np.zeros(inside.shape)
+    for j, row in enumerate(inside):
+        i = 0
+        while i < len(row):
+            if not row[i]:
+                i += 1
+                continue
+            k = i
+            while k < len(row) and row[k]:
+                k += 1
+            s, xm = (k - i) * dx / 2, (i + k - 1) / 2
+            x = (np.arange(i, k) - xm) * dx
+            p[j, i:k] = (s * s - x * x) / s
+            i = k
+    return p / (p.sum() * dx * dy)
+
+
 def check(condition, message):
     CHECKS[0] += 1
     status = "ok  " if condition else "FAIL"

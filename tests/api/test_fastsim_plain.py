@@ -40,26 +40,6 @@ MU = 0.3
 LEVELS = np.array([0.02, 0.05, 0.1, 0.2, 0.3, 0.5, 0.8, 1.2, 2.0, 4.0, 10.0])
 
 
-def parabolic(inside, dx, dy):
-    """kcreep's pressure of a bare mask: on each strip segment of half length s,
-    p = k (s^2 - (x - x_m)^2) / s; Fn = 1."""
-    p = np.zeros(inside.shape)
-    for j, row in enumerate(inside):
-        i = 0
-        while i < len(row):
-            if not row[i]:
-                i += 1
-                continue
-            k = i
-            while k < len(row) and row[k]:
-                k += 1
-            s, xm = (k - i) * dx / 2, (i + k - 1) / 2
-            x = (np.arange(i, k) - xm) * dx
-            p[j, i:k] = (s * s - x * x) / s
-            i = k
-    return p / (p.sum() * dx * dy)
-
-
 def lshape(h=0.25):
     m = np.arange(-1, 35)
     x, y = np.meshgrid(m * h + h / 2, m * h + h / 2)
@@ -81,7 +61,7 @@ def crescent(h=0.2):
 def check(name, inside, h, x0, y0, directions, limit):
     s = kcreep.Solver(nu=0.28, g=1.0, target_error=0)
     r = s.solve_mask(inside, h, h, x0, y0)
-    pn = parabolic(inside, h, h)
+    pn = kc.parabolic(np, inside, h, h)
     c = math.sqrt(inside.sum() * h * h / math.pi)
     scale = [r.f[0, 0], r.f[1, 1], r.f[1, 1] * c]
     creep = np.array([[d[k] * lv * MU / scale[k] for k in range(3)] for d in directions for lv in LEVELS])
