@@ -13,7 +13,7 @@
 !> -sum mu pn w/|w| dA. The model is the interpolant of these values; it is
 !> kept with the pressure it was built for, and rebuilt for another.
 !>
-!> Patches of more than fast_model_cell_cap cells (two levels): the table is
+!> Patches of more than fast_model_cell_cap solved cells (two levels): the table is
 !> built on the patch coarsened by whole blocks of cells (coarsened_patch), and a
 !> correction table of the difference, exact forces on the patch itself less
 !> the coarse model's, on a coarser creepage grid (correction_sizes) is added.
@@ -33,7 +33,7 @@ module kcreep_fast_build
                                  check_rolling_input, default_rolling_tolerance
   implicit none
   private
-  public :: fast_forces_t, build_fast_forces, fast_forces_of, fast_model_cell_cap
+  public :: fast_forces_t, build_fast_forces, fast_forces_of
 
   !> Stop test of the table's exact solves, max|F| / max(mu pn). Measured on the six
   !> patches of tests/api/test_fast_forces.py (300 points each): 95th percentile and
@@ -44,12 +44,12 @@ module kcreep_fast_build
 
   !> The most solved cells a table is built on directly (a patch that mirrors in y solves
   !> half its rays: half its cells count); larger patches take two levels. A direct build
-  !> costs about 4-5 ms per solved cell on one thread (0.7-1.8 s at 316-432 cells, 5.0 s at
-  !> 972, 2.8 s at 1020 mirrored); two levels 0.9-1.6 s at 680-1280 cells. Two levels cost
-  !> accuracy where a force has a kink (the spin pole crossing the patch's edge), which the
-  !> coarse grid puts elsewhere: largest error 0.8-1.7 % of mu Fn on the patches below
-  !> against 0.5-1.1 % built directly, 2.3 % on an a/b = 2 ellipse of 632 cells (built
-  !> directly under this rule). lab/notes/rolling_speed.md holds the measurements.
+  !> costs about 3 ms per solved cell on one thread (0.49 s at 316 cells mirrored, 1.6 s at
+  !> a 678-cell mirrored crescent); two levels 0.5-1.4 s at 432-1276 cells
+  !> (scripts/bench_loop.py --builds, lab/fast_model_levels.py). Two levels cost accuracy
+  !> where a force has a kink (the spin pole crossing the patch's edge), which the coarse
+  !> grid puts elsewhere: 2.1-2.3 % of mu Fn on an a/b = 2 ellipse of 632 cells (built directly
+  !> under this rule, 1.07 %). lab/notes/rolling_speed.md holds the measurements.
   integer, parameter :: fast_model_cell_cap = 350
 
   !> The correction table's (nt, np, ns): theta 22.5 deg, lambda 22.5 deg, s 1/16; 735
@@ -66,7 +66,6 @@ module kcreep_fast_build
     !> the two levels' correction (fine less coarse); not ready: none
     type(fast_model_t) :: correction
     real(real64), allocatable :: pn(:)     !< the pressure per patch cell it was built for
-    integer :: coarse_cells = 0            !< the coarse level's cells (0: built directly)
     integer :: solves = 0                  !< exact points solved to build it
     integer :: newton = 0                  !< their Newton steps
     real(real64) :: seconds = 0            !< its build time
@@ -110,7 +109,6 @@ contains
       call build_table(coarse_state, coarse_pn, g, fast%model, fast, status)
       call release_rolling_state(coarse_state)
       if (status%failed()) return
-      fast%coarse_cells = coarse%n
       call build_table(state, pn, g, fast%correction, fast, status, base=fast%model, sizes=correction_sizes)
     end if
     if (status%failed()) return
