@@ -114,7 +114,7 @@ contains
     type(status_t) :: status
     integer, allocatable :: loaded(:, :)
     logical, allocatable :: inside(:, :)
-    real(real64) :: total
+    real(real64) :: total, fine_total
     integer :: kx, ky, mx, my, c, bx, by
     kx = 1
     ky = 1
@@ -138,9 +138,10 @@ contains
       coarse_pn(bx, by) = coarse_pn(bx, by) + pn(patch%ix(c), patch%iy(c)) / (kx * ky)
     end do
     inside = 2 * loaded >= kx * ky .and. loaded > 0
+    fine_total = sum(coarse_pn)   ! every cell's share, before the sparse blocks are dropped
     where (.not. inside) coarse_pn = 0
     total = sum(coarse_pn)
-    if (total > 0) coarse_pn = coarse_pn * (sum([(pn(patch%ix(c), patch%iy(c)), c=1, patch%n)]) / (kx * ky)) / total
+    if (total > 0) coarse_pn = coarse_pn * (fine_total / total)
     call mask_patch(inside, kx * patch%dx, ky * patch%dy, patch%x0 + 0.5_real64 * (kx - 1) * patch%dx, &
                     patch%y0 + 0.5_real64 * (ky - 1) * patch%dy, 'coarsened patch', coarse, status)
     if (status%failed()) coarse%n = 0
