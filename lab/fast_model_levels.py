@@ -4,12 +4,20 @@ build time (CPU, one thread) and distance from the exact forces at random
 creepages, per patch.
 
     OMP_NUM_THREADS=1 /usr/bin/python3 lab/fast_model_levels.py [POINTS] [PATCH ...]
+    OMP_NUM_THREADS=1 /usr/bin/python3 lab/fast_model_levels.py --s1002 [FORCE_CELLS] SHIFT ...
 
 POINTS (default 1500) random creepages per patch, directions uniform in the
 model's normalised creepage z = (f11 xi, f22 eta, f22 r phi) / (mu Fn), |z|
 log-uniform 1e-5 to 30, mu = 0.3, seed 48 + the patch's index. The 'direct'
 column of docs/rolling.md was measured with this script on a library built
 with kcreep_fast_build's fast_model_cell_cap raised to 100000.
+
+--s1002: the rows of an S1002 / UIC60 kcreep.ContactTable at the given
+shifts (mm; 70 kN, target 1e-2, cell budget 1000; FORCE_CELLS, default 0,
+its force_cells): per row the fast model's build and its distance from the
+exact forces on the same grid at 200 random creepages (normal, scales 1e-3,
+1e-3, 3e-4 1/mm; mu = 0.3, seed 1), and with FORCE_CELLS > 0 the exact
+forces' distance from those of the row's own grid.
 """
 import os
 import sys
@@ -69,5 +77,37 @@ def main():
               f"{100 * np.percentile(e, 95):.3f} %, largest {100 * e.max():.3f} %", flush=True)
 
 
+def s1002(args):
+    force_cells = int(args[0]) if args and "." not in args[0] else 0
+    shifts = [float(a) for a in (args[1:] if force_cells else args)]
+    profiles = os.path.join(HERE, "..", "..", "shared", "profiles")
+    files = os.path.join(profiles, "MBench_S1002_v3.prw"), os.path.join(profiles, "MBench_UIC60_v3.prr")
+    options = dict(g=82000.0, nu=0.28, vertical_force=70e3, target_error=1e-2, cell_budget=1000.0, threads=1)
+    table = kcreep.ContactTable(*files, shifts, force_cells=force_cells, **options)
+    full = kcreep.ContactTable(*files, shifts, **options) if force_cells else table
+    mu = 0.3
+    creep = np.random.default_rng(1).normal(size=(200, 3)) * [1e-3, 1e-3, 3e-4]
+    for shift in shifts:
+        t0 = time.process_time()
+        table.forces(shift, mu, creep[:1])
+        build = time.process_time() - t0
+        fast, exact = table.forces(shift, mu, creep), table.forces(shift, mu, creep, exact=True)
+        own = full.forces(shift, mu, creep, exact=True)
+        for k, patch in enumerate(table.at(shift)):
+            row = table._terms(shift)[k][0][0]
+            e = np.hypot(*(fast[k] - exact[k])[:, :2].T) / (mu * patch["fn"])
+            line = (f"shift {shift:g} mm, patch {k + 1} ({patch['kind']}, {table.solver(row)._result(False).n} cells): "
+                    f"build {build:.2f} s, fast against exact: 95th percentile {100 * np.percentile(e, 95):.2f} %, "
+                    f"largest {100 * e.max():.2f} %")
+            if force_cells:
+                g = np.hypot(*(exact[k] - own[k])[:, :2].T) / (mu * patch["fn"])
+                line += f"; exact against the row's own grid: 95th {100 * np.percentile(g, 95):.2f} %, largest " \
+                        f"{100 * g.max():.2f} %"
+            print(line, flush=True)
+
+
 if __name__ == "__main__":
-    main()
+    if sys.argv[1:2] == ["--s1002"]:
+        s1002(sys.argv[2:])
+    else:
+        main()
