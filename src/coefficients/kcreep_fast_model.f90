@@ -17,7 +17,16 @@
 !> (theta = pi/2 the pure creepages), azimuth lambda in the (xi, eta) plane.
 !>
 !> Nodes: theta on nt intervals from the pole to the equator, lambda on np
-!> points, s on ns intervals; the rays of theta <= pi/2 are solved (the
+!> points, s on ns intervals, the last two spaced to follow the forces near
+!> full slip. In s: uniform in sigma, s = sigma + (sigma^3 - sigma^5)/2
+!> (magnitude_of_node), so 1 - s ~ (1 - sigma)^2: with spin, forces on long
+!> patches approach the full-slip force as sqrt(1 - s), which is smooth in
+!> sigma. In lambda: uniform in u, lambda = u - w/2 sin 2(u - lambda_dense)
+!> (warped_azimuth), w = (a - b)/(a + b) from the pressure's principal
+!> extents a >= b: dense where the spin pole (-eta, xi)/phi runs along the
+!> patch's long axis, where the full-slip force turns within a degree or two
+!> (near its ends, the pole moves by the patch's length times the azimuth's
+!> step). The rays of theta <= pi/2 are solved (the
 !> others by oddness; on the short rings near the pole every second or
 !> fourth, the rest interpolated, fast_model_ring_stride), s = 1 is the
 !> full-slip force. Interpolant: tensor
@@ -40,19 +49,25 @@ module kcreep_fast_model
   !> The table's resolution. Measured against kcreep_rolling at 1000 random creepages
   !> (|z| log-uniform 1e-5 to 30, directions uniform; |F - F_exact| / (mu Fn), F = (Fx, Fy)),
   !> Hertzian ellipses a/b = 0.2, 1, 5 and an L-shaped mask, 260-432 cells: theta 7.5 deg,
-  !> lambda 11.25 deg, s 1/16: worst 0.54-1.16 %, 95th percentile 0.07-0.11 %; lambda
-  !> 22.5 deg: worst 2.4 % (a/b = 5) and 4.2 % (a/b = 0.2), where the spin pole crosses
-  !> the patch's narrow side near full slip; s 1/12: worst 1.8 %; theta 15 deg: 1.7 % on
-  !> the circle alone (a table twice as fine held out).
+  !> lambda 11.25 deg, s 1/16 (uniform): worst 0.54-1.16 %, 95th percentile 0.07-0.11 %;
+  !> lambda 22.5 deg: worst 2.4 % (a/b = 5) and 4.2 % (a/b = 0.2), where the spin pole
+  !> crosses the patch's narrow side near full slip; s 1/12: worst 1.8 %; theta 15 deg:
+  !> 1.7 % on the circle alone (a table twice as fine held out). The spacing near full slip
+  !> (header) on S1002's flange strip at 8 mm (15:1, 2254 cells, 300 points, built
+  !> directly): worst 3.95 -> 1.23 %; 20 intervals in sigma, not 16, keep the spacing at
+  !> s = 0.6-0.75 (saturation of pure creepage, sigma's steepest part) that of 16 in s
+  !> (16 gave the circle 0.62 % instead of 0.26 %). lab/notes/rolling_speed.md.
   integer, parameter :: fast_model_theta_intervals = 12
   integer, parameter :: fast_model_lambda_points = 32
-  integer, parameter :: fast_model_s_intervals = 16
+  integer, parameter :: fast_model_s_intervals = 20
 
   type :: fast_model_t
     logical :: ready = .false.
     integer :: nt = 0, np = 0, ns = 0
     real(real64) :: m(3, 3) = 0                  !< z = m creep / mu (K T)
     real(real64) :: m_inverse(3, 3) = 0
+    !> the azimuth's nodes: lambda = u - warp/2 sin(2 (u - lambda_dense)), u uniform
+    real(real64) :: warp = 0, lambda_dense = 0
     !> B-spline coefficients (3, 0:4 nt - 1, 0:np - 1, -1:ns + 1): (Fx, Fy, Mz) at mu = 1
     real(real64), allocatable :: coef(:, :, :, :)
   end type fast_model_t
@@ -100,11 +115,11 @@ contains
 
   !> An empty model with the grid's sizes: scales k (> 0), the patch's centre (about the
   !> spin centre); sizes: (nt, np, ns) other than the table's resolution above (np even).
-  pure subroutine fast_model_grid(k, centre, model, sizes)
-    real(real64), intent(in) :: k(3), centre(2)
+  pure subroutine fast_model_grid(k, centre, covariance, model, sizes)
+    real(real64), intent(in) :: k(3), centre(2), covariance(2, 2)
     type(fast_model_t), intent(out) :: model
     integer, intent(in), optional :: sizes(3)
-    real(real64) :: t(3, 3)
+    real(real64) :: t(3, 3), half_trace, deviation, major, minor, axis
     model%nt = fast_model_theta_intervals
     model%np = fast_model_lambda_points
     model%ns = fast_model_s_intervals
@@ -120,6 +135,16 @@ contains
     t(1, 3) = centre(2)
     t(2, 3) = -centre(1)
     model%m_inverse = t * spread(1 / k, 1, 3)
+    ! the pressure's principal axes: the long axis at angle axis, extents major >= minor
+    half_trace = 0.5_real64 * (covariance(1, 1) + covariance(2, 2))
+    deviation = hypot(0.5_real64 * (covariance(1, 1) - covariance(2, 2)), covariance(1, 2))
+    major = sqrt(max(half_trace + deviation, 0.0_real64))
+    minor = sqrt(max(half_trace - deviation, 0.0_real64))
+    axis = 0.5_real64 * atan2(2 * covariance(1, 2), covariance(1, 1) - covariance(2, 2))
+    ! the pole (-eta, xi)/phi along the long axis: (xi, eta) along (sin axis, -cos axis)
+    model%lambda_dense = atan2(-k(2) * cos(axis), k(1) * sin(axis))
+    model%warp = 0
+    if (major > 0) model%warp = min(0.9_real64, (major - minor) / (major + minor))
     allocate (model%coef(3, 0:4 * model%nt - 1, 0:model%np - 1, -1:model%ns + 1))
     model%coef = 0
   end subroutine fast_model_grid
@@ -134,11 +159,11 @@ contains
     real(real64) :: theta, lambda, z(3), s, t
     integer :: m
     theta = 0.5_real64 * pi * i / model%nt
-    lambda = 2 * pi * j / model%np
+    lambda = warped_azimuth(model, 2 * pi * j / model%np)
     z = [sin(theta) * cos(lambda), sin(theta) * sin(lambda), cos(theta)]
     dir = matmul(model%m_inverse, z)
     do m = 1, model%ns - 1
-      s = real(m, real64) / model%ns
+      s = magnitude_of_node(real(m, real64) / model%ns)
       t = s / (1 - s)
       creep(:, m) = t * dir
     end do
@@ -297,8 +322,8 @@ contains
       theta = atan2(hypot(z(1), z(2)), z(3))
       lambda = atan2(z(2), z(1))
       x = theta / (0.5_real64 * pi) * model%nt
-      y = modulo(lambda / (2 * pi) * model%np, real(model%np, real64))
-      w = s * model%ns
+      y = modulo(azimuth_node(model, lambda) / (2 * pi) * model%np, real(model%np, real64))
+      w = node_of_magnitude(s) * model%ns
       i0 = min(int(x), nth - 1)
       j0 = min(int(y), model%np - 1)
       k0 = min(int(w), model%ns - 1)
@@ -318,6 +343,67 @@ contains
       force(:, p) = mu * acc
     end do
   end subroutine fast_model_forces
+
+  !> The azimuth lambda of node coordinate u: nodes dense (d lambda / du = 1 - warp) at
+  !> lambda_dense and its opposite, where the spin pole runs along a long patch: there the
+  !> full-slip forces turn within a few degrees.
+  pure real(real64) function warped_azimuth(model, u) result(lambda)
+    type(fast_model_t), intent(in) :: model
+    real(real64), intent(in) :: u
+    lambda = u - 0.5_real64 * model%warp * sin(2 * (u - model%lambda_dense))
+  end function warped_azimuth
+
+  !> The node coordinate u of azimuth lambda (warped_azimuth's inverse by Newton: its slope
+  !> is at least 1 - warp >= 0.1).
+  pure real(real64) function azimuth_node(model, lambda) result(u)
+    type(fast_model_t), intent(in) :: model
+    real(real64), intent(in) :: lambda
+    real(real64) :: residual
+    integer :: step
+    u = lambda
+    if (model%warp == 0) return
+    do step = 1, 30
+      residual = warped_azimuth(model, u) - lambda
+      u = u - residual / (1 - model%warp * cos(2 * (u - model%lambda_dense)))
+      if (abs(residual) < 1e-13_real64) exit
+    end do
+  end function azimuth_node
+
+  !> The magnitude s of node coordinate sigma in [0, 1]: s = sigma + (sigma^3 - sigma^5) / 2,
+  !> odd, increasing, s(1) = 1 with slope 0 there (1 - s ~ 3.5 (1 - sigma)^2).
+  pure real(real64) function magnitude_of_node(sigma) result(s)
+    real(real64), intent(in) :: sigma
+    s = sigma + 0.5_real64 * (sigma**3 - sigma**5)
+  end function magnitude_of_node
+
+  !> The node coordinate sigma of magnitude s in [0, 1], magnitude_of_node's inverse:
+  !> Newton on sqrt(1 - s(sigma)) = sqrt(1 - s), nearly linear in sigma up to 1, kept
+  !> inside a bracket that each step narrows.
+  pure real(real64) function node_of_magnitude(s) result(sigma)
+    real(real64), intent(in) :: s
+    real(real64) :: target, low, high, gap, residual, slope
+    integer :: step
+    sigma = 1
+    if (s >= 1) return
+    target = sqrt(1 - s)
+    low = 0
+    high = 1
+    sigma = s
+    do step = 1, 60
+      gap = sqrt(max(0.0_real64, 1 - magnitude_of_node(sigma)))
+      residual = gap - target
+      if (abs(residual) <= 1e-15_real64) exit
+      if (residual > 0) then
+        low = sigma
+      else
+        high = sigma
+      end if
+      slope = -(1 + 1.5_real64 * sigma**2 - 2.5_real64 * sigma**4) / (2 * max(gap, tiny(1.0_real64)))
+      sigma = sigma - residual / slope
+      if (.not. (sigma > low .and. sigma < high)) sigma = 0.5_real64 * (low + high)
+      if (high - low < 1e-15_real64) exit
+    end do
+  end function node_of_magnitude
 
   !> Cubic B-spline weights of the nodes -1, 0, 1, 2 at u in [0, 1].
   pure function bspline_weights(u) result(wgt)

@@ -140,7 +140,7 @@ contains
     real(real64), allocatable :: last_ray(:, :), row_first(:, :), here(:, :)
     integer, allocatable :: cells(:)
     type(rolling_info_t) :: info
-    real(real64) :: da, fn, area, tiny_creep, f11, f22, dir(3), k(3), a, cr(3), centre(2)
+    real(real64) :: da, fn, area, tiny_creep, f11, f22, dir(3), k(3), a, cr(3), centre(2), covariance(2, 2)
     integer :: n, i, j, m, c, nt, np, ns, info_fit, jm, stride
     logical :: mirrored
 
@@ -166,7 +166,13 @@ contains
     ! the patch's centre: its pressure's centroid
     centre = [sum(bound * x), sum(bound * y)] / max(sum(bound), tiny(1.0_real64))
     if (.not. sum(bound) > 0) centre = [sum(x), sum(y)] / n
-    call fast_model_grid(k, centre, model, sizes)
+    ! and its spread about that centre (the pole's reach, kcreep_fast_model)
+    covariance(1, 1) = sum(bound * (x - centre(1))**2)
+    covariance(2, 2) = sum(bound * (y - centre(2))**2)
+    covariance(1, 2) = sum(bound * (x - centre(1)) * (y - centre(2)))
+    covariance(2, 1) = covariance(1, 2)
+    covariance = covariance / max(sum(bound), tiny(1.0_real64))
+    call fast_model_grid(k, centre, covariance, model, sizes)
     mirrored = mirror_symmetric(state%centred, pn)
     nt = model%nt
     np = model%np
