@@ -84,7 +84,7 @@ def s1002(args):
     files = os.path.join(profiles, "MBench_S1002_v3.prw"), os.path.join(profiles, "MBench_UIC60_v3.prr")
     options = dict(g=82000.0, nu=0.28, vertical_force=70e3, target_error=1e-2, cell_budget=1000.0, threads=1)
     table = kcreep.ContactTable(*files, shifts, force_cells=force_cells, **options)
-    full = kcreep.ContactTable(*files, shifts, **options) if force_cells else table
+    full = kcreep.ContactTable(*files, shifts, force_cells=0, **options) if force_cells else table
     mu = 0.3
     creep = np.random.default_rng(1).normal(size=(200, 3)) * [1e-3, 1e-3, 3e-4]
     for shift in shifts:

@@ -14,7 +14,8 @@
 - patches matched across shifts and flags for intervals too coarse;
 - exact rolling on a flange row where Newton stalls (the creepage path);
 - force_cells: rows' force grids coarsened (kcreep_coarsen_patch), their
-  fast model held to their exact forces, those near the full grid's.
+  fast model held to their exact forces, those near the full grid's; by
+  default to at most 4000 cells (FORCE_CELLS), 0 the rows' own grids.
 
 usage: /usr/bin/python3 test_contact_table.py KCREEP SOURCE_DIR   (needs numpy)
 """
@@ -126,7 +127,7 @@ else:
 profiles = os.path.join(source_dir, "..", "shared", "profiles")
 s1002 = kcreep.ContactTable(os.path.join(profiles, "MBench_S1002_v3.prw"), os.path.join(profiles, "MBench_UIC60_v3.prr"),
                             [4.0, 5.0, 6.0], g=G, nu=NU, vertical_force=70e3, target_error=1e-2, cell_budget=1000.0,
-                            threads=1)
+                            threads=1, force_cells=0)
 bad = []
 for r in range(s1002.table["shift"].size):
     for rule in ("aligned", "separate", "weighted"):
@@ -164,6 +165,14 @@ for r in (0, 1):
              f"({100 * e_fast:.2f} %)")
     kc.check(e_grid <= 0.04, f"row {r}: coarse grid's exact forces within 4 % of mu Fn of the full grid's "
              f"({100 * e_grid:.2f} %)")
+# the default force grid: at the default target the 0 mm row's normal grid has 7010 cells,
+# coarsened to at most FORCE_CELLS (4000; 3547 cells measured) unless force_cells = 0
+files = os.path.join(profiles, "MBench_S1002_v3.prw"), os.path.join(profiles, "MBench_UIC60_v3.prr")
+own = kcreep.ContactTable(*files, [0.0, 0.1], g=G, nu=NU, vertical_force=70e3, threads=1, force_cells=0)
+default = kcreep.ContactTable(*files, [0.0, 0.1], g=G, nu=NU, vertical_force=70e3, threads=1)
+n_own, n_default = own.solver(0)._result(False).n, default.solver(0)._result(False).n
+kc.check(n_own > 4000 and 1000 < n_default <= 4000 and default.force_cells == 4000,
+         f"default force grid: the 0 mm row's {n_own} cells -> {n_default} (at most 4000)")
 try:
     kcreep.ContactTable(wheel, rail, [-4.0, 0.0], g=G, nu=NU, vertical_force=FORCE, target_error=1e-2,
                         cell_budget=600.0, flange_back_position=-72.5, threads=1, force_cells=5)
