@@ -10,7 +10,7 @@ POINTS (default 1500) random creepages per patch, directions uniform in the
 model's normalised creepage z = (f11 xi, f22 eta, f22 r phi) / (mu Fn), |z|
 log-uniform 1e-5 to 30, mu = 0.3, seed 48 + the patch's index. The 'direct'
 column of docs/rolling.md was measured with this script on a library built
-with kcreep_fast_build's fast_model_cell_cap raised to 100000.
+with kcreep_fast_build's direct_build_cells raised to 100000.
 
 --s1002: the rows of an S1002 / UIC60 kcreep.ContactTable at the given
 shifts (mm; 70 kN, target 1e-2, cell budget 1000; FORCE_CELLS, default 0,

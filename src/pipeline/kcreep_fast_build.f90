@@ -13,7 +13,7 @@
 !> -sum mu pn w/|w| dA. The model is the interpolant of these values; it is
 !> kept with the pressure it was built for, and rebuilt for another.
 !>
-!> Patches of more than fast_model_cell_cap solved cells (two levels): the table is
+!> Patches of more than direct_build_cells solved cells (two levels): the table is
 !> built on the patch coarsened by whole blocks of cells (coarsened_patch), and a
 !> correction table of the difference, exact forces on the patch itself less
 !> the coarse model's, on a coarser creepage grid (correction_sizes) is added.
@@ -43,14 +43,17 @@ module kcreep_fast_build
   real(real64), parameter :: build_tolerance = 2e-3_real64
 
   !> The most solved cells a table is built on directly (a patch that mirrors in y solves
-  !> half its rays: half its cells count); larger patches take two levels. A direct build
-  !> costs about 3 ms per solved cell on one thread (0.49 s at 316 cells mirrored, 1.6 s at
-  !> a 678-cell mirrored crescent); two levels 0.5-1.4 s at 432-1276 cells
-  !> (scripts/bench_loop.py --builds, lab/fast_model_levels.py). Two levels cost accuracy
-  !> where a force has a kink (the spin pole crossing the patch's edge), which the coarse
-  !> grid puts elsewhere: 2.1-2.3 % of mu Fn on an a/b = 2 ellipse of 632 cells (built directly
-  !> under this rule, 1.07 %). lab/notes/rolling_speed.md holds the measurements.
-  integer, parameter :: fast_model_cell_cap = 350
+  !> half its rays: half its cells count); larger patches take two levels, the coarse table
+  !> on at most coarse_table_cells cells. A direct build costs about 5 ms per solved cell on
+  !> one thread (0.54 s at 316 cells mirrored; 1.85 s at a 678-cell mirrored crescent, 339
+  !> solved); two levels 0.5-1.5 s at 632-1276 cells (scripts/bench_loop.py --builds,
+  !> lab/fast_model_levels.py). Two levels cost accuracy where a force has a kink (the spin
+  !> pole crossing the patch's edge), which the coarse grid puts elsewhere: at 1500 points
+  !> the a/b = 2 ellipse of 632 cells 1.39 % of mu Fn (0.88 % direct), the crescent 0.86 %
+  !> (0.62 %); a coarse table on 300 cells instead of 350 took a/b = 5 (1276 cells) from
+  !> 1.20 to 1.69 %. lab/notes/rolling_speed.md holds the measurements.
+  integer, parameter :: direct_build_cells = 300
+  integer, parameter :: coarse_table_cells = 350
 
   !> The correction table's (nt, np, ns): theta 22.5 deg, lambda 22.5 deg, s 1/16; 735
   !> exact solves on the patch. lab/fast_model_levels.py (1500 random points a patch):
@@ -99,10 +102,10 @@ contains
     end if
     call system_clock(t0, rate)
     fast = fast_forces_t()
-    if (solved_cells(state%centred, pn) > fast_model_cell_cap) &
-      call coarsened_patch(patch, pn, fast_model_cell_cap, coarse, coarse_pn)
+    if (solved_cells(state%centred, pn) > direct_build_cells) &
+      call coarsened_patch(patch, pn, coarse_table_cells, coarse, coarse_pn)
     ! a patch whose blocks are mostly empty (scattered cells) is built directly
-    if (coarse%n < fast_model_cell_cap / 4) then
+    if (coarse%n < coarse_table_cells / 4) then
       call build_table(state, pn, g, fast%model, fast, status)
     else
       call prepare_rolling_state(coarse, scheme, nu, g, spin_centre, coarse_state)

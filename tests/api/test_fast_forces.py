@@ -79,7 +79,7 @@ rng = np.random.default_rng(48)
 mu = 0.3
 cases = [("Hertzian circle 20 x 20", ellipse(1.0, 1.0, 20)), ("ellipse a/b = 5", ellipse(1.0, 0.2, 50)),
          ("ellipse a/b = 0.2", ellipse(0.2, 1.0, 10)), ("L-shaped mask", l_shape()), ("crescent mask", crescent()),
-         # two levels (more than 350 solved cells): the coarse table and its correction
+         # two levels (more than 300 solved cells): the coarse table and its correction
          ("L-shaped mask 36 x 36", l_shape(36)), ("Hertzian circle 36 x 36", ellipse(1.0, 1.0, 36)),
          # a strip as long as S1002's flange patches (issue 48: 3.0 % before the magnitude's
          # and the azimuth's node spacing followed the full-slip limit and the patch's length)
