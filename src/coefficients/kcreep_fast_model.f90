@@ -114,7 +114,8 @@ contains
   end subroutine fast_model_fill_ring
 
   !> An empty model with the grid's sizes: scales k (> 0), the patch's centre (about the
-  !> spin centre); sizes: (nt, np, ns) other than the table's resolution above (np even).
+  !> spin centre) and its pressure's covariance about that centre (mm^2; the azimuth's
+  !> spacing); sizes: (nt, np, ns) other than the table's resolution above (np even).
   pure subroutine fast_model_grid(k, centre, covariance, model, sizes)
     real(real64), intent(in) :: k(3), centre(2), covariance(2, 2)
     type(fast_model_t), intent(out) :: model
