@@ -4,7 +4,7 @@ build time (CPU, one thread) and distance from the exact forces at random
 creepages, per patch.
 
     OMP_NUM_THREADS=1 /usr/bin/python3 lab/fast_model_levels.py [POINTS] [PATCH ...]
-    OMP_NUM_THREADS=1 /usr/bin/python3 lab/fast_model_levels.py --s1002 [FORCE_CELLS] SHIFT ...
+    OMP_NUM_THREADS=1 /usr/bin/python3 lab/fast_model_levels.py --s1002 [--default] [FORCE_CELLS] SHIFT ...
 
 POINTS (default 1500) random creepages per patch, directions uniform in the
 model's normalised creepage z = (f11 xi, f22 eta, f22 r phi) / (mu Fn), |z|
@@ -17,7 +17,9 @@ shifts (mm; 70 kN, target 1e-2, cell budget 1000; FORCE_CELLS, default 0,
 its force_cells): per row the fast model's build and its distance from the
 exact forces on the same grid at 200 random creepages (normal, scales 1e-3,
 1e-3, 3e-4 1/mm; mu = 0.3, seed 1), and with FORCE_CELLS > 0 the exact
-forces' distance from those of the row's own grid.
+forces' distance from those of the row's own grid. --default: the table at
+the program's default target and cell budget, and 300 creepages per row
+drawn as for the patches above (the first patch's z).
 """
 import os
 import sys
@@ -78,16 +80,27 @@ def main():
 
 
 def s1002(args):
+    default = "--default" in args
+    args = [a for a in args if a != "--default"]
     force_cells = int(args[0]) if args and "." not in args[0] else 0
     shifts = [float(a) for a in (args[1:] if force_cells else args)]
     profiles = os.path.join(HERE, "..", "..", "shared", "profiles")
     files = os.path.join(profiles, "MBench_S1002_v3.prw"), os.path.join(profiles, "MBench_UIC60_v3.prr")
-    options = dict(g=82000.0, nu=0.28, vertical_force=70e3, target_error=1e-2, cell_budget=1000.0, threads=1)
+    options = dict(g=82000.0, nu=0.28, vertical_force=70e3, threads=1)
+    if not default:
+        options.update(target_error=1e-2, cell_budget=1000.0)
     table = kcreep.ContactTable(*files, shifts, force_cells=force_cells, **options)
     full = kcreep.ContactTable(*files, shifts, force_cells=0, **options) if force_cells else table
     mu = 0.3
     creep = np.random.default_rng(1).normal(size=(200, 3)) * [1e-3, 1e-3, 3e-4]
     for shift in shifts:
+        if default:   # creepages as in main(): directions uniform in the row's z, |z| log-uniform
+            f, patch = table.matrix(table._terms(shift)[0][0][0]), table.at(shift)[0]
+            k = np.array([f[0, 0], f[1, 1], f[1, 1] * np.sqrt(patch["area"] / np.pi)]) / patch["fn"]
+            rng = np.random.default_rng(1)
+            z = rng.normal(size=(300, 3))
+            z /= np.linalg.norm(z, axis=1)[:, None]
+            creep = mu * z * (10 ** rng.uniform(-5, np.log10(30), 300))[:, None] / k
         t0 = time.process_time()
         table.forces(shift, mu, creep[:1])
         build = time.process_time() - t0
