@@ -33,7 +33,7 @@ FLAG_TOLERANCE = 0.01
 #: an exact point 0.03-1.2 s, a fast model 11 s (0 mm) to a minute (8 mm) and more. On at most
 #: 4000 cells (1,572-3,547 there) the exact forces stay within 0.35-0.55 % of mu Fn of the
 #: rows' own (95th percentile of 100 random creepages; largest 0.54-1.02 %) and a fast model
-#: builds in 2.3-5.9 s on one thread.
+#: builds in 4.7-7.4 s on one thread (lab/fast_model_levels.py --s1002 --default).
 FORCE_CELLS = 4000
 
 
@@ -88,7 +88,7 @@ class ContactTable:
         self._tracks = self._match()
         self.flags = self._check_intervals()
         #: which fast model forces(exact=False) uses: 'fast_forces' or 'fastsim'
-        # (the fast model's build costs seconds a row: 2-6 s on S1002 rows of at most 4000 cells, one thread)
+        # (the fast model's build costs seconds a row: 5-8 s on S1002 rows of at most 4000 cells, one thread)
         self.fast_model = fast_model or ("fast_forces" if hasattr(Solver, "fast_forces") else "fastsim")
         if self.fast_model not in ("fast_forces", "fastsim"):
             raise KcreepError(2, f"ContactTable: fast_model = {fast_model!r} (allowed: 'fast_forces', 'fastsim')")

@@ -14,9 +14,10 @@ rolling across calls against cold solves.
   percentile 0.06-0.19 %, largest 0.15-0.88 % (the L-shaped mask), 316-432 cells (the
   432-cell L-shaped mask on two levels); two levels on 972 and 1020 cells
   (the L-shaped mask on 36 x 36, the circle): 0.06-0.16 % and 0.44-0.69 %.
-- A 15:1 Hertzian strip of 1196 cells (two levels), as long as S1002's
-  flange patches: largest at most 1.2 % (measured 0.92 %; 1.40 % with s
-  nodes uniform in s and uniform azimuths, which the bound rejects).
+- A 15:1 Hertzian strip of 1196 cells (two levels, 24 polar intervals), as
+  long as S1002's flange patches: largest at most 1.2 % (measured 1.01 %;
+  1.40 % with s nodes uniform in s, uniform azimuths and 12 polar
+  intervals, which the bound rejects).
 - Warm starts: rolling called once per step along a slowly varying history on
   one Solver equals a cold solve (a new Solver) within 1e-6 of mu Fn
   (measured 1.5e-9: both stop at the residual 1e-7, the default), also with mu
