@@ -32,30 +32,15 @@ import kctest as kc
 
 kc.setup()
 sys.path.insert(0, os.path.join(os.path.abspath(sys.argv[2]), "python"))
+sys.path.insert(0, os.path.join(os.path.abspath(sys.argv[2]), "scripts"))
 import numpy as np  # noqa: E402
 import kcreep  # noqa: E402
-
-
-def ellipse(a, b, cells_a):
-    """A Hertzian ellipse on square cells, cells_a across 2a; pressure for Fn = 1."""
-    dx = 2 * a / cells_a
-    ny = max(2, int(round(2 * b / dx)))
-    x = (np.arange(cells_a) + 0.5) * dx - a
-    y = (np.arange(ny) + 0.5) * dx - ny * dx / 2
-    X, Y = np.meshgrid(x, y)
-    r2 = (X / a) ** 2 + (Y / b) ** 2
-    return r2 < 1, np.sqrt(np.clip(1 - r2, 0, None)), dx, x[0], y[0]
+from bench_loop import ellipse, l_shape  # noqa: E402  (the benchmark's patches, pressure for Fn = 1)
 
 
 def grid(m):
     x = (np.arange(m) + 0.5) / m * 2 - 1
     return np.meshgrid(x, x) + [2.0 / m, x[0], x[0]]
-
-
-def l_shape(m=24):
-    X, Y, d, x0, y0 = grid(m)
-    inside = (X < 0) | (Y < 0)
-    return inside, np.sqrt(np.clip(1 - X ** 2, 0, None) * np.clip(1 - Y ** 2, 0, None)), d, x0, y0
 
 
 def crescent():
@@ -78,13 +63,13 @@ def points(solver, inside, d, fn, rng, n=300, mu=0.3):
 
 rng = np.random.default_rng(48)
 mu = 0.3
-cases = [("Hertzian circle 20 x 20", ellipse(1.0, 1.0, 20)), ("ellipse a/b = 5", ellipse(1.0, 0.2, 50)),
-         ("ellipse a/b = 0.2", ellipse(0.2, 1.0, 10)), ("L-shaped mask", l_shape()), ("crescent mask", crescent()),
+cases = [("Hertzian circle 20 x 20", ellipse(np, 1.0, 1.0, 20)), ("ellipse a/b = 5", ellipse(np, 1.0, 0.2, 50)),
+         ("ellipse a/b = 0.2", ellipse(np, 0.2, 1.0, 10)), ("L-shaped mask", l_shape(np, 24)), ("crescent mask", crescent()),
          # two levels (more than 300 solved cells): the coarse table and its correction
-         ("L-shaped mask 36 x 36", l_shape(36)), ("Hertzian circle 36 x 36", ellipse(1.0, 1.0, 36)),
+         ("L-shaped mask 36 x 36", l_shape(np, 36)), ("Hertzian circle 36 x 36", ellipse(np, 1.0, 1.0, 36)),
          # a strip as long as S1002's flange patches (issue 48: 3.0 % before the magnitude's
          # and the azimuth's node spacing followed the full-slip limit and the patch's length)
-         ("ellipse a/b = 15", ellipse(1.0, 1 / 15, 150))]
+         ("ellipse a/b = 15", ellipse(np, 1.0, 1 / 15, 150))]
 summary = []
 for name, (inside, pressure, d, x0, y0) in cases:
     pressure = np.where(inside, pressure, 0.0)
@@ -120,7 +105,7 @@ for name, cells, fast, exact, fn in summary:
         kc.check(worst <= 0.012, f"{name}: the node spacing near full slip, largest within 1.2 % of mu Fn")
 
 # warm starts across calls: one call per step, slowly varying creepage, against cold solves
-inside, pressure, d, x0, y0 = ellipse(1.0, 1.0, 20)
+inside, pressure, d, x0, y0 = ellipse(np, 1.0, 1.0, 20)
 pressure = np.where(inside, pressure, 0.0)
 pressure /= pressure.sum() * d * d
 t = np.linspace(0, 1, 40)
@@ -155,7 +140,7 @@ kc.check(gap_varying <= 1e-6, "rolling warm-started across calls with mu and Fn 
 # origin. Before, it spun about the grid's origin with the L of the spin centre: on this
 # L-shaped mask, pure spin about (-0.33, -0.33) was 31-62 % of mu Fn from the exact forces
 # under every rule, 1.1-6.2 % now (the same as the moved mask).
-inside, pressure, d, x0, y0 = l_shape()
+inside, pressure, d, x0, y0 = l_shape(np, 24)
 pressure = np.where(inside, pressure, 0.0)
 pressure /= pressure.sum() * d * d
 spins = np.c_[np.zeros(6), np.zeros(6), [0.05, 0.1, 0.2, 0.4, 0.8, 1.6]]
