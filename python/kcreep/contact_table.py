@@ -31,9 +31,10 @@ FLAG_TOLERANCE = 0.01
 #: the default force_cells: the most cells of a row's patch for its force models. On S1002 /
 #: UIC60 at the default target (0, 5, 7, 8 mm) the rows' normal grids have 7,010-43,928 cells:
 #: an exact point 0.03-1.2 s, a fast model 11 s (0 mm) to a minute (8 mm) and more. On at most
-#: 4000 cells (1,572-3,547 there) the exact forces stay within 0.35-0.55 % of mu Fn of the
-#: rows' own (95th percentile of 100 random creepages; largest 0.54-1.02 %) and a fast model
-#: builds in 4.7-7.4 s on one thread (lab/fast_model_levels.py --s1002 --default).
+#: 4000 cells (1,572-3,547 at 0, 7, 8 mm) the exact forces stay within 0.32-0.44 % of mu Fn of
+#: the rows' own (95th percentile of 300 random creepages; largest 0.67-1.74 %) and a fast
+#: model builds in 4.7-7.4 s on one thread (lab/fast_model_levels.py --s1002 --default 4000
+#: 0 7 8).
 FORCE_CELLS = 4000
 
 
