@@ -160,10 +160,12 @@ contains
     ylo = xlo
     yhi = xhi
     s = 2 * extent / (ns - 1)
+    ! samples symmetric about 0 to the last bit (an integer times s/2), so that
+    ! a gap even in x or y gives a box centred on 0 whatever the rounding
     do j = 1, ns
-      ys = -extent + (j - 1) * s
+      ys = (2 * j - ns - 1) * (s / 2)
       do i = 1, ns
-        xs = -extent + (i - 1) * s
+        xs = (2 * i - ns - 1) * (s / 2)
         if (polynomial_value(poly, xs, ys) < level) then
           found = .true.
           xlo = min(xlo, xs)
