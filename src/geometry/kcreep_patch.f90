@@ -21,7 +21,7 @@ module kcreep_patch
   implicit none
   private
   public :: patch_t, ellipse_patch, mask_patch, place_like, near_square_cells, part_patch
-  public :: shape_t, ellipse_shape_t, blended_patch
+  public :: shape_t, ellipse_shape_t, blended_patch, fraction_samples
 
   type :: patch_t
     character(len=:), allocatable :: kind     !< 'ellipse', 'mask' or 'contact'

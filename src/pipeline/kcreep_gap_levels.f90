@@ -20,7 +20,8 @@
 !> in quadrature with the normal grid's own (normal_grid_estimate, from the
 !> changes of the contact area's aspect ratio and centre: fine grid moved
 !> by half a cell, and coarse grid to fine). c = sqrt(area / pi) of the fine contact area;
-!> FASTSIM's pressure is the fine pressure at the finest level's cells.
+!> FASTSIM's pressure is the fine pressure at the finest level's cells
+!> (kcreep_region region_pressure).
 !>
 !> A single grid (target_error = 0, or refine_grid off): the gap's grid as
 !> given, and as estimate gap_single_estimate from the geometry on cells 1.5
