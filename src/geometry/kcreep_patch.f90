@@ -21,7 +21,7 @@ module kcreep_patch
   implicit none
   private
   public :: patch_t, ellipse_patch, mask_patch, place_like, near_square_cells, part_patch
-  public :: shape_t, ellipse_shape_t, blended_patch, fraction_samples
+  public :: shape_t, ellipse_shape_t, blended_patch, cell_sample_offsets
 
   type :: patch_t
     character(len=:), allocatable :: kind     !< 'ellipse', 'mask' or 'contact'
@@ -162,6 +162,7 @@ contains
   pure real(real64) function cell_fraction(shape, xc, yc, dx, dy) result(fraction)
     class(shape_t), intent(in) :: shape
     real(real64), intent(in) :: xc, yc, dx, dy
+    real(real64) :: u(fraction_samples)
     integer :: i, j, hits
     hits = 0
     do j = -1, 1
@@ -173,15 +174,23 @@ contains
       fraction = merge(1, 0, hits == 9)
       return
     end if
+    u = cell_sample_offsets()
     hits = 0
     do j = 1, fraction_samples
       do i = 1, fraction_samples
-        if (shape%contains_point(xc + ((i - 0.5_real64) / fraction_samples - 0.5_real64) * dx, &
-                                 yc + ((j - 0.5_real64) / fraction_samples - 0.5_real64) * dy)) hits = hits + 1
+        if (shape%contains_point(xc + u(i) * dx, yc + u(j) * dy)) hits = hits + 1
       end do
     end do
     fraction = real(hits, real64) / fraction_samples**2
   end function cell_fraction
+
+  !> The sample points' offsets from a cell's centre along one side, in units
+  !> of the cell's size: fraction_samples of them, evenly inside (-1/2, 1/2).
+  pure function cell_sample_offsets() result(u)
+    real(real64) :: u(fraction_samples)
+    integer :: i
+    u = [((i - 0.5_real64) / fraction_samples - 0.5_real64, i=1, fraction_samples)]
+  end function cell_sample_offsets
 
   !> A patch from an explicit mask on a grid with given cell sizes and origin.
   subroutine mask_patch(inside, dx, dy, x0, y0, source, patch, status)

@@ -33,7 +33,7 @@
 module kcreep_region
   use, intrinsic :: iso_fortran_env, only: real64
   use kcreep_status, only: status_t
-  use kcreep_patch, only: patch_t, mask_patch, shape_t, blended_patch, fraction_samples
+  use kcreep_patch, only: patch_t, mask_patch, shape_t, blended_patch, cell_sample_offsets
   implicit none
   private
   public :: region_t, sampled_region, region_level_patch, region_pressure, contact_diameter, level_size
@@ -345,31 +345,31 @@ contains
 
   !> The pressure of patch's cells: sqrt of the interpolated p^2 at the
   !> centre, or, where the centre lies outside the region (an edge cell of a
-  !> blended level, only part of it inside), its mean over the cell's
-  !> fraction_samples^2 points. So every cell of the patch has a positive
-  !> traction bound, and FASTSIM's slopes at small creepage stay f11, f22,
-  !> f23 (a cell at p = 0 slips at any creepage: 0.15 % of f11 lost on a
-  !> centred Hertzian gap, test fastsim_namelist).
+  !> blended level, only part of it inside), its mean over the cell's sample
+  !> points (those of its fraction inside, kcreep_patch cell_sample_offsets).
+  !> So every cell of the patch has a positive traction bound, and FASTSIM's
+  !> slopes at small creepage stay f11, f22, f23 (a cell at p = 0 slips at
+  !> any creepage: 0.15 % of f11 lost on a centred Hertzian gap, test
+  !> fastsim_namelist).
   pure function region_pressure(region, patch) result(p)
     type(region_t), intent(in) :: region
     type(patch_t), intent(in) :: patch
     real(real64) :: p(patch%n)
-    real(real64) :: x, y, sum_p
+    real(real64) :: x, y, sum_p, u(size(cell_sample_offsets()))
     integer :: k, i, j
+    u = cell_sample_offsets()
     do k = 1, patch%n
       x = patch%cell_x(patch%ix(k))
       y = patch%cell_y(patch%iy(k))
       p(k) = sqrt(max(level_at(region, x, y), 0.0_real64))
       if (p(k) > 0) cycle
       sum_p = 0
-      do j = 1, fraction_samples
-        do i = 1, fraction_samples
-          sum_p = sum_p + sqrt(max(level_at(region, x + ((i - 0.5_real64) / fraction_samples - 0.5_real64) * patch%dx, &
-                                            y + ((j - 0.5_real64) / fraction_samples - 0.5_real64) * patch%dy), &
-                                   0.0_real64))
+      do j = 1, size(u)
+        do i = 1, size(u)
+          sum_p = sum_p + sqrt(max(level_at(region, x + u(i) * patch%dx, y + u(j) * patch%dy), 0.0_real64))
         end do
       end do
-      p(k) = sum_p / fraction_samples**2
+      p(k) = sum_p / size(u)**2
     end do
   end function region_pressure
 
