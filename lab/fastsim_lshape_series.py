@@ -12,6 +12,7 @@ in y), spun about the corner of the arms or about the centroid: 40 patches, 960 
 per patch the largest error of each rule and the largest excess of the default ('aligned') over
 'separate' and over 'weighted', in % of mu Fn. About a minute of one CPU.
 """
+import csv
 import os
 import sys
 
@@ -27,11 +28,10 @@ RULES = ('aligned', 'separate', 'weighted')
 
 
 def series():
-    """The 24 creepages of the circle's series (contact-slip README)."""
-    pure = [1e-4, 3e-4, 1e-3, 2e-3, 4e-3, 1e-2]
-    spin = [3e-5, 1e-4, 3e-4, 1e-3, 3e-3, 1e-2, 3e-2]
-    combined = [(1e-3, 1e-3, 0), (1e-3, 0, 1e-3), (0, 1e-3, 1e-3), (2e-3, -1e-3, 3e-3), (-5e-4, 2e-3, -1e-3)]
-    return np.array([(v, 0, 0) for v in pure] + [(0, v, 0) for v in pure] + [(0, 0, v) for v in spin] + combined)
+    """The 24 creepages (xi, eta, phi) of the circle's runs in ../shared/contact-slip/slip_summary.csv."""
+    path = os.path.join(ROOT, '..', 'shared', 'contact-slip', 'slip_summary.csv')
+    rows = [r for r in csv.DictReader(open(path)) if r['patch'] == 'circle']
+    return np.array([[float(r[k]) for k in ('xi', 'eta', 'phi')] for r in sorted(rows, key=lambda r: int(r['case']))])
 
 
 def lshape(h, a1, b1, a2, b2):
