@@ -66,11 +66,15 @@ contains
     real(real64) :: own_error(3)   !< the levels' own estimates of C11, C22, C23 (without other_error)
     logical :: long_in_y
     real(real64) :: cell_shape(2)   !< a contact area's level cells: length in x and y, in units of the square cell
+    integer :: first_base           !< the first level the estimate was calibrated at (scaled for a long area)
+    integer :: level_cap            !< the finest level the ladder may take (cells across)
     logical :: split          !< a mask: every cell split k x k, the same staircase on every level
     logical :: no_fit         !< the fit gave no number: the finest level's f, no estimate
 
     allocate (fnorm(3, 3, 0), warnings(0))
     cell_shape = 1
+    first_base = base_levels(1)
+    level_cap = huge(1)
     t = 0
     level_problem = problem
     call level_tolerance(level_problem)
@@ -89,8 +93,13 @@ contains
         min(level_problem%solve%tolerance, split_tolerance_share * problem%target_error)
     else if (present(region)) then
       cell_shape = region_cell_shape(problem, region)
-      levels = distinct_levels(nint(base_levels * min(1.0_real64, sqrt(budget / region_cells(region, &
-                                                                    base_levels(size(base_levels)), cell_shape)))))
+      ! fewer cells across on short cells: each level keeps the cell count
+      ! of cells as long as the area (region_level_scale)
+      first_base = max(min_base_cells, nint(base_levels(1) * region_level_scale(problem, region)))
+      level_cap = scaled_level_cap(problem, region)
+      levels = distinct_levels(nint(base_levels * region_level_scale(problem, region) * &
+                                    min(1.0_real64, sqrt(budget / region_cells(region, &
+                                    base_levels(size(base_levels)), area_cell_shape(problem, region))))))
     else
       levels = ellipse_base_levels(problem%patch%semi_a, problem%patch%semi_b, budget, long_in_y)
     end if
@@ -162,9 +171,9 @@ contains
                           'with collocation the limit is up to 0.15 % off (scheme = ''backward'' for error control)')
     ! the budget scaled a long shape's levels below the range the estimate
     ! was calibrated on: its estimate is not known to bound the error
-    if (.not. split .and. levels(1) < base_levels(1)) &
+    if (.not. split .and. levels(1) < first_base) &
       call mark_uncertain(result, 'uncertain: the cell budget scaled the levels down to '//itoa(levels(1))//'-'// &
-                          itoa(levels(size(levels)))//' cells across, below the '//itoa(base_levels(1))// &
+                          itoa(levels(size(levels)))//' cells across, below the '//itoa(first_base)// &
                           ' where the estimate was calibrated (&solver cell_budget raises it)')
 
   contains
@@ -206,7 +215,7 @@ contains
         return
       end if
       if (present(region)) then
-        if (level > region_level_cap(problem)) then
+        if (level > level_cap) then
           why = 'error control: stopped at '//itoa(levels(size(levels)))//' cells across, the finest level '// &
                 'of a contact area when no cell budget is given (the limit --estimate-memory counts; &solver '// &
                 'cell_budget lifts it, and the estimate then counts the whole budget)'
@@ -266,7 +275,7 @@ contains
     integer :: cap
     box_cells = cell_budget_or(problem, level_cell_budget(problem%target_error))
     contact_cells = box_cells
-    cap = region_level_cap(problem)
+    cap = scaled_level_cap(problem, region)
     if (cap == huge(1)) return
     shape = region_cell_shape(problem, region)
     at_cap = region_cells(region, cap, shape)
@@ -277,9 +286,19 @@ contains
   end subroutine region_finest_cells
 
   !> A contact area's level cells, length in x and y in units of the square
-  !> cell: as much longer along the area's longer axis as it is long, up to
-  !> max_cell_aspect; collocation is not put on long cells.
+  !> cell: longer along the area's longer axis, at most region_cell_aspect
+  !> times (area_cell_shape, capped).
   pure function region_cell_shape(problem, region) result(cell_shape)
+    type(problem_t), intent(in) :: problem
+    type(region_t), intent(in) :: region
+    real(real64) :: cell_shape(2)
+    cell_shape = min(area_cell_shape(problem, region), region_cell_aspect)
+  end function region_cell_shape
+
+  !> Cells as much longer along the area's longer axis as the area is long,
+  !> up to max_cell_aspect: what a level's cell count is reckoned on
+  !> (region_level_scale); collocation is not put on long cells.
+  pure function area_cell_shape(problem, region) result(cell_shape)
     type(problem_t), intent(in) :: problem
     type(region_t), intent(in) :: region
     real(real64) :: cell_shape(2)
@@ -288,7 +307,26 @@ contains
     if (problem%scheme%name /= 'backward') return
     ref = contour_reference(region)
     cell_shape = min(max([ref%semi_a / ref%semi_b, ref%semi_b / ref%semi_a], 1.0_real64), max_cell_aspect)
-  end function region_cell_shape
+  end function area_cell_shape
+
+  !> A contact area's levels on region_cell_shape's short cells have this
+  !> times the cells across of levels on area_cell_shape's: the same cell
+  !> count (1 on an area at most region_cell_aspect times as long as wide).
+  pure real(real64) function region_level_scale(problem, region) result(scale)
+    type(problem_t), intent(in) :: problem
+    type(region_t), intent(in) :: region
+    scale = sqrt(product(region_cell_shape(problem, region)) / product(area_cell_shape(problem, region)))
+  end function region_level_scale
+
+  !> region_level_cap on a contact area's short cells: scaled like its
+  !> levels, so that the finest level keeps the cell count that
+  !> --estimate-memory counts.
+  pure integer function scaled_level_cap(problem, region) result(level)
+    type(problem_t), intent(in) :: problem
+    type(region_t), intent(in) :: region
+    level = region_level_cap(problem)
+    if (level < huge(1)) level = nint(level * region_level_scale(problem, region))
+  end function scaled_level_cap
 
   !> What a contact area's level of `cells` across counts against the budget:
   !> the cells of its grid (the area's bounding box), not only its patch

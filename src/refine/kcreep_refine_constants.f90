@@ -35,13 +35,26 @@ module kcreep_refine_constants
   !> 10 times as long (27 of 27 bounded, the staircase levels before the blended edge); at
   !> a/b = 0.02 on cells 50 times as long it missed C23 (0.025 % against an
   !> estimate of 0.017 %). A contact area's levels (kcreep_level_ladder)
-  !> have cells as much longer along its longer axis as the area is long,
-  !> up to this: on Hertzian gaps a/b = 5, 10 and 20 every error of ten
-  !> perturbed runs each was bounded (docs/accuracy.md, "Gaps"). Held to
-  !> 5 instead, the S1002 table took 16.5 s instead of 18.2 s (medians of
-  !> three, one core), but at a/b = 10 the C11 estimate missed its error in
-  !> 2 to 3 of 10 runs (0.063 % against 0.047 %).
+  !> have the cell count of cells as much longer along its longer axis as
+  !> the area is long, up to this (their cells are shorter:
+  !> region_cell_aspect). Held to 5 instead (when the cells were that
+  !> long), the S1002 table took 16.5 s instead of 18.2 s, but at a/b = 10
+  !> the C11 estimate missed its error in 2 to 3 of 10 perturbed runs.
   real(real64), parameter :: max_cell_aspect = 10
+  !> A contact area's level cells are at most this many times as long as
+  !> wide (kcreep_level_ladder region_cell_shape), with as few cells across
+  !> as keeps each level's cell count that of cells up to max_cell_aspect
+  !> long (region_level_scale). On longer cells the levels bend: the S1002
+  !> +6.3 mm row's C23 fit through 56-96 across lay 0.15 % below its limit
+  !> with an estimate of 0.077 % (lab/notes/gap_placement.md, "The bend
+  !> comes from the long level cells"). At 2, the same cell counts: the
+  !> 161-shift table's seven flange references 21 of 21 C's bounded (19),
+  !> 157 rows within their targets (154), 45.2 s (47.1); the off-centre
+  !> Hertzian gaps 356 of 360 within their estimates (348), largest error /
+  !> estimate 1.55 (1.78); the centred ones 45 of 45, median estimate /
+  !> error 5.11 (4.4) (docs/accuracy.md, "Gaps"; "The short cells built
+  !> into the ladder" in that note).
+  real(real64), parameter :: region_cell_aspect = 2
   !> A contact area's normal grids (kcreep_gap_levels normal_cell_shape)
   !> have square cells up to this length / width of the area; a longer
   !> area's cells are as much longer along it, so that its length keeps

@@ -7,9 +7,9 @@ ellipse with Hertz's semi-axes from kcreep's ellipse path at target 1e-4
 
 Checks, per coefficient case (45): the error within kcreep's estimate
 (allowing u) and within the target (C11, C22 1e-3, C23 3e-3); every run `ok`;
-the median estimate / error at most 5 (measured 4.4 on blended levels with
-the two parts in quadrature, the automatic grids centred on the gap: their
-most favourable placement; 2.61 over the same gaps placed anywhere,
+the median estimate / error at most 6 (measured 5.11 on blended levels of
+cells at most twice as long as wide, the two parts in quadrature, the
+automatic grids centred on the gap: their most favourable placement; 2.61 over the same gaps placed anywhere,
 docs/accuracy.md "Gaps: one contact area, sampled by the ladder": an
 estimate far above its error costs levels) and at least 1.5 (the errors of
 single cases scatter by a factor 2 about their median; nearer 1 some are
@@ -29,7 +29,7 @@ from hertz_gaps import KEYS, Runner, gap_run, hertz, reference  # noqa: E402
 
 RATIOS = (0.2, 0.5, 1, 2, 5)
 NUS = (0, 0.25, 0.5)
-MEDIAN_RANGE = (1.5, 5.0)
+MEDIAN_RANGE = (1.5, 6.0)
 
 
 def main():
