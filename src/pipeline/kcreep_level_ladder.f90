@@ -66,6 +66,7 @@ contains
     real(real64) :: own_error(3)   !< the levels' own estimates of C11, C22, C23 (without other_error)
     logical :: long_in_y
     real(real64) :: cell_shape(2)   !< a contact area's level cells: length in x and y, in units of the square cell
+    real(real64) :: level_scale     !< a contact area's cells across on short cells per cells across on long ones
     integer :: first_base           !< the first level the estimate was calibrated at (scaled for a long area)
     integer :: level_cap            !< the finest level the ladder may take (cells across)
     logical :: split          !< a mask: every cell split k x k, the same staircase on every level
@@ -95,9 +96,10 @@ contains
       cell_shape = region_cell_shape(problem, region)
       ! fewer cells across on short cells: each level keeps the cell count
       ! of cells as long as the area (region_level_scale)
-      first_base = max(min_base_cells, nint(base_levels(1) * region_level_scale(problem, region)))
+      level_scale = region_level_scale(problem, region)
+      first_base = max(min_base_cells, nint(base_levels(1) * level_scale))
       level_cap = scaled_level_cap(problem, region)
-      levels = distinct_levels(nint(base_levels * region_level_scale(problem, region) * &
+      levels = distinct_levels(nint(base_levels * level_scale * &
                                     min(1.0_real64, sqrt(budget / region_cells(region, &
                                     base_levels(size(base_levels)), area_cell_shape(problem, region))))))
     else

@@ -9,8 +9,8 @@ Checks, per coefficient case (45): the error within kcreep's estimate
 (allowing u) and within the target (C11, C22 1e-3, C23 3e-3); every run `ok`;
 the median estimate / error at most 6 (measured 5.11 on blended levels of
 cells at most twice as long as wide, the two parts in quadrature, the
-automatic grids centred on the gap: their most favourable placement; 2.61 over the same gaps placed anywhere,
-docs/accuracy.md "Gaps: one contact area, sampled by the ladder": an
+automatic grids centred on the gap: their most favourable placement; 3.06
+over the same gaps placed anywhere, docs/accuracy.md "Gaps: one contact area, sampled by the ladder": an
 estimate far above its error costs levels) and at least 1.5 (the errors of
 single cases scatter by a factor 2 about their median; nearer 1 some are
 unbounded). About 2 minutes on one core.
