@@ -25,7 +25,7 @@
 module kcreep_assembly
   use, intrinsic :: iso_fortran_env, only: real64
   use kcreep_patch, only: patch_t
-  use kcreep_influence, only: influence_t, cell_displacement, cell_displacement_x_derivative
+  use kcreep_influence, only: influence_t, cell_displacement_x_derivative, displacement_offset_table
   implicit none
   private
   public :: scheme_t, operator_table_t, build_operator_table, assemble_dense, apply_operator, &
@@ -101,15 +101,9 @@ contains
     case ('backward')
       ! displacements at every centre offset, one more column on the upwind side;
       ! u_xx and u_yy are even in each offset and u_xy odd, so one quadrant is
-      ! evaluated (a quarter of the kernel calls, the costly part) and mirrored
+      ! evaluated and mirrored
       allocate (quadrant(0:mx, 0:my - 1))
-      !$omp parallel do private(di) schedule(static)
-      do dj = 0, my - 1
-        do di = 0, mx
-          quadrant(di, dj) = cell_displacement(di * patch%dx, dj * patch%dy, a, b, nu, g)
-        end do
-      end do
-      !$omp end parallel do
+      call displacement_offset_table(mx, my - 1, patch%dx, patch%dy, nu, g, quadrant)
       allocate (u(-(mx - 1):mx, -(my - 1):my - 1))
       do dj = -(my - 1), my - 1
         do di = -(mx - 1), mx

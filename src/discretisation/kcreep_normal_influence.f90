@@ -16,7 +16,7 @@
 !> This is the piecewise-constant family of Kalker's CONTACT (digit C = 2).
 module kcreep_normal_influence
   use, intrinsic :: iso_fortran_env, only: real64
-  use kcreep_influence, only: rectangle_integral   ! the same 1/r integral as the tangential kernel's
+  use kcreep_influence, only: rectangle_integral, rectangle_offset_table   ! the same 1/r integral as the tangential kernel's
   implicit none
   private
   public :: normal_cell_coefficient, normal_offset_table, compliance_from_g_nu, compliance_from_e_nu
@@ -64,13 +64,9 @@ contains
     integer, intent(in) :: mx, my
     real(real64), intent(in) :: dx, dy, compliance
     real(real64), allocatable, intent(out) :: table(:, :)
-    integer :: i, j
     allocate (table(0:mx - 1, 0:my - 1))
-    do j = 0, my - 1
-      do i = 0, mx - 1
-        table(i, j) = normal_cell_coefficient(i * dx, j * dy, dx, dy, compliance)
-      end do
-    end do
+    call rectangle_offset_table(mx - 1, my - 1, dx, dy, table)
+    table = compliance / pi * table
   end subroutine normal_offset_table
 
 end module kcreep_normal_influence

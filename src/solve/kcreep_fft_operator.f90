@@ -14,7 +14,7 @@ module kcreep_fft_operator
   use, intrinsic :: iso_fortran_env, only: real64
   use kcreep_patch, only: patch_t
   use kcreep_assembly, only: operator_table_t, slip_weight, blended_row
-  use kcreep_influence, only: influence_t, cell_displacement
+  use kcreep_influence, only: influence_t, displacement_offset_table
   !$ use omp_lib, only: omp_get_max_threads
   implicit none
   private
@@ -219,7 +219,7 @@ contains
     type(fft_operator_t), intent(out) :: op
     real(real64), allocatable :: kxx(:, :), kxy(:, :), kyy(:, :)
     real(real64), allocatable :: uxx(:, :), uxy(:, :), uyy(:, :)
-    type(influence_t) :: u
+    type(influence_t), allocatable :: u(:, :)
     real(real64) :: det, scale
     integer :: i, j, hx, hy
 
@@ -228,15 +228,11 @@ contains
     ! (xx, yy even in both offsets, xy odd in each)
     hx = op%nx / 2
     hy = op%ny / 2
-    allocate (uxx(0:hx, 0:hy), uxy(0:hx, 0:hy), uyy(0:hx, 0:hy))
-    do j = 0, hy
-      do i = 0, hx
-        u = cell_displacement(i * patch%dx, j * patch%dy, patch%dx / 2, patch%dy / 2, nu, 1.0_real64)
-        uxx(i, j) = u%xx
-        uxy(i, j) = u%xy
-        uyy(i, j) = u%yy
-      end do
-    end do
+    allocate (u(0:hx, 0:hy))
+    call displacement_offset_table(hx, hy, patch%dx, patch%dy, nu, 1.0_real64, u)
+    uxx = u%xx
+    uxy = u%xy
+    uyy = u%yy
     allocate (kxx(op%ny, hx + 1), kxy(op%ny, hx + 1), kyy(op%ny, hx + 1))
     call wrapped_spectrum(uxx, 1.0_real64, kxx)
     call wrapped_spectrum(uxy, -1.0_real64, kxy)

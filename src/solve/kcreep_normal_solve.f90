@@ -357,7 +357,7 @@ contains
     real(real64) :: factor
     !> steps between recomputations of u = A p (round-off drift of the update)
     integer, parameter :: refresh_every = 25
-    real(real64) :: delta, fn, gg, gg_old, tau, num, den, mean, scale, cell_area
+    real(real64) :: delta, fn, gg, gg_old, tau, mean, scale, cell_area
     integer :: mx, my, it, nc, nc_before
     logical :: settled, preconditioned
     !> the preconditioner is used once a step keeps more than this share of
@@ -450,17 +450,9 @@ contains
         since_fresh = 0
       end if
       do
-        g = h + u
-        if (.not. force_given) g = g - delta
-        active = p > 0
-        nc = count(active)
-        if (force_given .and. nc > 0) then
-          mean = sum(g, mask=active) / nc
-          g = g - mean
-          delta = mean
-        end if
+        call gap_and_active(h, u, p, force_given, delta, g, active, nc)
         scale = max(maxval(u), tiny(1.0_real64))
-        res%residual = max(maxval(abs(g), mask=active), maxval(-g, mask=.not. active), 0.0_real64) / scale
+        res%residual = complementarity(g, active) / scale
         if (res%residual > options%tolerance .or. since_fresh == 0) exit
         call apply_normal_operator(op, p, u)
         since_fresh = 0
@@ -508,22 +500,8 @@ contains
       end if
       gg_old = gg
       call apply_normal_operator(op, t, r)
-      num = sum(g * t, mask=active)
-      den = sum(r * t, mask=active)
-      if (force_given) den = den - sum(r, mask=active) / nc * sum(t, mask=active)
-      if (.not. (den > 0)) then
-        tau = 0
-      else
-        tau = num / den
-      end if
-      where (active) p = p - tau * t
-      changed = any(p < 0)
-      p = max(p, 0.0_real64)
-      ! cells without pressure that interpenetrate join the active set
-      active = p <= 0 .and. g < 0
-      restart = any(active)
-      changed = changed .or. restart
-      where (active) p = p - tau * g
+      call step_length(g, t, r, active, force_given, nc, tau)
+      call take_step(tau, t, g, p, active, changed, restart)
       factor = 1
       if (force_given) factor = fn / (cell_area * sum(p))
       if (force_given) p = p * factor
@@ -548,6 +526,115 @@ contains
     res%n_contact = count(p > 0)
     res%touches_edge = any(p(1, :) > 0) .or. any(p(mx, :) > 0) .or. any(p(:, 1) > 0) .or. any(p(:, my) > 0)
     call move_alloc(p, res%pressure)
+
+  contains
+
+    ! The steps' cell loops, each in one pass over the grid (the solve's own
+    ! time is memory traffic): the same operations in the same order as the
+    ! whole-array statements they stand for, so the same rounding.
+
+    !> g = h + u - approach; active: the cells with pressure (nc of them);
+    !> with the force given, g less its mean over them, which is the approach.
+    pure subroutine gap_and_active(h, u, p, force_given, delta, g, active, nc)
+      real(real64), intent(in) :: h(:, :), u(:, :), p(:, :)
+      logical, intent(in) :: force_given
+      real(real64), intent(inout) :: delta
+      real(real64), intent(out) :: g(:, :)
+      logical, intent(out) :: active(:, :)
+      integer, intent(out) :: nc
+      real(real64) :: total
+      integer :: i, j
+      nc = 0
+      total = 0
+      do j = 1, size(h, 2)
+        do i = 1, size(h, 1)
+          g(i, j) = h(i, j) + u(i, j)
+          if (.not. force_given) g(i, j) = g(i, j) - delta
+          active(i, j) = p(i, j) > 0
+          if (active(i, j)) then
+            nc = nc + 1
+            total = total + g(i, j)
+          end if
+        end do
+      end do
+      if (force_given .and. nc > 0) then
+        delta = total / nc
+        g = g - delta
+      end if
+    end subroutine gap_and_active
+
+    !> The complementarity residual: the largest |g| on the active cells and
+    !> -g (interpenetration) on the others.
+    pure real(real64) function complementarity(g, active) result(worst)
+      real(real64), intent(in) :: g(:, :)
+      logical, intent(in) :: active(:, :)
+      integer :: i, j
+      worst = 0
+      do j = 1, size(g, 2)
+        do i = 1, size(g, 1)
+          if (active(i, j)) then
+            worst = max(worst, abs(g(i, j)))
+          else
+            worst = max(worst, -g(i, j))
+          end if
+        end do
+      end do
+    end function complementarity
+
+    !> The CG step length along t (r = A t) over the active cells; with the
+    !> force given, in the subspace of zero total pressure change.
+    pure subroutine step_length(g, t, r, active, force_given, nc, tau)
+      real(real64), intent(in) :: g(:, :), t(:, :), r(:, :)
+      logical, intent(in) :: active(:, :), force_given
+      integer, intent(in) :: nc
+      real(real64), intent(out) :: tau
+      real(real64) :: num, den, sum_r, sum_t
+      integer :: i, j
+      num = 0
+      den = 0
+      sum_r = 0
+      sum_t = 0
+      do j = 1, size(g, 2)
+        do i = 1, size(g, 1)
+          if (active(i, j)) then
+            num = num + g(i, j) * t(i, j)
+            den = den + r(i, j) * t(i, j)
+            sum_r = sum_r + r(i, j)
+            sum_t = sum_t + t(i, j)
+          end if
+        end do
+      end do
+      if (force_given) den = den - sum_r / nc * sum_t
+      tau = 0
+      if (den > 0) tau = num / den
+    end subroutine step_length
+
+    !> p less tau t on the active cells, cut at zero (changed: a cell was
+    !> cut); cells without pressure that interpenetrate join the active set
+    !> with p = -tau g (restart: one did; active is left marking them).
+    pure subroutine take_step(tau, t, g, p, active, changed, restart)
+      real(real64), intent(in) :: tau, t(:, :), g(:, :)
+      real(real64), intent(inout) :: p(:, :)
+      logical, intent(inout) :: active(:, :)
+      logical, intent(out) :: changed, restart
+      integer :: i, j
+      changed = .false.
+      restart = .false.
+      do j = 1, size(p, 2)
+        do i = 1, size(p, 1)
+          if (active(i, j)) p(i, j) = p(i, j) - tau * t(i, j)
+          if (p(i, j) < 0) changed = .true.
+          p(i, j) = max(p(i, j), 0.0_real64)
+          active(i, j) = p(i, j) <= 0 .and. g(i, j) < 0
+          if (active(i, j)) then
+            restart = .true.
+            p(i, j) = p(i, j) - tau * g(i, j)
+          end if
+        end do
+      end do
+      changed = changed .or. restart
+    end subroutine take_step
+
   end subroutine solve_normal
 
 end module kcreep_normal_solve
