@@ -38,7 +38,7 @@ module kcreep_profile
   use kcreep_strings, only: itoa, rtoa
   implicit none
   private
-  public :: profile_t, envelope_t, make_profile, sample_profile, make_envelope, envelope_at, envelope_slope
+  public :: profile_t, envelope_t, make_profile, sample_profile, make_envelope, envelope_at, envelope_at_slope, envelope_slope
   public :: no_surface, sample_step, envelope_step, min_profile_length, max_profile_length
   public :: profile_noise, profile_smoothing, auto_smoothing, noise_floor, curvature_noise, median_of
   public :: check_flange_side
@@ -451,8 +451,19 @@ contains
   elemental real(real64) function envelope_at(env, y) result(z)
     type(envelope_t), intent(in) :: env
     real(real64), intent(in) :: y
+    real(real64) :: dz
+    call envelope_at_slope(env, y, z, dz)
+  end function envelope_at
+
+  !> envelope_at, and the slope dz/dy of the sample interval y lies in
+  !> (0 where the profile does not reach).
+  elemental subroutine envelope_at_slope(env, y, z, dz)
+    type(envelope_t), intent(in) :: env
+    real(real64), intent(in) :: y
+    real(real64), intent(out) :: z, dz
     real(real64) :: t
     integer :: k
+    dz = 0
     t = (y - env%y_first) / env%step
     k = floor(t) + 1
     if (k < 1 .or. k >= size(env%v) .or. t /= t) then
@@ -465,7 +476,8 @@ contains
     end if
     t = t - (k - 1)
     z = (1 - t) * env%v(k) + t * env%v(k + 1)
-  end function envelope_at
+    dz = (env%v(k + 1) - env%v(k)) / env%step
+  end subroutine envelope_at_slope
 
   !> dz/dy of the envelope at y by a central difference over +-half (mm).
   elemental real(real64) function envelope_slope(env, y, half) result(dz)

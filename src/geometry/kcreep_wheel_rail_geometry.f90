@@ -38,13 +38,14 @@ module kcreep_wheel_rail_geometry
   use, intrinsic :: iso_fortran_env, only: real64
   use kcreep_status, only: status_t, fail, exit_bad_input
   use kcreep_strings, only: rtoa
-  use kcreep_profile, only: profile_t, envelope_t, sample_profile, make_envelope, envelope_at, envelope_slope, &
+  use kcreep_profile, only: profile_t, envelope_t, sample_profile, make_envelope, envelope_at, envelope_at_slope, &
+                            envelope_slope, &
                             no_surface, sample_step
   use kcreep_gap, only: gap_t, outside_gap
   implicit none
   private
   public :: track_t, contact_t, plane_gap_t, place_track, clearance, find_contacts, plane_of, plane_gap_value, &
-            plane_gap_grid, wheel_surface, search_step, refine_minimum, check_profile_ends
+            plane_gap_grid, wheel_surface, wheel_surface_slope, search_step, refine_minimum, check_profile_ends
 
   !> Lateral step of the contact search (mm).
   real(real64), parameter :: search_step = 0.02_real64
@@ -123,10 +124,23 @@ contains
     result(z)
     type(envelope_t), intent(in) :: track_wheel
     real(real64), intent(in) :: r_nom, origin, shift, sin_yaw, cos_yaw, w, x, y
-    real(real64) :: t, u, zw, r
+    real(real64) :: dz
+    call wheel_surface_slope(track_wheel, r_nom, origin, shift, sin_yaw, cos_yaw, w, x, y, z, dz)
+  end function wheel_surface_yawed
+
+  !> wheel_surface_yawed and its slope dz/dy at (x, y) (0 where the wheel
+  !> does not reach). The tread's radius r = r_nom + zw(t) at the profile
+  !> coordinate t and the distance u from the axis' plane along the rail:
+  !> z = w - r_nom + sqrt(r^2 - u^2).
+  elemental subroutine wheel_surface_slope(track_wheel, r_nom, origin, shift, sin_yaw, cos_yaw, w, x, y, z, dz)
+    type(envelope_t), intent(in) :: track_wheel
+    real(real64), intent(in) :: r_nom, origin, shift, sin_yaw, cos_yaw, w, x, y
+    real(real64), intent(out) :: z, dz
+    real(real64) :: t, u, zw, dzw, r, root
+    dz = 0
     t = -x * sin_yaw + (y - shift) * cos_yaw
     u = x * cos_yaw + (y - shift) * sin_yaw
-    zw = envelope_at(track_wheel, t - origin)
+    call envelope_at_slope(track_wheel, t - origin, zw, dzw)
     if (zw <= -no_surface) then
       z = -no_surface
       return
@@ -136,8 +150,10 @@ contains
       z = -no_surface
       return
     end if
-    z = w - r_nom + sqrt((r - u) * (r + u))
-  end function wheel_surface_yawed
+    root = sqrt((r - u) * (r + u))
+    z = w - r_nom + root
+    dz = (r * dzw * cos_yaw - u * sin_yaw) / root
+  end subroutine wheel_surface_slope
 
   !> The vertical clearance d(y) = z_rail - lowest wheel point at wheel height 0,
   !> on the grid y(k) = y_first + (k - 1) search_step over the rail; xs: where
@@ -326,54 +342,56 @@ contains
 
   !> lambda where the point (xi, s) of the plane moved by lambda along its
   !> normal meets the rail (rail; straight along x: xi does not matter) or
-  !> the wheel (Newton, difference quotients). trig: plane_trig.
+  !> the wheel: Newton from the plane (lambda = 0) with the surface's own
+  !> slope (of its sample interval: the envelopes are piecewise linear).
+  !> trig: plane_trig.
   pure subroutine plane_root(plane, trig, rail, xi, s, lambda, ok)
     type(plane_gap_t), intent(in) :: plane
     real(real64), intent(in) :: trig(4), xi, s
     logical, intent(in) :: rail
     real(real64), intent(out) :: lambda
     logical, intent(out) :: ok
-    real(real64) :: p(3), f0, f1, step
-    real(real64), parameter :: eps = 1e-4_real64
+    real(real64) :: p(3), f, df, step
     integer :: it
     associate (sd => trig(1), cd => trig(2))
       p = plane%p0 + [xi, s * cd, -s * sd]
       lambda = 0
       ok = .false.
       do it = 1, 30
-        f0 = residual(lambda)
-        if (abs(f0) >= 1e20_real64) return
-        f1 = residual(lambda + eps)
-        if (abs(f1) >= 1e20_real64) return
-        if (f1 == f0) return
-        step = -f0 * eps / (f1 - f0)
+        call residual(lambda, f, df)
+        if (abs(f) >= 1e20_real64 .or. df == 0) return
+        step = -f / df
         step = max(min(step, 5.0_real64), -5.0_real64)
         lambda = lambda + step
         if (abs(step) < 1e-12_real64) exit
       end do
-      ok = abs(residual(lambda)) < 1e-9_real64
+      call residual(lambda, f, df)
+      ok = abs(f) < 1e-9_real64
     end associate
 
   contains
 
-    !> surface z minus the line's z at lambda
-    pure real(real64) function residual(lambda) result(f)
+    !> surface z minus the line's z at lambda, and its derivative in lambda
+    pure subroutine residual(lambda, f, df)
       real(real64), intent(in) :: lambda
-      real(real64) :: y, z, zs
+      real(real64), intent(out) :: f, df
+      real(real64) :: y, z, zs, dzs
       y = p(2) + lambda * trig(1)
       z = p(3) + lambda * trig(2)
       if (rail) then
-        zs = envelope_at(plane%rail, y)
+        call envelope_at_slope(plane%rail, y, zs, dzs)
       else
-        zs = wheel_surface_yawed(plane%wheel, plane%r_nom, plane%wheel_origin, plane%shift, trig(3), trig(4), &
-                                 plane%wheel_height, p(1), y)
+        call wheel_surface_slope(plane%wheel, plane%r_nom, plane%wheel_origin, plane%shift, trig(3), trig(4), &
+                                 plane%wheel_height, p(1), y, zs, dzs)
       end if
       if (abs(zs) >= no_surface) then
         f = 1e30_real64
+        df = 0
       else
         f = zs - z
+        df = dzs * trig(1) - trig(2)
       end if
-    end function residual
+    end subroutine residual
 
   end subroutine plane_root
 

@@ -3,12 +3,14 @@
 !> the preconditioner are applied to all active columns at once (one pass
 !> over the preconditioner's factors and the FFT kernels per step).
 !>
-!> Flexible right preconditioning (FGMRES, Saad 1993): the preconditioned
-!> vectors z_j = M^-1 v_j are kept and x = x0 + Z y. The preconditioner may
-!> then be inexact (it runs in single precision, so M^-1 is not exactly
-!> linear), and the residual GMRES minimises is still the true one: the
-!> tolerance is on ||b - A x|| / ||b||, and at every restart the residual is
-!> recomputed from x, not updated.
+!> Right preconditioning: GMRES runs on A M^-1 and a cycle ends with
+!> x = x0 + M^-1 (V y), one more apply of the preconditioner instead of
+!> keeping every M^-1 v_j (half the basis memory). M^-1 must therefore be a
+!> fixed linear map: the circulant one is, the strip one up to its single
+!> precision rounding (about 1e-7 relative). The tolerance is on the true
+!> ||b - A x|| / ||b||: after every cycle the residual is recomputed from x,
+!> not updated (unless the caller ends columns on GMRES's estimate,
+!> estimate_ends), so that rounding cannot pass unseen.
 module kcreep_krylov
   use, intrinsic :: iso_fortran_env, only: real64, int64
   implicit none
