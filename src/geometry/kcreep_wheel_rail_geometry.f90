@@ -39,8 +39,7 @@ module kcreep_wheel_rail_geometry
   use kcreep_status, only: status_t, fail, exit_bad_input
   use kcreep_strings, only: rtoa
   use kcreep_profile, only: profile_t, envelope_t, sample_profile, make_envelope, envelope_at, envelope_at_slope, &
-                            envelope_slope, &
-                            no_surface, sample_step
+                            envelope_slope, no_surface, sample_step
   use kcreep_gap, only: gap_t, outside_gap
   implicit none
   private

@@ -218,7 +218,6 @@ contains
     integer, intent(in) :: max_vectors
     type(fft_operator_t), intent(out) :: op
     real(real64), allocatable :: kxx(:, :), kxy(:, :), kyy(:, :)
-    real(real64), allocatable :: uxx(:, :), uxy(:, :), uyy(:, :)
     type(influence_t), allocatable :: u(:, :)
     real(real64) :: det, scale
     integer :: i, j, hx, hy
@@ -230,13 +229,10 @@ contains
     hy = op%ny / 2
     allocate (u(0:hx, 0:hy))
     call displacement_offset_table(hx, hy, patch%dx, patch%dy, nu, 1.0_real64, u)
-    uxx = u%xx
-    uxy = u%xy
-    uyy = u%yy
     allocate (kxx(op%ny, hx + 1), kxy(op%ny, hx + 1), kyy(op%ny, hx + 1))
-    call wrapped_spectrum(uxx, 1.0_real64, kxx)
-    call wrapped_spectrum(uxy, -1.0_real64, kxy)
-    call wrapped_spectrum(uyy, 1.0_real64, kyy)
+    call wrapped_spectrum(u%xx, 1.0_real64, kxx)
+    call wrapped_spectrum(u%xy, -1.0_real64, kxy)
+    call wrapped_spectrum(u%yy, 1.0_real64, kyy)
     scale = 1 / (real(op%nx, real64) * op%ny)
     allocate (op%kxx, op%kxy, op%kyy, mold=op%slots(1)%cols)
     do i = 1, hx + 1
